@@ -1,0 +1,35 @@
+"""perturb: periodic solutions of quasilinear oscillating systems by Poincaré's method.
+
+Nothing symbolic happens at import time: systems are derived and solved on demand.
+"""
+
+from perturb.errors import (
+    AccuracyWarning,
+    IntegrationError,
+    InvalidParameterError,
+    InvalidSystemError,
+    PerturbError,
+    UnknownNameError,
+)
+from perturb.poincare import PoincareMethod, solve
+from perturb.solution import PeriodicSolution, SolutionFailed, Status
+from perturb.system import EPS, QuasilinearSystem, Regime
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "EPS",
+    "AccuracyWarning",
+    "IntegrationError",
+    "InvalidParameterError",
+    "InvalidSystemError",
+    "PeriodicSolution",
+    "PerturbError",
+    "PoincareMethod",
+    "QuasilinearSystem",
+    "Regime",
+    "SolutionFailed",
+    "Status",
+    "UnknownNameError",
+    "solve",
+]

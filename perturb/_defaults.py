@@ -1,0 +1,25 @@
+"""Named numerical constants of perturb, each with the reason for its value (one source for each)."""
+
+#: Default number of samples over one period when the user gives no times (CLI contract, issue 2).
+DEFAULT_SAMPLES = 101
+
+#: Largest order the engine accepts: beyond it the symbolic work grows past any use in practice.
+MAX_ORDER = 12
+
+#: Relative size under which a numerically evaluated coefficient counts as zero when probing the rank
+#: of the periodicity conditions at random parameter values (float64 round-off times a safety factor).
+RANK_TOL = 1e-9
+
+#: Number of random parameter points used to decide, numerically, whether a symbolic condition vanishes.
+ZERO_PROBES = 3
+
+#: Sample points per period for the numeric Fourier (quadrature) fallback used on non-polynomial
+#: perturbations; a power of two, enough for ~30 significant harmonics.
+FFT_POINTS = 256
+
+#: Fourier coefficients of the numeric fallback below this magnitude (relative to the largest) are dropped.
+FFT_TRIM = 1e-13
+
+#: Distance of a frequency ratio to an integer below which a non-resonant coordinate is flagged as
+#: near-resonant (small divisor 1/(omega_i**2 - j**2) larger than 1/NEAR_RESONANCE).
+NEAR_RESONANCE = 1e-3

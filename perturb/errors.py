@@ -1,0 +1,60 @@
+"""Exceptions and warnings of perturb: the only module that defines them.
+
+Invalid input raises a subclass of :class:`ValueError` whose message names the argument, the value
+received and the fix.  A valid run that fails numerically does *not* raise: it returns a result whose
+``status`` says what went wrong (see :class:`perturb.solution.Status`).
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "AccuracyWarning",
+    "IntegrationError",
+    "InvalidParameterError",
+    "InvalidSystemError",
+    "PerturbError",
+    "UnknownNameError",
+]
+
+
+class PerturbError(Exception):
+    """Root of every exception raised by perturb."""
+
+
+class InvalidSystemError(PerturbError, ValueError):
+    """A quasilinear system, or an option of the method, is not well formed."""
+
+
+class InvalidParameterError(PerturbError, ValueError):
+    """A problem parameter or a command-line value is out of its admissible range."""
+
+
+class UnknownNameError(PerturbError, ValueError):
+    """A problem, parameter, integrator or paper name that perturb does not know."""
+
+
+class IntegrationError(PerturbError, RuntimeError):
+    """A numerical integration failed; carries the solver's message, status and the time reached."""
+
+    def __init__(self, message: str, status: int | None = None, t_reached: float | None = None):
+        super().__init__(f"{message} (status {status}, reached t = {t_reached})")
+        self.message = message
+        self.status = status
+        self.t_reached = t_reached
+
+
+class AccuracyWarning(UserWarning):
+    """A result is returned but its accuracy is doubtful (small divisor, large expansion parameter)."""
+
+
+def bad_value(argument: str, value: object, fix: str, cls: type[ValueError] = InvalidParameterError):
+    """Build the one-line error used for every bad input: argument, value, fix.
+
+    Examples
+    --------
+    >>> raise bad_value("order", 0, "pass an integer >= 1")
+    Traceback (most recent call last):
+    ...
+    perturb.errors.InvalidParameterError: `order` = 0 is invalid: pass an integer >= 1
+    """
+    return cls(f"`{argument}` = {value!r} is invalid: {fix}")

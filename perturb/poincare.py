@@ -1,0 +1,498 @@
+"""Poincaré's method for periodic solutions of quasilinear systems, order by order.
+
+The construction works in the strained time :math:`s = \\Omega t` with
+:math:`\\Omega = \\omega_{ref} + \\sum_{k\\ge1}\\varepsilon^k\\Omega_k`, so that the sought solution is
+:math:`2\\pi`-periodic in ``s`` and the period correction of the classical write-up,
+:math:`\\alpha = T - 2\\pi/\\omega_{ref}`, becomes the frequency correction. With
+:math:`x_i = \\sum_k \\varepsilon^k x_{i,k}(s)` the equations
+
+.. math:: \\Omega^2 x_i'' + \\omega_i^2 x_i = f_i(x, \\Omega x', \\varepsilon)
+
+give at order ``k``:  :math:`\\omega_{ref}^2 x_{i,k}'' + \\omega_i^2 x_{i,k} = R_{i,k}(s)`.
+
+* For a resonant coordinate (:math:`\\omega_i = m_i\\omega_{ref}`) the solution is
+  :math:`x_{i,k} = \\beta_{i,k}^c\\cos m_i s + \\beta_{i,k}^s\\sin m_i s + g_{i,k}(s)` where
+  :math:`g_{i,k}` is the quadrature :math:`\\frac{1}{m_i\\omega_{ref}^2}\\int_0^s R_{i,k}(u)\\sin m_i(s-u)\\,du`
+  (zero initial data) and :math:`\\beta_{i,k}` are the Maclaurin coefficients of the initial-value
+  deviations.  :math:`g_{i,k}` is :math:`2\\pi`-periodic iff the periodicity conditions
+  :math:`g_{i,k}(2\\pi) = 0`, :math:`\\dot g_{i,k}(2\\pi) = 0` hold, i.e. iff the harmonic
+  :math:`m_i` of :math:`R_{i,k}` vanishes.
+* For a non-resonant coordinate the forced response is the unique periodic solution.
+
+The conditions are polynomial in the unknowns (generating amplitudes, their corrections, the
+:math:`\\Omega_k`).  Nonlinear ones — the amplitude equations of the first non-zero order — are solved
+for all roots and a branch is chosen; after that every correction enters linearly.  Unknowns left free
+by an order are carried symbolically and fixed by a later one (this covers isolated roots, continuous
+families with a user-chosen amplitude, and degenerate branches whose deviations scale as a power of ε
+fixed by the balance of orders).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import sympy as sp
+from attrs import field, frozen, validators
+
+from perturb._defaults import MAX_ORDER
+from perturb.errors import InvalidSystemError, bad_value
+from perturb.series import TrigSeries, evaluate_polynomial
+from perturb.solution import PeriodicSolution, Status
+from perturb.steps import Condition, GeneratingSolution, OrderStep
+from perturb.system import EPS, QuasilinearSystem
+from perturb.trig import TrigPoly
+
+__all__ = ["PoincareMethod", "solve"]
+
+
+def _check_order(instance, attribute, value):
+    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        raise bad_value("order", value, "pass an integer >= 1", InvalidSystemError)
+    if value > MAX_ORDER:
+        raise bad_value("order", value, f"pass an integer <= {MAX_ORDER}", InvalidSystemError)
+
+
+def _as_mapping(value) -> dict:
+    return dict(value or {})
+
+
+@frozen
+class PoincareMethod:
+    """Poincaré's method (small or large parameter) for a :class:`QuasilinearSystem`.
+
+    Parameters
+    ----------
+    order : int
+        Highest power of ε kept in the solution (>= 1).
+    amplitudes : mapping, optional
+        Fixed initial values ``{coordinate name: x_i(0)}``.  Values may be numbers or expressions in the
+        system's parameters, ε (``perturb.system.EPS``) and its ``initial_values`` symbols (a
+        constraint such as a first integral).  A coordinate listed here has exactly this initial value
+        at every order (a member of a continuous family chosen by the user); the generating amplitudes
+        of the others are unknowns found from the periodicity conditions.
+    phase_coordinate : str, optional
+        The coordinate whose velocity vanishes at ``t = 0`` (fixes the phase of an autonomous system).
+        Default: the only coordinate in ``amplitudes`` if there is one, else the first coordinate.
+    branch : mapping or int, optional
+        Which root of the amplitude equations to follow: a mapping ``{symbol name: value}`` selects the
+        root that has these values; an integer indexes the admissible roots in the order listed in
+        ``solution.steps[k].branches``.  Default: the isolated root with the largest phase amplitude.
+    """
+
+    order: int = field(default=1, validator=_check_order)
+    amplitudes: dict = field(factory=dict, converter=_as_mapping)
+    phase_coordinate: str | None = field(
+        default=None, validator=validators.optional(validators.instance_of(str))
+    )
+    branch: object = None
+
+    # ------------------------------------------------------------------ public
+    def solve(self, system: QuasilinearSystem) -> PeriodicSolution:
+        """Construct the periodic solution of ``system``; see the module docstring."""
+        return _Construction(self, system).run()
+
+
+def solve(system: QuasilinearSystem, order: int = 1, **options) -> PeriodicSolution:
+    """Shortcut for ``PoincareMethod(order=order, **options).solve(system)``."""
+    return PoincareMethod(order=order, **options).solve(system)
+
+
+class _Construction:
+    """The mutable working state of one run (never escapes; results are frozen)."""
+
+    def __init__(self, method: PoincareMethod, system: QuasilinearSystem):
+        self.method = method
+        self.system = system
+        self.n = system.n
+        self.names = [c.name for c in system.coordinates]
+        self._setup_phase_and_harmonics()
+        self._setup_unknowns()
+
+    # ------------------------------------------------------------------ setup
+    def _setup_phase_and_harmonics(self):
+        method, names = self.method, self.names
+        for key in method.amplitudes:
+            if key not in names:
+                raise bad_value(
+                    "amplitudes", {key: method.amplitudes[key]}, f"name a coordinate, one of {names}",
+                    InvalidSystemError,
+                )
+        phase = method.phase_coordinate
+        if phase is None:
+            phase = next(iter(method.amplitudes)) if len(method.amplitudes) == 1 else names[0]
+        if phase not in names:
+            raise bad_value("phase_coordinate", phase, f"name a coordinate, one of {names}", InvalidSystemError)
+        self.phase = names.index(phase)
+        self.w_ref = self.system.frequencies[self.phase]
+        self.harmonics: list[int | None] = []
+        for i, w in enumerate(self.system.frequencies):
+            ratio = sp.nsimplify(sp.simplify(w / self.w_ref))
+            m = int(ratio) if ratio.is_Integer and ratio > 0 else None
+            self.harmonics.append(m)
+            if m is None and names[i] in method.amplitudes:
+                raise bad_value(
+                    "amplitudes", {names[i]: method.amplitudes[names[i]]},
+                    f"{names[i]} is not resonant with the phase coordinate {phase} "
+                    f"(omega ratio {ratio}); its generating amplitude vanishes, drop it",
+                    InvalidSystemError,
+                )
+
+    def _setup_unknowns(self):
+        self.unknowns: set[sp.Symbol] = set()
+        self.given_series: dict[int, sp.Expr] = {}
+        for name, value in self.method.amplitudes.items():
+            i = self.names.index(name)
+            expr = sp.sympify(value)
+            allowed = set(self.system.parameters) | set(self.system.initial_values) | {EPS}
+            stray = expr.free_symbols - allowed
+            if stray:
+                raise bad_value(
+                    "amplitudes", {name: value},
+                    f"it depends on {sorted(map(str, stray))}; use only declared parameters, "
+                    "initial-value symbols and epsilon",
+                    InvalidSystemError,
+                )
+            self.given_series[i] = expr
+        self.omega = [self.w_ref]
+        # x_{i,k}(s) for each coordinate, order by order
+        self.x: list[list[TrigPoly]] = [[] for _ in range(self.n)]
+        self.init_cos: list[list[sp.Expr]] = [[] for _ in range(self.n)]
+        self.solved: dict[sp.Symbol, sp.Expr] = {}
+        self.steps: list[OrderStep] = []
+
+    def _new(self, label: str) -> sp.Symbol:
+        sym = sp.Symbol(label)
+        self.unknowns.add(sym)
+        return sym
+
+    # ------------------------------------------------------------------ order 0
+    def _generating(self) -> GeneratingSolution:
+        cos_amp, sin_amp = [], []
+        for i, name in enumerate(self.names):
+            m = self.harmonics[i]
+            if m is None:
+                a = b = sp.S.Zero
+            else:
+                a = self._initial_cos(i, 0)
+                b = sp.S.Zero if i == self.phase else self._new(f"b_{name}0")
+            cos_amp.append(a)
+            sin_amp.append(b)
+            self.x[i].append(TrigPoly.harmonic(m, a, b) if m else TrigPoly())
+        return GeneratingSolution(
+            coordinates=tuple(self.names),
+            harmonics=tuple(self.harmonics),
+            cos_amplitudes=tuple(cos_amp),
+            sin_amplitudes=tuple(sin_amp),
+            phase_coordinate=self.names[self.phase],
+            reference_frequency=self.w_ref,
+        )
+
+    def _initial_cos(self, i: int, k: int) -> sp.Expr:
+        """x_{i,k}(0): given by ``amplitudes`` (expanded in ε) or a new unknown."""
+        if i not in self.given_series:
+            value = self._new(f"a_{self.names[i]}{k}")
+        else:
+            value = self._given_coefficient(i, k)
+        self.init_cos[i].append(value)
+        return value
+
+    def _given_coefficient(self, i: int, k: int) -> sp.Expr:
+        expr = self.given_series[i]
+        if not (expr.free_symbols & set(self.system.initial_values)) and not expr.has(EPS):
+            return expr if k == 0 else sp.S.Zero
+        # Substitute the initial values by their series (orders < k are known; order k must not enter).
+        subs = {}
+        for j, sym in enumerate(self.system.initial_values):
+            coord = j % self.n
+            if coord == i and expr.has(sym):
+                raise bad_value(
+                    "amplitudes", {self.names[i]: expr},
+                    "the initial value of a coordinate cannot depend on itself", InvalidSystemError,
+                )
+            if not expr.has(sym):
+                continue
+            subs[sym] = self._initial_value_series(j, k)
+        series = sp.series(expr.subs(subs), EPS, 0, k + 1).removeO() if k else expr.subs(subs).subs(EPS, 0)
+        return sp.expand(sp.expand(series).coeff(EPS, k)) if k else sp.expand(series)
+
+    def _initial_value_series(self, j: int, k: int) -> sp.Expr:
+        """x_i(0) or xdot_i(0) as a polynomial in ε through order ``k`` (using what is known)."""
+        coord, is_velocity = j % self.n, j >= self.n
+        total = sp.S.Zero
+        for order, term in enumerate(self.x[coord][: k + 1]):
+            value = term.derivative().at_zero() if is_velocity else term.at_zero()
+            total += EPS**order * value
+        if is_velocity:
+            total = sp.expand(total * sp.Add(*(EPS**q * w for q, w in enumerate(self.omega))))
+        return total
+
+    # ------------------------------------------------------------------ order k
+    def _state_series(self, k: int) -> dict[sp.Symbol, TrigSeries]:
+        """Series (to order k-1, padded to k) of the state and the initial values."""
+        top = k - 1
+        variables: dict[sp.Symbol, TrigSeries] = {}
+        omega_series = TrigSeries([TrigPoly.constant(w) for w in self.omega[: top + 1]]).truncate(top)
+        for i in range(self.n):
+            xs = TrigSeries(self.x[i][: top + 1]).truncate(top)
+            variables[self.system.coordinates[i]] = xs
+            variables[self.system.velocities[i]] = (omega_series * xs.derivative()).truncate(top)
+        for j, sym in enumerate(self.system.initial_values):
+            value = variables[self.system.state_symbols[j]]
+            variables[sym] = TrigSeries([TrigPoly.constant(c.at_zero()) for c in value.coefficients])
+        return {sym: series.truncate(k) for sym, series in variables.items()}
+
+    def _forcing(self, k: int) -> list[TrigPoly]:
+        """R_{i,k}: order-k coefficient of f_i(x, Omega x') - (Omega^2 - w_ref^2) x_i''."""
+        expansion = self.expansion
+        variables = self._state_series(k)
+        forcing = []
+        omega_new = self._new(f"Omega{k}")
+        omegas = self.omega + [omega_new]
+        omega_sq = [sp.expand(sp.Add(*(omegas[a] * omegas[q - a] for a in range(q + 1)))) for q in range(k + 1)]
+        for i in range(self.n):
+            total = TrigPoly()
+            for m in range(1, k + 1):
+                f_m = expansion[i][m]
+                if f_m == 0:
+                    continue
+                try:
+                    value = evaluate_polynomial(f_m, variables, k - m)
+                except sp.PolynomialError as exc:
+                    raise _NotPolynomial(str(exc)) from None
+                total = total + value.coefficients[k - m]
+            for q in range(1, k + 1):  # -(Omega^2)_q x_{i,k-q}''
+                if k - q < len(self.x[i]) and omega_sq[q] != 0:
+                    total = total - self.x[i][k - q].derivative().derivative().scale(omega_sq[q])
+            forcing.append(total.expand())
+        self.omega.append(omega_new)
+        return forcing
+
+    def _solve_order(self, k: int, forcing: list[TrigPoly]) -> tuple[dict, list[Condition]]:
+        """Quadratures and periodicity conditions of order k (conditions returned unsolved)."""
+        w2 = self.w_ref**2
+        quadratures, conditions = {}, []
+        for i, name in enumerate(self.names):
+            r = forcing[i]
+            m = self.harmonics[i]
+            wi2 = self.system.frequencies[i] ** 2
+            periodic = {}
+            for j, (c, s) in r.terms.items():
+                if m is not None and j == m:
+                    continue
+                den = wi2 - j**2 * w2
+                periodic[j] = (sp.expand(c / den), sp.expand(s / den))
+            part = TrigPoly(periodic)
+            if m is None:
+                quadratures[name] = part
+                self.x[i].append(part)
+                continue
+            rc, rs = r.coefficient(m)
+            # g(2 pi) and dg/ds(2 pi) of the quadrature with zero initial data (paper's (16) form)
+            conditions.append(Condition(f"g_{name},{k}(2pi)", sp.expand(-sp.pi * rs / (m * w2))))
+            conditions.append(Condition(f"dg_{name},{k}/ds(2pi)", sp.expand(sp.pi * rc / w2)))
+            # zero initial data: subtract the periodic part's initial value and slope
+            p0, dp0 = part.at_zero(), part.derivative().at_zero()
+            g = part + TrigPoly.harmonic(m, -p0, -dp0 / m)
+            quadratures[name] = g
+            a = self._initial_cos(i, k)
+            b = sp.S.Zero if i == self.phase else self._new(f"b_{name}{k}")
+            self.x[i].append((g + TrigPoly.harmonic(m, a, b)).expand())
+        return quadratures, conditions
+
+    # ------------------------------------------------------------------ solving
+    def _substitute(self, mapping: dict):
+        if not mapping:
+            return
+        self.x = [[t.subs(mapping) for t in row] for row in self.x]
+        self.omega = [sp.expand(w.xreplace(mapping)) for w in self.omega]
+        self.init_cos = [[sp.expand(v.xreplace(mapping)) for v in row] for row in self.init_cos]
+        self.solved = {s: sp.expand(v.xreplace(mapping)) for s, v in self.solved.items()}
+        self.solved.update(mapping)
+        self.pending = [sp.expand(e.xreplace(mapping)) for e in self.pending]
+        self.unknowns -= set(mapping)
+
+    def _solve_conditions(self, k: int, generating: GeneratingSolution) -> tuple[dict, tuple]:
+        eqs = [e for e in (sp.expand(e) for e in self.pending) if e != 0]
+        if not eqs:
+            self.pending = []
+            return {}, ()
+        unknowns = sorted(set().union(*(e.free_symbols for e in eqs)) & self.unknowns, key=str)
+        if not unknowns:
+            residual = [sp.simplify(e) for e in eqs]
+            if any(r != 0 for r in residual):
+                raise _Failure(Status.INCONSISTENT, f"order {k}: conditions {residual} cannot vanish")
+            self.pending = []
+            return {}, ()
+        linear = all(sp.Poly(e, *unknowns).total_degree() <= 1 for e in eqs)
+        if linear:
+            solution = self._solve_linear(eqs, unknowns, k)
+            branches = ()
+        else:
+            solution, branches = self._solve_nonlinear(eqs, unknowns, k, generating)
+        self._substitute(solution)
+        # whatever is left (independent of the remaining unknowns) must vanish; equations still
+        # involving unknowns stay pending for later orders
+        still = []
+        for e in self.pending:
+            e = sp.expand(e)
+            if e == 0:
+                continue
+            if not (e.free_symbols & self.unknowns):
+                if sp.simplify(e) != 0:
+                    raise _Failure(Status.INCONSISTENT, f"order {k}: condition {e} = 0 cannot hold")
+                continue
+            still.append(e)
+        self.pending = still
+        return solution, branches
+
+    def _solve_linear(self, eqs, unknowns, k) -> dict:
+        matrix, rhs = sp.linear_eq_to_matrix(eqs, unknowns)
+        result = sp.linsolve((matrix, rhs), unknowns)
+        if result == sp.S.EmptySet:
+            raise _Failure(Status.INCONSISTENT, f"order {k}: the linear periodicity conditions have no solution")
+        (values,) = tuple(result)
+        solution = {}
+        for sym, val in zip(unknowns, values, strict=True):
+            val = sp.factor_terms(sp.cancel(val))
+            if val.free_symbols & set(unknowns) == {sym}:
+                continue
+            if sym in val.free_symbols:
+                continue
+            solution[sym] = val
+        return {s: sp.expand(v) if v.is_polynomial(*unknowns) else v for s, v in solution.items()}
+
+    def _solve_nonlinear(self, eqs, unknowns, k, generating) -> tuple[dict, tuple]:
+        roots = sp.solve(eqs, unknowns, dict=True)
+        if not roots:
+            raise _Failure(Status.NO_ROOT, f"order {k}: amplitude equations {eqs} have no root")
+        amplitude_syms = {s for s in (*generating.cos_amplitudes, *generating.sin_amplitudes) if isinstance(s, sp.Symbol)}
+        admissible = []
+        for root in roots:
+            full = {s: root.get(s, s) for s in amplitude_syms}
+            gen = [sp.sympify(a).xreplace(full) for a in (*generating.cos_amplitudes, *generating.sin_amplitudes)]
+            gen = [g.xreplace(self.solved) for g in gen]
+            if all(sp.simplify(g) == 0 for g in gen):
+                continue  # trivial equilibrium
+            if any(v.has(sp.I) and sp.simplify(sp.im(v)) != 0 for v in root.values()):
+                continue
+            admissible.append(root)
+        if not admissible:
+            raise _Failure(Status.NO_ROOT, f"order {k}: the amplitude equations {eqs} have only the trivial root")
+        chosen = self._choose_branch(admissible, unknowns, generating)
+        return chosen, tuple(admissible)
+
+    def _choose_branch(self, roots, unknowns, generating) -> dict:
+        selector = self.method.branch
+        if isinstance(selector, int) and not isinstance(selector, bool):
+            if not 0 <= selector < len(roots):
+                raise bad_value("branch", selector, f"choose an index below {len(roots)}: {roots}", InvalidSystemError)
+            return roots[selector]
+        if isinstance(selector, Mapping):
+            wanted = {sp.Symbol(k) if isinstance(k, str) else k: sp.sympify(v) for k, v in selector.items()}
+            for root in roots:
+                if all(sp.simplify(root.get(s, s) - v) == 0 for s, v in wanted.items() if s in unknowns):
+                    return root
+            raise bad_value("branch", selector, f"no root matches; the roots are {roots}", InvalidSystemError)
+        isolated = [r for r in roots if not (set().union(*(sp.sympify(v).free_symbols for v in r.values())) & set(unknowns))]
+        pool = isolated or roots
+        phase_amp = generating.cos_amplitudes[self.phase]
+
+        def key(root):
+            value = sp.sympify(phase_amp).xreplace(root)
+            try:
+                return -float(value.evalf(subs=_probe_values(value)))
+            except (TypeError, ValueError):
+                return 0.0
+
+        return sorted(pool, key=key)[0]
+
+    # ------------------------------------------------------------------ driver
+    def run(self) -> PeriodicSolution:
+        method, system = self.method, self.system
+        lead = system.leading_order
+        max_k = method.order + max(lead, 1) + 1
+        self.expansion = system.expansion(max_k)
+        self.pending: list[sp.Expr] = []
+        generating = self._generating()
+        status, message = Status.SUCCESS, ""
+        k_done = 0
+        try:
+            for k in range(1, max_k + 1):
+                forcing = self._forcing(k)
+                quadratures, conditions = self._solve_order(k, forcing)
+                self.pending.extend(c.expression for c in conditions)
+                solved, branches = self._solve_conditions(k, generating)
+                self.steps.append(
+                    OrderStep(k, {n: f for n, f in zip(self.names, forcing, strict=True)}, quadratures,
+                              tuple(conditions), dict(solved), branches)
+                )
+                k_done = k
+                if k >= method.order and not self._open_unknowns(method.order):
+                    break
+        except _NotPolynomial as exc:
+            status, message = Status.NOT_POLYNOMIAL, str(exc)
+        except _Failure as exc:
+            status, message = exc.status, exc.message
+        if status is Status.SUCCESS and self._open_unknowns(method.order):
+            status = Status.UNDETERMINED
+            message = f"unknowns {sorted(map(str, self._open_unknowns(method.order)))} are not fixed by orders up to {k_done}"
+        return self._result(generating, status, message)
+
+    def _open_unknowns(self, order: int) -> set:
+        syms = set()
+        for row in self.x:
+            for term in row[: order + 1]:
+                syms |= term.free_symbols()
+        for w in self.omega[: order + 1]:
+            syms |= w.free_symbols
+        return syms & self.unknowns
+
+    def _result(self, generating: GeneratingSolution, status: Status, message: str) -> PeriodicSolution:
+        order = self.method.order
+        gen = GeneratingSolution(
+            coordinates=generating.coordinates,
+            harmonics=generating.harmonics,
+            cos_amplitudes=tuple(sp.sympify(a).xreplace(self.solved) for a in generating.cos_amplitudes),
+            sin_amplitudes=tuple(sp.sympify(b).xreplace(self.solved) for b in generating.sin_amplitudes),
+            phase_coordinate=generating.phase_coordinate,
+            reference_frequency=generating.reference_frequency,
+        )
+        terms = tuple(tuple(row[: order + 1]) for row in self.x)
+        # keep every frequency coefficient that is fully determined
+        frequency = []
+        for w in self.omega:
+            if w.free_symbols & self.unknowns:
+                break
+            frequency.append(w)
+        deviations = {}
+        for i, name in enumerate(self.names):
+            if self.harmonics[i] is None:
+                continue
+            values = [t.at_zero() for t in terms[i]]
+            deviations[name] = tuple(values[1:])
+        return PeriodicSolution(
+            system=self.system,
+            order=order,
+            terms=terms,
+            frequency=tuple(frequency),
+            generating=gen,
+            steps=tuple(self.steps),
+            deviations=deviations,
+            status=status,
+            message=message,
+        )
+
+
+def _probe_values(expr: sp.Expr) -> dict:
+    """Deterministic generic numeric values for the free symbols of ``expr`` (for ordering roots)."""
+    return {s: sp.Rational(7 + 3 * i, 10 + i) for i, s in enumerate(sorted(expr.free_symbols, key=str))}
+
+
+class _Failure(Exception):
+    def __init__(self, status: Status, message: str):
+        super().__init__(message)
+        self.status, self.message = status, message
+
+
+class _NotPolynomial(Exception):
+    pass

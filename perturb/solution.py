@@ -1,0 +1,244 @@
+"""The result of a Poincaré construction: :class:`PeriodicSolution`, and its :class:`Status`."""
+
+from __future__ import annotations
+
+import enum
+from collections.abc import Mapping
+from functools import cached_property
+
+import numpy as np
+import sympy as sp
+from attrs import field, frozen
+
+from perturb.errors import InvalidParameterError, PerturbError
+from perturb.steps import S, GeneratingSolution, OrderStep
+from perturb.system import EPS, QuasilinearSystem, Regime
+
+__all__ = ["PeriodicSolution", "SolutionFailed", "Status"]
+
+T_SYM = sp.Symbol("t", real=True)
+
+
+class Status(enum.Enum):
+    """Outcome of a construction; the values are the messages shown to users."""
+
+    SUCCESS = "the periodicity conditions were solved at every order"
+    NO_ROOT = "the amplitude equations have no admissible (non-trivial) root"
+    INCONSISTENT = "the periodicity conditions are inconsistent at some order (no periodic solution)"
+    UNDETERMINED = (
+        "the periodicity conditions leave some amplitudes free (a continuous family): fix them "
+        "with `amplitudes=`"
+    )
+    NOT_POLYNOMIAL = "the right-hand side is not polynomial in the state; give numeric parameter values"
+
+    @property
+    def ok(self) -> bool:
+        return self is Status.SUCCESS
+
+
+class SolutionFailed(PerturbError, RuntimeError):
+    """Raised by :meth:`PeriodicSolution.raise_for_status` on a failed construction."""
+
+
+@frozen
+class PeriodicSolution:
+    """A periodic solution :math:`x_i(t) = \\sum_k \\varepsilon^k x_{i,k}(\\Omega t)`, :math:`T = 2\\pi/\\Omega`.
+
+    Attributes
+    ----------
+    system : QuasilinearSystem
+        The system that was solved.
+    order : int
+        Highest power of ε kept in the state.
+    terms : tuple
+        ``terms[i][k]`` is :math:`x_{i,k}(s)` as a :class:`~perturb.trig.TrigPoly` in the strained time
+        ``s = Omega t``.
+    frequency : tuple of sympy expressions
+        :math:`\\Omega_k`, the coefficients of :math:`\\Omega = \\sum_k \\varepsilon^k\\Omega_k`
+        (every coefficient the conditions determined; ``frequency[0]`` is the reference frequency).
+    generating : GeneratingSolution
+    steps : tuple of OrderStep
+        The construction, order by order.
+    deviations : dict
+        ``{coordinate name: (beta_1, beta_2, ...)}``: the Maclaurin coefficients of the initial-value
+        deviations :math:`\\beta_i(\\varepsilon) = x_i(0) - M_i`.
+    status : Status
+    message : str
+        Human-readable detail of the status.
+    """
+
+    system: QuasilinearSystem
+    order: int
+    terms: tuple = field(eq=False)
+    frequency: tuple[sp.Expr, ...]
+    generating: GeneratingSolution
+    steps: tuple[OrderStep, ...] = field(eq=False)
+    deviations: dict = field(eq=False)
+    status: Status = Status.SUCCESS
+    message: str = ""
+
+    # ------------------------------------------------------------------ status
+    @property
+    def success(self) -> bool:
+        return self.status.ok
+
+    def raise_for_status(self) -> PeriodicSolution:
+        if not self.success:
+            raise SolutionFailed(f"{self.status.value}: {self.message}")
+        return self
+
+    # ------------------------------------------------------------------ symbolic views
+    @property
+    def coordinates(self) -> tuple[str, ...]:
+        return tuple(c.name for c in self.system.coordinates)
+
+    @property
+    def state_names(self) -> tuple[str, ...]:
+        return self.system.state_names
+
+    @property
+    def parameter(self) -> sp.Symbol:
+        """The symbol the results are written in (ε, or μ in the large-parameter regime)."""
+        return self.system.parameter
+
+    def _in_user_parameter(self, expr: sp.Expr) -> sp.Expr:
+        if self.system.regime is Regime.LARGE:
+            return expr.subs(EPS, 1 / self.system.parameter)
+        return expr.subs(EPS, self.system.parameter)
+
+    def coordinate(self, name: str, *, in_time: bool = False) -> sp.Expr:
+        """:math:`x_i` as a sum over orders, in ``s`` (default) or in physical time ``t``."""
+        i = self._index(name)
+        expr = sp.Add(*(EPS**k * term.as_expr(S) for k, term in enumerate(self.terms[i])))
+        if in_time:
+            expr = expr.subs(S, self.frequency_expr * T_SYM)
+        return self._in_user_parameter(expr)
+
+    @property
+    def frequency_expr(self) -> sp.Expr:
+        """:math:`\\Omega(\\varepsilon)` truncated where the conditions stopped."""
+        return sp.Add(*(EPS**k * w for k, w in enumerate(self.frequency)))
+
+    def period_series(self) -> sp.Expr:
+        """The period :math:`T = 2\\pi/\\Omega` expanded to the order the frequency is known."""
+        n = len(self.frequency)
+        series = sp.series(2 * sp.pi / self.frequency_expr, EPS, 0, n).removeO()
+        return self._in_user_parameter(sp.expand(series))
+
+    def latex(self) -> str:
+        """The solution as LaTeX: one line per coordinate and the period."""
+        lines = [f"{sp.latex(sp.Symbol(c))} = {sp.latex(self.coordinate(c))}" for c in self.coordinates]
+        lines.append(f"T = {sp.latex(self.period_series())}")
+        return " \\\\\n".join(lines)
+
+    def __str__(self) -> str:
+        out = [f"PeriodicSolution of {self.system.name} to order {self.order}: {self.status.name}"]
+        if self.message:
+            out.append(f"  {self.message}")
+        for c in self.coordinates:
+            out.append(f"  {c} = {self.coordinate(c)}")
+        out.append(f"  Omega = {self._in_user_parameter(self.frequency_expr)}")
+        return "\n".join(out)
+
+    def _index(self, name: str) -> int:
+        try:
+            return self.coordinates.index(name)
+        except ValueError:
+            raise InvalidParameterError(
+                f"`name` = {name!r} is not a coordinate: choose from {list(self.coordinates)}"
+            ) from None
+
+    # ------------------------------------------------------------------ numerics
+    @cached_property
+    def _compiled(self):
+        """Lambdified harmonic coefficients, compiled once (common subexpressions shared)."""
+        params = [p for p in self.system.parameters]
+        harmonics = max((t.max_harmonic for row in self.terms for t in row), default=0)
+        cos_rows, sin_rows = [], []
+        for row in self.terms:
+            cos_rows.append(
+                [sp.Add(*(EPS**k * t.coefficient(j)[0] for k, t in enumerate(row))) for j in range(harmonics + 1)]
+            )
+            sin_rows.append(
+                [sp.Add(*(EPS**k * t.coefficient(j)[1] for k, t in enumerate(row))) for j in range(harmonics + 1)]
+            )
+        exprs = [self.frequency_expr, cos_rows, sin_rows]
+        fn = sp.lambdify([EPS, *params], exprs, modules="numpy", cse=True)
+        return fn, params, harmonics
+
+    def _epsilon(self, value) -> np.ndarray:
+        value = np.asarray(value, dtype=float)
+        if not np.all(np.isfinite(value)):
+            raise InvalidParameterError(f"`{self.parameter}` = {value} is not finite: give a finite value")
+        if self.system.regime is Regime.LARGE:
+            if np.any(value == 0):
+                raise InvalidParameterError(f"`{self.parameter}` = 0: the large parameter must be non-zero")
+            return 1.0 / value
+        return value
+
+    def _params(self, values: Mapping | None) -> list:
+        values = dict(values or {})
+        _, params, _ = self._compiled
+        missing = [p.name for p in params if p.name not in values and p not in values]
+        if missing:
+            raise InvalidParameterError(
+                f"`values` lacks {missing}: give a value for every free parameter of the solution"
+            )
+        return [np.asarray(values[p.name] if p.name in values else values[p], dtype=float) for p in params]
+
+    def coefficients(self, parameter_value, values: Mapping | None = None):
+        """Numeric ``(Omega, cos, sin)``: cos/sin have shape ``(n, harmonics + 1, *broadcast)``."""
+        fn, _, h = self._compiled
+        eps = self._epsilon(parameter_value)
+        args = self._params(values)
+        omega, cos_rows, sin_rows = fn(eps, *args)
+        shape = np.broadcast_shapes(np.shape(eps), *(np.shape(a) for a in args))
+        cos = np.array([[np.broadcast_to(np.asarray(c, float), shape) for c in row] for row in cos_rows])
+        sin = np.array([[np.broadcast_to(np.asarray(c, float), shape) for c in row] for row in sin_rows])
+        return np.broadcast_to(np.asarray(omega, float), shape), cos, sin
+
+    def period_at(self, parameter_value, values: Mapping | None = None):
+        """Period :math:`2\\pi/\\Omega` at the given parameter value(s)."""
+        omega, _, _ = self.coefficients(parameter_value, values)
+        return 2 * np.pi / omega
+
+    def evaluate(self, t, parameter_value, values: Mapping | None = None) -> np.ndarray:
+        """The state ``(x_1..x_n, xdot_1..xdot_n)`` at times ``t``.
+
+        Parameters
+        ----------
+        t : array_like
+            Times (physical time of the quasilinear system).
+        parameter_value : float or array_like
+            ε (or μ in the large-parameter regime). Arrays broadcast with the parameter ``values``;
+            the result then has shape ``(2n, *param_shape, *t.shape)``.
+        values : mapping, optional
+            Values of the system's free parameters.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape ``(2n, *t.shape)`` for scalar parameters.
+        """
+        omega, cos, sin = self.coefficients(parameter_value, values)
+        t = np.asarray(t, dtype=float)
+        pshape = omega.shape
+        omega_b = omega.reshape(pshape + (1,) * t.ndim)
+        theta = omega_b * t
+        z = np.exp(1j * theta)
+        n, nh = cos.shape[:2]
+        out = np.empty((2 * n,) + theta.shape)
+        for i in range(n):
+            c = (cos[i] - 1j * sin[i]).reshape((nh,) + pshape + (1,) * t.ndim)
+            acc = np.broadcast_to(c[nh - 1], theta.shape).astype(complex)
+            dacc = (nh - 1) * acc
+            for j in range(nh - 2, -1, -1):  # Horner in z = exp(i s)
+                acc = acc * z + c[j]
+                dacc = dacc * z + j * c[j]
+            out[i] = acc.real
+            out[n + i] = (omega_b * (1j * dacc)).real
+        return out
+
+    def initial_state(self, parameter_value, values: Mapping | None = None) -> np.ndarray:
+        """State at ``t = 0`` (shape ``(2n, *param_shape)``)."""
+        return self.evaluate(np.zeros(()), parameter_value, values)

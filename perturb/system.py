@@ -1,0 +1,254 @@
+"""The quasilinear autonomous system, the object every Poincaré construction starts from.
+
+.. math::
+
+    \\ddot x_i + \\omega_i^2 x_i = f_i(x, \\dot x, \\varepsilon), \\qquad f_i = \\sum_{k \\ge 1} \\varepsilon^k f_{i,k}(x, \\dot x)
+
+In the large-parameter regime the right-hand side is written in a symbol :math:`\\mu` and expanded in
+:math:`\\mu^{-1}` (:math:`\\varepsilon = 1/\\mu`).
+"""
+
+from __future__ import annotations
+
+import enum
+from collections.abc import Mapping, Sequence
+from functools import cached_property
+
+import attrs
+import sympy as sp
+from attrs import field, frozen
+
+from perturb.errors import InvalidSystemError
+
+__all__ = ["QuasilinearSystem", "Regime"]
+
+#: The canonical expansion symbol used inside the engine (the small parameter).
+EPS = sp.Symbol("epsilon", positive=True)
+
+
+class Regime(enum.Enum):
+    """Which way the system's parameter is small."""
+
+    SMALL = "small"  #: expansion in powers of the parameter itself, epsilon -> 0
+    LARGE = "large"  #: expansion in powers of 1/mu, mu -> infinity (epsilon = 1/mu)
+
+
+def _as_tuple_of_exprs(values) -> tuple[sp.Expr, ...]:
+    if isinstance(values, (str, sp.Basic)) or not isinstance(values, Sequence):
+        values = (values,)
+    return tuple(sp.sympify(v) for v in values)
+
+
+def _as_tuple_of_symbols(values) -> tuple[sp.Symbol, ...]:
+    if isinstance(values, (str, sp.Symbol)):
+        values = (values,)
+    return tuple(sp.Symbol(v) if isinstance(v, str) else v for v in values)
+
+
+@frozen
+class QuasilinearSystem:
+    """A quasilinear autonomous system of ``n`` coupled oscillators.
+
+    Parameters
+    ----------
+    coordinates : sequence of sympy.Symbol or str
+        The coordinates :math:`x_i`.
+    velocities : sequence of sympy.Symbol or str
+        Symbols standing for :math:`\\dot x_i` in the right-hand sides, same length as ``coordinates``.
+    frequencies : sequence of sympy expressions
+        The generating frequencies :math:`\\omega_i` (positive; may depend on declared ``parameters``).
+    rhs : sequence of sympy expressions
+        The right-hand sides :math:`f_i(x, \\dot x, \\varepsilon)` of
+        :math:`\\ddot x_i + \\omega_i^2 x_i = f_i`; each must vanish when the parameter does
+        (lowest power of ε positive). They may start at any power (the disk starts at ε²).
+    parameter : sympy.Symbol or str
+        The expansion parameter as it appears in ``rhs``: ε (regime ``SMALL``) or μ (regime ``LARGE``).
+    regime : Regime
+        ``SMALL``: expand in powers of ``parameter``. ``LARGE``: expand in powers of ``1/parameter``.
+    parameters : sequence of sympy.Symbol or str
+        Symbolic constants allowed in ``rhs`` and ``frequencies`` besides the state and the parameter.
+    initial_values : sequence of sympy.Symbol or str, optional
+        Symbols that stand for the initial state, in the order
+        ``x_1(0), ..., x_n(0), xdot_1(0), ..., xdot_n(0)``. Reduced systems obtained by eliminating
+        variables through first integrals depend on the initial state this way.
+    first_integrals : sequence of sympy expressions, optional
+        Known first integrals (functions of the state, the parameter and the initial values).
+    name : str
+        A label used in reports.
+
+    Raises
+    ------
+    InvalidSystemError
+        For mismatched lengths, non-positive or non-real frequencies, undeclared symbols, or a
+        right-hand side that does not vanish with the parameter.
+    """
+
+    coordinates: tuple[sp.Symbol, ...] = field(converter=_as_tuple_of_symbols)
+    velocities: tuple[sp.Symbol, ...] = field(converter=_as_tuple_of_symbols)
+    frequencies: tuple[sp.Expr, ...] = field(converter=_as_tuple_of_exprs)
+    rhs: tuple[sp.Expr, ...] = field(converter=_as_tuple_of_exprs)
+    parameter: sp.Symbol = field(default="epsilon", converter=lambda s: _as_tuple_of_symbols(s)[0])
+    regime: Regime = field(default=Regime.SMALL, converter=Regime)
+    parameters: tuple[sp.Symbol, ...] = field(default=(), converter=_as_tuple_of_symbols)
+    initial_values: tuple[sp.Symbol, ...] = field(default=(), converter=_as_tuple_of_symbols)
+    first_integrals: tuple[sp.Expr, ...] = field(default=(), converter=_as_tuple_of_exprs)
+    name: str = "system"
+
+    def __attrs_post_init__(self):
+        n = len(self.coordinates)
+        if n < 1:
+            raise InvalidSystemError("`coordinates` is empty: give at least one coordinate")
+        for label, seq in (
+            ("velocities", self.velocities),
+            ("frequencies", self.frequencies),
+            ("rhs", self.rhs),
+        ):
+            if len(seq) != n:
+                raise InvalidSystemError(
+                    f"`{label}` has {len(seq)} entries but there are {n} coordinates: give one per coordinate"
+                )
+        if self.initial_values and len(self.initial_values) != 2 * n:
+            raise InvalidSystemError(
+                f"`initial_values` has {len(self.initial_values)} symbols: give 2n = {2 * n} "
+                "(x_1(0)..x_n(0), xdot_1(0)..xdot_n(0)) or none"
+            )
+        names = [s.name for s in self.state_symbols + self.parameters + self.initial_values]
+        names.append(self.parameter.name)
+        duplicates = sorted({n_ for n_ in names if names.count(n_) > 1})
+        if duplicates:
+            raise InvalidSystemError(f"symbol names {duplicates} are used twice: give each symbol one role")
+        self._check_frequencies()
+        self._check_symbols()
+        self._check_vanishing()
+
+    # ------------------------------------------------------------------ validation
+    def _check_frequencies(self):
+        allowed = set(self.parameters)
+        for i, w in enumerate(self.frequencies):
+            stray = w.free_symbols - allowed
+            if stray:
+                raise InvalidSystemError(
+                    f"`frequencies[{i}]` = {w} depends on {sorted(map(str, stray))}: "
+                    "declare them in `parameters` (frequencies may not depend on the state or the parameter)"
+                )
+            if w.is_number:
+                value = complex(w.evalf())
+                if abs(value.imag) > 0 or value.real <= 0:
+                    raise InvalidSystemError(
+                        f"`frequencies[{i}]` = {w} is not a positive real number: give omega_{i + 1} > 0"
+                    )
+            elif w.is_positive is False or w.is_real is False:
+                raise InvalidSystemError(
+                    f"`frequencies[{i}]` = {w} cannot be positive: give a positive frequency"
+                )
+
+    def _check_symbols(self):
+        allowed = set(self.state_symbols) | set(self.parameters) | set(self.initial_values)
+        allowed.add(self.parameter)
+        for i, f in enumerate(self.rhs):
+            stray = f.free_symbols - allowed
+            if stray:
+                raise InvalidSystemError(
+                    f"`rhs[{i}]` depends on undeclared symbols {sorted(map(str, stray))}: "
+                    "declare them in `parameters` (or `initial_values`)"
+                )
+
+    def _check_vanishing(self):
+        for i, f in enumerate(self.rhs_in_epsilon):
+            at_zero = sp.simplify(f.subs(EPS, 0)) if f.has(EPS) else sp.simplify(f)
+            if at_zero != 0:
+                raise InvalidSystemError(
+                    f"`rhs[{i}]` does not vanish as the expansion parameter tends to its limit "
+                    f"(leftover {at_zero}): the lowest power of epsilon must be positive; move the "
+                    "O(1) part into the frequency or the generating system"
+                )
+
+    # ------------------------------------------------------------------ derived data
+    @property
+    def n(self) -> int:
+        """Number of degrees of freedom."""
+        return len(self.coordinates)
+
+    @property
+    def state_symbols(self) -> tuple[sp.Symbol, ...]:
+        """``(x_1, ..., x_n, xdot_1, ..., xdot_n)``."""
+        return self.coordinates + self.velocities
+
+    @property
+    def state_names(self) -> tuple[str, ...]:
+        return tuple(s.name for s in self.state_symbols)
+
+    @cached_property
+    def rhs_in_epsilon(self) -> tuple[sp.Expr, ...]:
+        """The right-hand sides written in the engine's small parameter ε (ε = 1/μ when LARGE)."""
+        if self.regime is Regime.LARGE:
+            return tuple(sp.expand(f.subs(self.parameter, 1 / EPS)) for f in self.rhs)
+        return tuple(f.subs(self.parameter, EPS) for f in self.rhs)
+
+    def expansion(self, order: int) -> tuple[tuple[sp.Expr, ...], ...]:
+        """Coefficients :math:`f_{i,k}` for ``k = 0..order``: ``result[i][k]``.
+
+        Works for right-hand sides that are polynomial in ε, and through a series expansion for any
+        other analytic dependence.
+        """
+        out = []
+        for f in self.rhs_in_epsilon:
+            f = sp.expand(f)
+            try:
+                poly = sp.Poly(f, EPS)
+                coeffs = [sp.expand(poly.coeff_monomial(EPS**k)) for k in range(order + 1)]
+            except sp.PolificationFailed:
+                ser = sp.series(f, EPS, 0, order + 1).removeO()
+                coeffs = [sp.expand(ser.coeff(EPS, k)) for k in range(order + 1)]
+            out.append(tuple(coeffs))
+        return tuple(out)
+
+    @property
+    def leading_order(self) -> int:
+        """The lowest power of ε present in any right-hand side (the first non-zero forcing)."""
+        best = None
+        for f in self.rhs_in_epsilon:
+            f = sp.expand(f)
+            if f == 0:
+                continue
+            try:
+                k = min(m[0] for m in sp.Poly(f, EPS).monoms())
+            except sp.PolificationFailed:
+                k = sp.series(f, EPS, 0, 8).removeO().as_poly(EPS).monoms()[-1][0]
+            best = k if best is None else min(best, k)
+        return best if best is not None else 0
+
+    def with_values(self, values: Mapping) -> QuasilinearSystem:
+        """A copy with some declared parameters replaced by numbers (or expressions)."""
+        subs = {self._symbol(k): sp.sympify(v) for k, v in values.items()}
+        return attrs.evolve(
+            self,
+            frequencies=tuple(w.subs(subs) for w in self.frequencies),
+            rhs=tuple(f.subs(subs) for f in self.rhs),
+            parameters=tuple(p for p in self.parameters if p not in subs),
+            first_integrals=tuple(h.subs(subs) for h in self.first_integrals),
+        )
+
+    def _symbol(self, key) -> sp.Symbol:
+        if isinstance(key, sp.Symbol):
+            return key
+        for p in self.parameters:
+            if p.name == key:
+                return p
+        raise InvalidSystemError(
+            f"`values` names {key!r}, which is not a declared parameter: choose from "
+            f"{[p.name for p in self.parameters]}"
+        )
+
+    def as_large_parameter(self, mu: str | sp.Symbol = "mu") -> QuasilinearSystem:
+        """The same system written in the large parameter μ = 1/ε (regime ``LARGE``)."""
+        mu = _as_tuple_of_symbols(mu)[0]
+        return attrs.evolve(
+            self,
+            rhs=tuple(sp.expand(f.subs(EPS, 1 / mu)) for f in self.rhs_in_epsilon),
+            parameter=mu,
+            regime=Regime.LARGE,
+            first_integrals=tuple(h.subs(self.parameter, 1 / mu) for h in self.first_integrals)
+            if self.regime is Regime.SMALL
+            else self.first_integrals,
+        )

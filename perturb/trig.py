@@ -1,0 +1,161 @@
+"""Exact arithmetic on trigonometric polynomials with symbolic coefficients.
+
+A :class:`TrigPoly` stands for
+
+.. math:: u(s) = \\sum_{j \\ge 0} \\left(c_j \\cos js + s_j \\sin js\\right)
+
+and products are linearised to sums (``cos a cos b = [cos(a-b) + cos(a+b)]/2`` ...).  This is what
+makes the Poincaré quadratures exact and fast: sympy's ``integrate`` on products of trigonometric
+functions is slow and fragile (sympy issues #29876, #12033), while the linearised form turns every
+quadrature into a division per harmonic.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Callable, Mapping
+
+import sympy as sp
+
+__all__ = ["TrigPoly"]
+
+_HALF = sp.Rational(1, 2)
+
+
+class TrigPoly:
+    """A finite Fourier series in ``s`` with sympy coefficients (immutable by convention).
+
+    Parameters
+    ----------
+    terms : mapping
+        ``{j: (cos_coefficient, sin_coefficient)}`` for harmonics ``j >= 0``; the sine coefficient of
+        ``j = 0`` is ignored.
+    """
+
+    __slots__ = ("terms",)
+
+    def __init__(self, terms: Mapping[int, tuple] | None = None):
+        clean: dict[int, tuple[sp.Expr, sp.Expr]] = {}
+        for j, (c, s) in (terms or {}).items():
+            if j < 0:
+                raise ValueError(f"harmonic {j} < 0: fold negative harmonics before building")
+            c, s = sp.sympify(c), (sp.S.Zero if j == 0 else sp.sympify(s))
+            if c != 0 or s != 0:
+                clean[j] = (c, s)
+        self.terms = clean
+
+    # ------------------------------------------------------------------ constructors
+    @classmethod
+    def constant(cls, value) -> TrigPoly:
+        return cls({0: (value, 0)})
+
+    @classmethod
+    def harmonic(cls, j: int, cos=0, sin=0) -> TrigPoly:
+        return cls({j: (cos, sin)})
+
+    # ------------------------------------------------------------------ queries
+    def is_zero(self) -> bool:
+        return not self.terms
+
+    @property
+    def max_harmonic(self) -> int:
+        return max(self.terms, default=0)
+
+    def coefficient(self, j: int) -> tuple[sp.Expr, sp.Expr]:
+        """``(cos, sin)`` coefficient of harmonic ``j`` (zeros if absent)."""
+        return self.terms.get(j, (sp.S.Zero, sp.S.Zero))
+
+    def at_zero(self) -> sp.Expr:
+        """Value at ``s = 0``: the sum of the cosine coefficients."""
+        return sp.Add(*(c for c, _ in self.terms.values()))
+
+    def free_symbols(self) -> set:
+        out = set()
+        for c, s in self.terms.values():
+            out |= c.free_symbols | s.free_symbols
+        return out
+
+    def as_expr(self, s: sp.Symbol) -> sp.Expr:
+        return sp.Add(*(c * sp.cos(j * s) + sd * sp.sin(j * s) for j, (c, sd) in sorted(self.terms.items())))
+
+    # ------------------------------------------------------------------ algebra
+    def map(self, fn: Callable[[sp.Expr], sp.Expr]) -> TrigPoly:
+        """Apply ``fn`` to every coefficient (``expand``, ``subs``, ``cancel`` ...)."""
+        return TrigPoly({j: (fn(c), fn(s)) for j, (c, s) in self.terms.items()})
+
+    def expand(self) -> TrigPoly:
+        return self.map(sp.expand)
+
+    def subs(self, mapping) -> TrigPoly:
+        if not mapping:
+            return self
+        return self.map(lambda e: sp.expand(e.xreplace(mapping)) if e.free_symbols else e)
+
+    def __add__(self, other: TrigPoly) -> TrigPoly:
+        acc = dict(self.terms)
+        for j, (c, s) in other.terms.items():
+            c0, s0 = acc.get(j, (0, 0))
+            acc[j] = (c0 + c, s0 + s)
+        return TrigPoly(acc)
+
+    def __neg__(self) -> TrigPoly:
+        return self.scale(-1)
+
+    def __sub__(self, other: TrigPoly) -> TrigPoly:
+        return self + (-other)
+
+    def scale(self, factor) -> TrigPoly:
+        factor = sp.sympify(factor)
+        if factor == 0:
+            return TrigPoly()
+        return TrigPoly({j: (factor * c, factor * s) for j, (c, s) in self.terms.items()})
+
+    def __mul__(self, other: TrigPoly) -> TrigPoly:
+        """Product, linearised to a sum of harmonics, coefficients expanded."""
+        cos_acc: dict[int, list] = defaultdict(list)
+        sin_acc: dict[int, list] = defaultdict(list)
+        for i, (ci, si) in self.terms.items():
+            for j, (cj, sj) in other.terms.items():
+                lo, hi = abs(i - j), i + j
+                sign = 1 if i >= j else -1  # sin((i-j)s) = sign * sin(|i-j| s)
+                if ci != 0 and cj != 0:
+                    cc = ci * cj
+                    cos_acc[lo].append(cc)
+                    cos_acc[hi].append(cc)
+                if si != 0 and sj != 0:
+                    ss = si * sj
+                    cos_acc[lo].append(ss)
+                    cos_acc[hi].append(-ss)
+                if ci != 0 and sj != 0:  # cos(i) sin(j) = [sin(i+j) - sin(i-j)]/2
+                    cs = ci * sj
+                    sin_acc[hi].append(cs)
+                    sin_acc[lo].append(-sign * cs)
+                if si != 0 and cj != 0:  # sin(i) cos(j) = [sin(i+j) + sin(i-j)]/2
+                    sc = si * cj
+                    sin_acc[hi].append(sc)
+                    sin_acc[lo].append(sign * sc)
+        keys = set(cos_acc) | set(sin_acc)
+        return TrigPoly(
+            {
+                k: (
+                    sp.expand(_HALF * sp.Add(*cos_acc.get(k, ()))),
+                    sp.expand(_HALF * sp.Add(*sin_acc.get(k, ()))),
+                )
+                for k in keys
+            }
+        )
+
+    def derivative(self) -> TrigPoly:
+        """d/ds."""
+        return TrigPoly({j: (j * s, -j * c) for j, (c, s) in self.terms.items() if j})
+
+    def __repr__(self) -> str:
+        return f"TrigPoly({self.as_expr(sp.Symbol('s'))})"
+
+    def __eq__(self, other) -> bool:
+        if not isinstance(other, TrigPoly):
+            return NotImplemented
+        diff = self - other
+        return all(sp.expand(c) == 0 and sp.expand(s) == 0 for c, s in diff.terms.values())
+
+    __hash__ = None  # mutable-looking container semantics: not hashable
