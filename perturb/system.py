@@ -252,3 +252,49 @@ class QuasilinearSystem:
             if self.regime is Regime.SMALL
             else self.first_integrals,
         )
+
+    def vector_field(self, parameter_value: float, values: Mapping | None = None, initial_state=None):
+        """Numeric first-order form ``y' = F(t, y)`` of the system, ``y = (x, xdot)``.
+
+        Parameters
+        ----------
+        parameter_value : float
+            ε (or μ in the large-parameter regime).
+        values : mapping, optional
+            Values of the declared parameters.
+        initial_state : array_like, optional
+            Needed when the right-hand sides depend on ``initial_values``.
+
+        Returns
+        -------
+        callable
+            ``F(t, y)`` returning a numpy array, compiled once with common subexpressions.
+        """
+        import numpy as np
+
+        values = dict(values or {})
+        subs = {p: values[p.name] for p in self.parameters if p.name in values}
+        missing = [p.name for p in self.parameters if p.name not in values]
+        if missing:
+            raise InvalidSystemError(f"`values` lacks {missing}: give every declared parameter a value")
+        if self.initial_values:
+            if initial_state is None:
+                raise InvalidSystemError(
+                    "`initial_state` is None but the right-hand sides depend on the initial values: pass it"
+                )
+            subs.update(zip(self.initial_values, map(float, initial_state), strict=True))
+        subs[self.parameter] = parameter_value
+        w2 = [float((w**2).subs(subs)) for w in self.frequencies]
+        exprs = [f.subs(subs) for f in self.rhs]
+        fn = sp.lambdify([self.state_symbols], exprs, modules="numpy", cse=True)
+        n = self.n
+
+        def rhs(t, y):
+            f = fn(y)
+            out = np.empty(2 * n)
+            out[:n] = y[n:]
+            for i in range(n):
+                out[n + i] = f[i] - w2[i] * y[i]
+            return out
+
+        return rhs

@@ -1,0 +1,196 @@
+"""Command-line interface: ``perturb list``, ``perturb solve`` (a leaf: nothing imports it).
+
+Exit codes: 0 success, 1 a valid run whose construction or check failed (the reason is printed),
+2 bad input (one line on stderr, no traceback).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Sequence
+
+import numpy as np
+
+from perturb._defaults import DEFAULT_SAMPLES
+from perturb.errors import PerturbError
+
+EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
+
+_EPILOG = """examples:
+  perturb list
+  perturb solve duffing --set eps=0.05 --set amplitude=1.2 --order 2
+  perturb solve van-der-pol --order 3 --times 0,1,2,3 --format json
+"""
+
+
+class _UsageError(Exception):
+    pass
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):  # one line, exit 2, no usage dump
+        raise _UsageError(message)
+
+
+def _build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="perturb",
+        description="Periodic solutions of oscillating systems by Poincaré's method, checked against the true motion.",
+        epilog=_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub.add_parser("list", help="list the registered problems and their parameters")
+    solve = sub.add_parser(
+        "solve",
+        help="construct a problem's periodic solution and print its state",
+        description="Construct PROBLEM's periodic solution by Poincaré's method and print the state "
+        "at the requested times (default: one period, 101 samples from t = 0).",
+    )
+    solve.add_argument("problem", help="problem name (see `perturb list`)")
+    solve.add_argument(
+        "--set", dest="sets", action="append", default=[], metavar="NAME=VALUE",
+        help="set a parameter (repeatable); unset parameters take their defaults",
+    )
+    solve.add_argument("--order", default="1", help="highest power of the small parameter kept (integer >= 1; default 1)")
+    solve.add_argument("--times", default=None, metavar="T1,T2,...", help="comma-separated times (physical units)")
+    solve.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
+    solve.add_argument("--euler", action="store_true", help="add the Euler angles (rigid bodies only)")
+    return parser
+
+
+def _parse_sets(items: Sequence[str]) -> dict[str, float]:
+    out = {}
+    for item in items:
+        name, sep, value = item.partition("=")
+        if not sep or not name:
+            raise _UsageError(f"--set {item!r}: write NAME=VALUE, e.g. --set eps=0.1")
+        try:
+            out[name.strip()] = float(value)
+        except ValueError:
+            raise _UsageError(f"--set {item!r}: {value!r} is not a number; write NAME=VALUE with a real VALUE") from None
+    return out
+
+
+def _parse_order(text: str) -> int:
+    try:
+        order = int(text)
+    except ValueError:
+        raise _UsageError(f"--order {text!r} is not an integer: give an integer >= 1") from None
+    if order < 1:
+        raise _UsageError(f"--order {order} is invalid: give an integer >= 1")
+    return order
+
+
+def _parse_times(text: str | None) -> np.ndarray | None:
+    if text is None:
+        return None
+    try:
+        values = np.array([float(v) for v in text.split(",") if v.strip()], dtype=float)
+    except ValueError:
+        raise _UsageError(f"--times {text!r}: give comma-separated numbers, e.g. --times 0,0.5,1") from None
+    if values.size == 0 or not np.all(np.isfinite(values)):
+        raise _UsageError(f"--times {text!r}: give at least one finite time")
+    return values
+
+
+def _cmd_list() -> int:
+    from problems import get_problem, problem_names
+
+    for name in problem_names():
+        cls = get_problem(name)
+        print(f"{name:16s} {cls.summary}")
+        for spec in cls.parameter_specs:
+            print(f"    {spec.name:10s} default {spec.default:<12g} {spec.doc}")
+    return EXIT_OK
+
+
+def _cmd_solve(args) -> int:
+    from problems import get_problem
+
+    cls = get_problem(args.problem)
+    overrides = _parse_sets(args.sets)
+    order = _parse_order(args.order)
+    times = _parse_times(args.times)
+    problem = cls.create(**overrides)
+    if args.euler and not hasattr(problem, "euler_angles"):
+        raise _UsageError(f"--euler: problem {args.problem!r} has no Euler angles (rigid bodies only)")
+    solution = problem.solve(order)
+    if not solution.success:
+        print(f"perturb: {args.problem}: {solution.status.value}: {solution.message}", file=sys.stderr)
+        return EXIT_FAILED
+    period = problem.period(solution)
+    if times is None:
+        times = np.linspace(0.0, period, DEFAULT_SAMPLES)
+    state = problem.state(solution, times)
+    extras = {"euler": problem.euler_angles(solution, times)} if args.euler else {}
+    report = problem.report_extras() if hasattr(problem, "report_extras") else {}
+    payload = {
+        "problem": args.problem,
+        "parameters": problem.resolved_parameters(),
+        "epsilon": problem.epsilon(),
+        **report,
+        "order": order,
+        "period": period,
+        "t": times.tolist(),
+        "state": {k: np.asarray(v, dtype=float).tolist() for k, v in state.items()},
+        **{k: {n: np.asarray(v, dtype=float).tolist() for n, v in d.items()} for k, d in extras.items()},
+    }
+    _print(payload, args.format, [("state", state), *extras.items()])
+    return EXIT_OK
+
+
+def _print(payload: dict, fmt: str, blocks) -> None:
+    if fmt == "json":
+        print(json.dumps(payload, allow_nan=True))
+        return
+    columns = {"t": np.asarray(payload["t"])}
+    for _, block in blocks:
+        columns.update({k: np.asarray(v, dtype=float) for k, v in block.items()})
+    names = list(columns)
+    if fmt == "csv":
+        print(",".join(names))
+        for row in zip(*columns.values(), strict=True):
+            print(",".join(repr(float(v)) for v in row))
+        return
+    head = f"# {payload['problem']}  order {payload['order']}  epsilon {payload['epsilon']:.6g}  period {payload['period']:.12g}"
+    params = "  ".join(f"{k}={v:g}" for k, v in payload["parameters"].items())
+    print(head)
+    print(f"# {params}")
+    print("".join(f"{n:>20s}" for n in names))
+    for row in zip(*columns.values(), strict=True):
+        print("".join(f"{float(v):20.12g}" for v in row))
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``perturb`` command; returns the exit code."""
+    parser = _build_parser()
+    try:
+        args = parser.parse_args(argv)
+        if args.command is None:
+            parser.print_help()
+            return EXIT_USAGE
+        if args.command == "list":
+            return _cmd_list()
+        if args.command == "solve":
+            return _cmd_solve(args)
+        raise _UsageError(f"unknown command {args.command!r}")  # pragma: no cover
+    except _UsageError as exc:
+        print(f"perturb: error: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except (PerturbError, ValueError) as exc:
+        print(f"perturb: error: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except KeyboardInterrupt:  # pragma: no cover
+        return 130
+
+
+def run() -> None:  # pragma: no cover - console entry
+    sys.exit(main())
+
+
+if __name__ == "__main__":  # pragma: no cover
+    run()
+

@@ -1,0 +1,168 @@
+"""The :class:`Problem` base class: a physical model, its parameters and its quasilinear form.
+
+A problem turns user-facing parameter values (validated, with defaults) into
+
+* a :class:`perturb.QuasilinearSystem` (symbolic, derived once per class and cached),
+* the options of :class:`perturb.PoincareMethod` that select its periodic solution,
+* the physical state along the solution, under the names users know.
+
+Subclass contract (as scipy's ``OdeSolver`` states its own):
+
+1. set the class attributes ``name`` (the registry key), ``summary`` and ``parameter_specs``;
+2. implement :meth:`Problem.build_system` (symbolic, no numbers) and :meth:`Problem.epsilon`;
+3. optionally override :meth:`Problem.method_options`, :meth:`Problem.symbol_values`,
+   :meth:`Problem.state` (to map the quasilinear state back to physical variables) and
+   :meth:`Problem.original_rhs` (the unreduced equations for validation);
+4. register the class with :func:`problems.register`.
+"""
+
+from __future__ import annotations
+
+import math
+from abc import ABC, abstractmethod
+from collections.abc import Callable, Mapping
+from typing import ClassVar
+
+import numpy as np
+from attrs import field, frozen
+
+from perturb import PeriodicSolution, PoincareMethod, QuasilinearSystem
+from perturb.errors import InvalidParameterError, UnknownNameError
+
+__all__ = ["ParameterSpec", "Problem"]
+
+_SYSTEM_CACHE: dict[tuple, QuasilinearSystem] = {}
+_SOLUTION_CACHE: dict[tuple, PeriodicSolution] = {}
+
+
+@frozen
+class ParameterSpec:
+    """A named parameter with its default, meaning and admissible range.
+
+    Parameters
+    ----------
+    name : str
+    default : float
+    doc : str
+        One line: meaning and unit.
+    check : callable, optional
+        ``check(value) -> str | None``; a returned string is the fix shown to the user.
+    allow_inf : bool
+        Whether ``inf`` is an admissible value (e.g. a distance meaning "absent").
+    """
+
+    name: str
+    default: float
+    doc: str
+    check: Callable[[float], str | None] | None = None
+    allow_inf: bool = False
+
+    def validate(self, value) -> float:
+        try:
+            value = float(value)
+        except (TypeError, ValueError):
+            raise InvalidParameterError(f"`{self.name}` = {value!r} is not a number: give a real value") from None
+        if math.isnan(value) or (math.isinf(value) and not self.allow_inf):
+            raise InvalidParameterError(f"`{self.name}` = {value} is not finite: give a finite real value")
+        if self.check is not None:
+            fix = self.check(value)
+            if fix:
+                raise InvalidParameterError(f"`{self.name}` = {value:g} is invalid: {fix}")
+        return value
+
+
+def positive(value: float) -> str | None:
+    """Check helper: strictly positive."""
+    return None if value > 0 else "give a value > 0"
+
+
+@frozen
+class Problem(ABC):
+    """A registered problem with validated parameter values (see the module docstring)."""
+
+    name: ClassVar[str]
+    summary: ClassVar[str]
+    parameter_specs: ClassVar[tuple[ParameterSpec, ...]]
+
+    values: dict = field(converter=dict)
+
+    def __attrs_post_init__(self):
+        self.check_values(self.values)
+
+    @classmethod
+    def create(cls, **overrides) -> Problem:
+        """The problem with default parameters, some of them overridden by name."""
+        known = {s.name for s in cls.parameter_specs}
+        unknown = sorted(set(overrides) - known)
+        if unknown:
+            raise UnknownNameError(
+                f"`{unknown[0]}` is not a parameter of {cls.name}: choose from {sorted(known)}"
+            )
+        values = {s.name: overrides.get(s.name, s.default) for s in cls.parameter_specs}
+        values = {s.name: s.validate(values[s.name]) for s in cls.parameter_specs}
+        return cls(values)
+
+    def check_values(self, values: Mapping[str, float]) -> None:
+        """Whole-set checks beyond single parameters (e.g. the triangle inequality); raise on failure."""
+
+    # ------------------------------------------------------------------ to override
+    @classmethod
+    @abstractmethod
+    def build_system(cls) -> QuasilinearSystem:
+        """The symbolic quasilinear system (no numbers: derived once per class)."""
+
+    @abstractmethod
+    def epsilon(self) -> float:
+        """The value of the expansion parameter ε for these parameters."""
+
+    def method_options(self) -> dict:
+        """Options of :class:`perturb.PoincareMethod` (amplitudes, phase coordinate, branch)."""
+        return {}
+
+    def symbol_values(self) -> dict[str, float]:
+        """Numeric values of the system's free symbols, by name."""
+        return {p.name: self.values[p.name] for p in self.system().parameters if p.name in self.values}
+
+    def parameter_value(self) -> float:
+        """The value passed to the solution for its own parameter (ε, or μ if LARGE)."""
+        from perturb import Regime
+
+        eps = self.epsilon()
+        return 1.0 / eps if self.system().regime is Regime.LARGE else eps
+
+    # ------------------------------------------------------------------ shared machinery
+    @classmethod
+    def system(cls) -> QuasilinearSystem:
+        key = (cls.__module__, cls.__qualname__)
+        if key not in _SYSTEM_CACHE:
+            _SYSTEM_CACHE[key] = cls.build_system()
+        return _SYSTEM_CACHE[key]
+
+    def solve(self, order: int = 1) -> PeriodicSolution:
+        """The symbolic periodic solution (cached per class, order and method options)."""
+        options = self.method_options()
+        key = (type(self).__module__, type(self).__qualname__, order, repr(sorted(options.items())))
+        if key not in _SOLUTION_CACHE:
+            _SOLUTION_CACHE[key] = PoincareMethod(order=order, **options).solve(self.system())
+        return _SOLUTION_CACHE[key]
+
+    def state_names(self) -> tuple[str, ...]:
+        """Names of the state components :meth:`state` returns."""
+        return self.system().state_names
+
+    def state(self, solution: PeriodicSolution, t) -> dict[str, np.ndarray]:
+        """The state along ``solution`` at physical times ``t``, by name."""
+        y = solution.evaluate(t, self.parameter_value(), self.symbol_values())
+        return dict(zip(solution.state_names, y, strict=True))
+
+    def period(self, solution: PeriodicSolution) -> float:
+        """The period in physical time."""
+        return float(solution.period_at(self.parameter_value(), self.symbol_values()))
+
+    def original_rhs(self, solution: PeriodicSolution | None = None):
+        """The original equations as ``F(t, y)`` on the state of :meth:`state` (default: the system)."""
+        return self.system().vector_field(self.parameter_value(), self.symbol_values())
+
+    def resolved_parameters(self) -> dict[str, float]:
+        """Every parameter value in force (defaults included), for reports."""
+        return dict(self.values)

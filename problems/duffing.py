@@ -1,0 +1,36 @@
+"""Duffing's oscillator  ẍ + x + ε x³ = 0  started at rest from x(0) = amplitude."""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from perturb import EPS, QuasilinearSystem
+from problems import register
+from problems.base import ParameterSpec, Problem, positive
+
+X, XDOT, AMPLITUDE = sp.symbols("x xdot amplitude")
+
+
+@register
+class Duffing(Problem):
+    """ẍ + x + ε x³ = 0 with x(0) = ``amplitude``, ẋ(0) = 0 (a conservative family)."""
+
+    name = "duffing"
+    summary = "Duffing oscillator xddot + x + eps x^3 = 0, x(0) = amplitude (conservative family)"
+    parameter_specs = (
+        ParameterSpec("eps", 0.1, "strength of the cubic term (small parameter)"),
+        ParameterSpec("amplitude", 1.0, "initial displacement x(0), velocity zero", positive),
+    )
+
+    @classmethod
+    def build_system(cls) -> QuasilinearSystem:
+        return QuasilinearSystem(
+            coordinates=[X], velocities=[XDOT], frequencies=[1], rhs=[-EPS * X**3],
+            parameter=EPS, parameters=[AMPLITUDE], name="duffing",
+        )
+
+    def epsilon(self) -> float:
+        return self.values["eps"]
+
+    def method_options(self) -> dict:
+        return {"amplitudes": {"x": AMPLITUDE}}
