@@ -1,0 +1,223 @@
+"""Symbolic right-hand sides: one sympy description, numeric callables and heyoka expressions from it.
+
+A :class:`SymbolicRHS` is an autonomous vector field :math:`\\dot y = f(y)` written as sympy expressions
+in an ordered tuple of state symbols.  It is *callable* like any numeric rhs (``rhs(y) -> dy/dt``), so
+every integrator accepts it; the Taylor integrator (heyoka) needs it, because it differentiates the
+expressions itself.  The sympy → heyoka conversion is done here rather than with ``heyoka.from_sympy``
+because the latter refuses rationals such as 1/3 (not exact in binary) and always builds double
+constants, whereas reference runs in extended precision need the constants rounded in that precision.
+"""
+
+from __future__ import annotations
+
+import functools
+import operator
+from collections.abc import Callable, Mapping, Sequence
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+import sympy as sp
+from attrs import field, frozen
+
+from perturb.errors import bad_value
+
+__all__ = ["SymbolicRHS", "to_heyoka"]
+
+#: Digits used when a sympy number (pi, a Float, an irrational constant) is rounded to a floating
+#: point type: 40 covers real128 (34 significant digits) with margin.
+_CONSTANT_DIGITS = 40
+
+#: sympy function name → heyoka function name, for the elementary functions heyoka implements.
+_HEYOKA_FUNCTIONS = {
+    "sin": "sin",
+    "cos": "cos",
+    "tan": "tan",
+    "asin": "asin",
+    "acos": "acos",
+    "atan": "atan",
+    "atan2": "atan2",
+    "sinh": "sinh",
+    "cosh": "cosh",
+    "tanh": "tanh",
+    "exp": "exp",
+    "log": "log",
+    "erf": "erf",
+}
+
+
+def _as_symbols(values) -> tuple[sp.Symbol, ...]:
+    return tuple(sp.sympify(v) if not isinstance(v, str) else sp.Symbol(v) for v in values)
+
+
+def _as_exprs(values) -> tuple[sp.Expr, ...]:
+    return tuple(sp.sympify(v) for v in values)
+
+
+@frozen
+class SymbolicRHS:
+    """An autonomous vector field :math:`\\dot y = f(y)` given by sympy expressions.
+
+    Parameters
+    ----------
+    state : sequence of sympy.Symbol
+        The state symbols, in the order of the state vector.
+    expressions : sequence of sympy.Expr
+        :math:`f_i(y)`, one per state symbol.  Only the state symbols may occur: substitute parameter
+        values first (``expr.subs(values)``).
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        If the lengths differ, a state entry is not a symbol, symbols repeat, or an expression depends
+        on a symbol that is not a state symbol.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> x, v = sp.symbols("x v")
+    >>> duffing = SymbolicRHS((x, v), (v, -x - x**3))
+    >>> duffing([1.0, 0.0])
+    array([ 0., -2.])
+    """
+
+    state: tuple[sp.Symbol, ...] = field(converter=_as_symbols)
+    expressions: tuple[sp.Expr, ...] = field(converter=_as_exprs)
+
+    def __attrs_post_init__(self):
+        if len(self.state) != len(self.expressions):
+            raise bad_value(
+                "expressions",
+                f"{len(self.expressions)} expressions",
+                f"give one expression per state symbol ({len(self.state)} state symbols)",
+            )
+        if len(self.state) == 0:
+            raise bad_value("state", self.state, "give at least one state symbol")
+        for s in self.state:
+            if not isinstance(s, sp.Symbol):
+                raise bad_value("state", s, "state entries must be sympy Symbols")
+        if len(set(self.state)) != len(self.state):
+            raise bad_value("state", self.state, "state symbols must be distinct")
+        stray = set().union(*(e.free_symbols for e in self.expressions)) - set(self.state)
+        if stray:
+            names = ", ".join(sorted(map(str, stray)))
+            raise bad_value(
+                "expressions",
+                names,
+                "the rhs may depend on the state symbols only; substitute parameter values "
+                "first, e.g. [e.subs(values) for e in expressions]",
+            )
+
+    @property
+    def n(self) -> int:
+        """Dimension of the state."""
+        return len(self.state)
+
+    @cached_property
+    def _numeric(self) -> Callable[..., Any]:
+        return sp.lambdify(self.state, list(self.expressions), modules="numpy", cse=True)
+
+    @cached_property
+    def jacobian_expressions(self) -> sp.Matrix:
+        """The symbolic Jacobian :math:`\\partial f_i / \\partial y_j` (n × n sympy Matrix)."""
+        return sp.Matrix(self.expressions).jacobian(sp.Matrix(self.state))
+
+    @cached_property
+    def _numeric_jacobian(self) -> Callable[..., Any]:
+        return sp.lambdify(self.state, self.jacobian_expressions, modules="numpy", cse=True)
+
+    def __call__(self, y: Sequence[float]) -> np.ndarray:
+        """Evaluate :math:`f(y)` for one state vector ``y`` of shape ``(n,)``."""
+        return np.array(self._numeric(*y), dtype=float).reshape(self.n)
+
+    def jacobian(self, y: Sequence[float]) -> np.ndarray:
+        """Evaluate the Jacobian at one state vector; shape ``(n, n)``."""
+        return np.array(self._numeric_jacobian(*y), dtype=float).reshape(self.n, self.n)
+
+    @cached_property
+    def variational(self) -> SymbolicRHS:
+        """The state augmented with the first-order variational equations.
+
+        The augmented state is ``(y, Phi.ravel())`` with ``Phi`` the n × n state-transition matrix
+        stored row-major, and :math:`\\dot\\Phi = J(y)\\,\\Phi`.  Integrating from ``Phi = I`` over a
+        period gives the monodromy matrix.
+        """
+        n = self.n
+        phi = sp.Matrix(n, n, lambda i, j: sp.Dummy(f"Phi{i}_{j}"))
+        phi_dot = self.jacobian_expressions * phi
+        return SymbolicRHS(
+            self.state + tuple(phi),
+            self.expressions + tuple(phi_dot),
+        )
+
+
+def _constant(value: sp.Expr, fp_type: type) -> Any:
+    """Round a sympy number to ``fp_type`` (float, numpy.longdouble or heyoka.real128)."""
+    if isinstance(value, sp.Rational):  # integers included; p/q rounded once, in fp_type
+        if fp_type is float:
+            return int(value.p) / int(value.q)  # Python's int true division is correctly rounded
+        return fp_type(str(value.p)) / fp_type(str(value.q))
+    text = str(sp.N(value, _CONSTANT_DIGITS))
+    return fp_type(text)
+
+
+def to_heyoka(
+    expr: sp.Expr, variables: Mapping[sp.Symbol, Any], fp_type: type = float
+) -> (
+    Any
+):  # heyoka.expression; heyoka is an optional dependency so it is not imported at module level
+    """Convert a sympy expression into a heyoka expression.
+
+    Parameters
+    ----------
+    expr : sympy.Expr
+        Polynomial/rational combination of the variables and of the elementary functions heyoka
+        implements (sin, cos, tan, their inverses, sinh, cosh, tanh, exp, log, erf, sqrt, powers).
+    variables : mapping
+        sympy symbol → heyoka variable expression.
+    fp_type : type, optional
+        Floating point type in which numeric constants are rounded: ``float``, ``numpy.longdouble``
+        or ``heyoka.real128``.
+
+    Returns
+    -------
+    heyoka.expression
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        If ``expr`` contains a function heyoka does not implement.
+    """
+    import heyoka as hy
+
+    def conv(e: sp.Expr):
+        if e in variables:
+            return variables[e]
+        if e.is_Number or e.is_NumberSymbol:
+            if not e.is_real:
+                raise bad_value("expr", e, "heyoka accepts only real constants")
+            return hy.expression(_constant(e, fp_type))
+        if isinstance(e, sp.Add):
+            return hy.sum([conv(a) for a in e.args])
+        if isinstance(e, sp.Mul):
+            return functools.reduce(operator.mul, [conv(a) for a in e.args])
+        if isinstance(e, sp.Pow):
+            base, exponent = e.args
+            if exponent == sp.Rational(1, 2):
+                return hy.sqrt(conv(base))
+            if exponent == -1:
+                return hy.expression(_constant(sp.Integer(1), fp_type)) / conv(base)
+            return conv(base) ** conv(exponent)
+        if isinstance(e, sp.Function):
+            name = type(e).__name__
+            if name not in _HEYOKA_FUNCTIONS:
+                raise bad_value(
+                    "expr",
+                    name,
+                    f"heyoka implements only {sorted(_HEYOKA_FUNCTIONS)} and powers; rewrite the "
+                    "rhs with those or use a scipy integrator",
+                )
+            return getattr(hy, _HEYOKA_FUNCTIONS[name])(*[conv(a) for a in e.args])
+        raise bad_value("expr", e, "cannot convert this sympy object to a heyoka expression")
+
+    return conv(sp.sympify(expr))
