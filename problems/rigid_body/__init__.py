@@ -1,0 +1,1 @@
+"""Rigid body about a fixed point: Euler–Poisson equations and their reduction."""
