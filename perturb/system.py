@@ -22,7 +22,8 @@ from perturb.errors import InvalidSystemError
 
 __all__ = ["QuasilinearSystem", "Regime"]
 
-#: The canonical expansion symbol used inside the engine (the small parameter).
+#: The canonical expansion symbol used inside the engine (the small parameter). Any symbol named
+#: "epsilon" given to a system is replaced by this one.
 EPS = sp.Symbol("epsilon", positive=True)
 
 
@@ -33,16 +34,23 @@ class Regime(enum.Enum):
     LARGE = "large"  #: expansion in powers of 1/mu, mu -> infinity (epsilon = 1/mu)
 
 
+def _canonical(expr: sp.Expr) -> sp.Expr:
+    """Replace any plain symbol named like the engine's ε by :data:`EPS` itself."""
+    stray = {s: EPS for s in expr.free_symbols if s.name == EPS.name and s != EPS}
+    return expr.xreplace(stray) if stray else expr
+
+
 def _as_tuple_of_exprs(values) -> tuple[sp.Expr, ...]:
     if isinstance(values, (str, sp.Basic)) or not isinstance(values, Sequence):
         values = (values,)
-    return tuple(sp.sympify(v) for v in values)
+    return tuple(_canonical(sp.sympify(v)) for v in values)
 
 
 def _as_tuple_of_symbols(values) -> tuple[sp.Symbol, ...]:
     if isinstance(values, (str, sp.Symbol)):
         values = (values,)
-    return tuple(sp.Symbol(v) if isinstance(v, str) else v for v in values)
+    out = tuple(sp.Symbol(v) if isinstance(v, str) else v for v in values)
+    return tuple(EPS if s.name == EPS.name else s for s in out)
 
 
 @frozen

@@ -1,0 +1,18 @@
+"""Shared test configuration: hypothesis profiles (scipy's approach) and small helpers."""
+
+import os
+
+from hypothesis import HealthCheck, settings
+
+# "ci": derandomized and without a database so every CI run draws the same examples;
+# "dev": random, more examples, for local exploration (HYPOTHESIS_PROFILE=dev).
+settings.register_profile(
+    "ci",
+    derandomize=True,
+    database=None,
+    deadline=None,
+    max_examples=15,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+settings.register_profile("dev", deadline=None, max_examples=60)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))

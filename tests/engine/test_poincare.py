@@ -1,0 +1,123 @@
+"""The Poincaré construction against textbook results and exact solutions."""
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from perturb import EPS, InvalidSystemError, PoincareMethod, QuasilinearSystem, Regime, Status
+from perturb.steps import S
+from problems import get_problem
+
+x, xd, y, yd, A, mu = sp.symbols("x xdot y ydot A mu")
+DUFFING = QuasilinearSystem([x], [xd], [1], [-EPS * x**3], parameters=[A], name="duffing")
+VDP = QuasilinearSystem([x], [xd], [1], [EPS * (1 - x**2) * xd], name="van der Pol")
+
+
+def test_duffing_frequency_is_the_lindstedt_textbook_series():
+    # Nayfeh, Perturbation Methods (1973) §4.1: omega = 1 + 3/8 eps A^2 - 21/256 eps^2 A^4 + 81/2048 eps^3 A^6
+    sol = PoincareMethod(order=3, amplitudes={"x": A}).solve(DUFFING)
+    assert sol.success
+    expected = 1 + sp.Rational(3, 8) * EPS * A**2 - sp.Rational(21, 256) * EPS**2 * A**4 + sp.Rational(81, 2048) * EPS**3 * A**6
+    assert sp.expand(sol.frequency_expr - expected) == 0
+    # first-order correction x1 = A^3 (cos 3s - cos s)/32
+    assert sp.expand(sol.terms[0][1].as_expr(S) - A**3 * (sp.cos(3 * S) - sp.cos(S)) / 32) == 0
+
+
+def test_van_der_pol_limit_cycle_is_the_textbook_one():
+    # amplitude 2, omega = 1 - eps^2/16 + 17 eps^4/3072, x1 = (3 sin s - sin 3s)/4
+    sol = PoincareMethod(order=3).solve(VDP)
+    assert sol.success
+    assert sol.generating.cos_amplitudes[0] == 2
+    assert len(sol.frequency) == 5  # the order-4 conditions fixing x_3 also give Omega_4
+    assert sp.expand(sol.frequency_expr - (1 - EPS**2 / 16 + sp.Rational(17, 3072) * EPS**4)) == 0
+    assert sp.expand(sol.terms[0][1].as_expr(S) - (3 * sp.sin(S) - sp.sin(3 * S)) / 4) == 0
+    x2 = -sp.cos(S) / 8 + sp.Rational(3, 16) * sp.cos(3 * S) - sp.Rational(5, 96) * sp.cos(5 * S)
+    assert sp.expand(sol.terms[0][2].as_expr(S) - x2) == 0
+
+
+def test_order_zero_is_the_generating_solution():
+    sol = PoincareMethod(order=1, amplitudes={"x": A}).solve(DUFFING)
+    assert sol.terms[0][0].as_expr(S) == A * sp.cos(S)
+    assert sol.frequency[0] == 1
+    gen = sol.generating.expressions()["x"]
+    # it solves the eps = 0 equation exactly
+    assert sp.simplify(sp.diff(gen, S, 2) + gen) == 0
+
+
+def test_large_and_small_regimes_give_the_same_solution():
+    small = PoincareMethod(order=2, amplitudes={"x": A}).solve(DUFFING)
+    large = PoincareMethod(order=2, amplitudes={"x": A}).solve(DUFFING.as_large_parameter(mu))
+    assert large.system.regime is Regime.LARGE
+    assert sp.expand(large.coordinate("x") - small.coordinate("x").subs(EPS, 1 / mu)) == 0
+    t = np.linspace(0, 10, 7)
+    np.testing.assert_allclose(large.evaluate(t, 20.0, {"A": 1.1}), small.evaluate(t, 0.05, {"A": 1.1}), rtol=1e-13, atol=1e-14)
+
+
+def test_linear_pair_is_reproduced_exactly():
+    problem = get_problem("linear-pair").create(eps=0.05, kappa=0.7, omega=2.5)
+    sol = problem.solve(4)
+    assert sol.success
+    k, w = sp.symbols("kappa omega", positive=True)
+    # exact: lambda^2 = [1 + w^2 - sqrt((w^2-1)^2 + 4 eps^2 k^2)]/2 ; y/x = eps k/(w^2 - lambda^2)
+    lam2 = (1 + w**2 - (w**2 - 1) * sp.sqrt(1 + 4 * EPS**2 * k**2 / (w**2 - 1) ** 2)) / 2  # w > 1
+    n = len(sol.frequency)
+    exact_series = sp.series(sp.sqrt(lam2), EPS, 0, n).removeO()
+    assert sp.simplify(sol.frequency_expr - exact_series) == 0
+    ratio = sp.series(EPS * k / (w**2 - lam2), EPS, 0, 5).removeO()
+    amp = sp.Symbol("amplitude", positive=True)
+    y_cos = sp.Add(*(EPS**q * t.coefficient(1)[0] for q, t in enumerate(sol.terms[1])))
+    assert sp.simplify(y_cos - amp * ratio) == 0
+    assert all(t.is_zero() for t in sol.terms[0][1:])  # x = A cos(Omega t) exactly
+    assert problem.period(sol) == pytest.approx(2 * np.pi / problem.exact_frequency(), rel=1e-9)
+
+
+def test_resonant_pair_has_both_normal_modes():
+    in_phase = get_problem("resonant-pair").create(mode=1).solve(2)
+    anti = get_problem("resonant-pair").create(mode=-1).solve(2)
+    kappa = sp.Symbol("kappa", positive=True)
+    amp = sp.Symbol("amplitude", positive=True)
+    # in phase: coupling inactive, Duffing frequency; anti-phase: Omega_1 = 3A^2/8 + kappa
+    assert in_phase.frequency[1] == sp.Rational(3, 8) * amp**2
+    assert sp.expand(anti.frequency[1] - (sp.Rational(3, 8) * amp**2 + kappa)) == 0
+    assert len(anti.steps[0].branches) >= 2
+
+
+def test_non_resonant_generating_amplitude_is_rejected():
+    sys = QuasilinearSystem([x, y], [xd, yd], [1, sp.Rational(5, 2)], [EPS * y, EPS * x])
+    with pytest.raises(InvalidSystemError, match="not resonant"):
+        PoincareMethod(amplitudes={"x": 1, "y": 1}).solve(sys)
+
+
+@pytest.mark.parametrize("order", [0, -1, 1.5, True])
+def test_bad_order(order):
+    with pytest.raises(InvalidSystemError, match="`order`"):
+        PoincareMethod(order=order)
+
+
+def test_bad_phase_coordinate_and_amplitude_names():
+    with pytest.raises(InvalidSystemError, match="phase_coordinate"):
+        PoincareMethod(phase_coordinate="z").solve(VDP)
+    with pytest.raises(InvalidSystemError, match="amplitudes"):
+        PoincareMethod(amplitudes={"q": 1}).solve(VDP)
+
+
+def test_rootless_conditions_end_in_a_failed_status():
+    # x'' + x = eps xdot: pure negative damping, only the trivial root
+    sol = PoincareMethod(order=1).solve(QuasilinearSystem([x], [xd], [1], [EPS * xd]))
+    assert sol.status is Status.NO_ROOT and not sol.success
+    with pytest.raises(Exception, match="no admissible"):
+        sol.raise_for_status()
+
+
+def test_continuous_family_without_a_chosen_amplitude_is_undetermined():
+    sol = PoincareMethod(order=1).solve(DUFFING.with_values({"A": 1}))
+    assert sol.status is Status.UNDETERMINED
+    assert "amplitudes=" in sol.status.value
+
+
+def test_inconsistent_conditions_fail():
+    # x'' + x = eps: forcing at the constant harmonic is fine; eps*cos-like resonance via y is not
+    sys = QuasilinearSystem([x, y], [xd, yd], [1, 1], [EPS * y**3 + EPS, EPS * x])
+    sol = PoincareMethod(order=1, amplitudes={"x": 1, "y": 0}).solve(sys)
+    assert not sol.success
+    assert sol.status in (Status.INCONSISTENT, Status.NO_ROOT)
