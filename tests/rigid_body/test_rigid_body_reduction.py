@@ -130,9 +130,21 @@ def errors_along(reduction, values, omega_sq):
         res_p = np.abs(fw[4] + omega_sq * z[0] - rhs[0]).max()
         res_g = np.abs(fw[5] + z[2] - rhs[1]).max()
         inverse = np.abs(reduction.inverse_function(values, eps)(z, z0) - y).max()
-        geometric = reduction.geometric_integral.subs(dict(zip((P, dP, G, dG), z[:, -1])))
-        rows.append((res_p, res_g, inverse))
+        # against the oracle's own |gamma|^2 (its drift, ~1e-12, would mask eps**5 at eps = 0.005)
+        exact = (y[3:] ** 2).sum(axis=0)
+        geometric = np.abs(geometric_function(reduction)(z, z0, values, eps) - exact).max()
+        rows.append((res_p, res_g, inverse, geometric))
     return np.array(rows)
+
+
+def geometric_function(reduction):
+    """|gamma|**2 in the reduced variables, as a numeric function (its value on motions is 1)."""
+    f = sp.lambdify(
+        ((P, dP, G, dG), INITIAL_VALUES, (*reduction.parameters, EPS)), reduction.geometric_integral
+    )
+    return lambda z, z0, values, eps: f(
+        tuple(z), z0, tuple(values[s.name] for s in reduction.parameters) + (eps,)
+    )
 
 
 def slope(values):
@@ -236,10 +248,10 @@ def test_first_harmonic_of_F3_at_zero_amplitudes(disk):
 
 
 def test_inverse_map_first_order_matches_reference(disk):
-    p1_, q1_, r1_, g1_, g2_, g3_ = disk.full_state
-    first = {v: sp.expand(e).coeff(EPS, 1) for v, e in zip(NONDIMENSIONAL_STATE, disk.full_state)}
-    zeroth = {v: sp.expand(e).coeff(EPS, 0) for v, e in zip(NONDIMENSIONAL_STATE, disk.full_state)}
-    assert zeroth == dict(zip(NONDIMENSIONAL_STATE, (P, -dP, 1, G, dG, gamma3_0)))
+    pairs = list(zip(NONDIMENSIONAL_STATE, disk.full_state, strict=True))
+    first = {v: sp.expand(e).coeff(EPS, 1) for v, e in pairs}
+    zeroth = {v: sp.expand(e).coeff(EPS, 0) for v, e in pairs}
+    assert zeroth == dict(zip(NONDIMENSIONAL_STATE, (P, -dP, 1, G, dG, gamma3_0), strict=True))
     # q1 = -dP + eps (y0' gamma''/a + k gamma' gamma''), gamma' = dG - eps b gamma0'' dP
     assert sp.expand(first[NONDIMENSIONAL_STATE[1]] - (y0p * gamma3_0 / a + k * dG * gamma3_0)) == 0
     assert on_disk(first[NONDIMENSIONAL_STATE[4]] + b * gamma3_0 * dP) == 0
@@ -254,10 +266,12 @@ def test_geometric_integral_matches_paper_6(disk):
     assert on_disk(h.coeff(EPS, 1) - 2 * gamma3_0 * (a * P0 * G0 - b * dP0 * dG0)) == 0
 
 
-def test_forward_after_inverse_is_identity_to_order(disk):
-    order = disk.order
-    subs = dict(zip(NONDIMENSIONAL_STATE, disk.full_state))
-    for target, expr in zip((P, dP, G, dG), disk.reduced_state, strict=True):
+def test_forward_after_inverse_is_identity_to_order():
+    # symbolic at order 2 (the numeric scaling tests cover orders 3 and 4)
+    reduction = disk_reduction(2)
+    order = reduction.order
+    subs = dict(zip(NONDIMENSIONAL_STATE, reduction.full_state, strict=True))
+    for target, expr in zip((P, dP, G, dG), reduction.reduced_state, strict=True):
         composed = sp.expand(expr.subs(subs))
         truncated = sum(composed.coeff(EPS, n) * EPS**n for n in range(order + 1))
         assert on_disk(truncated - target) == 0
@@ -278,17 +292,6 @@ def test_disk_residual_scales_as_next_order(order):
     rows = errors_along(disk_reduction(order), DISK_VALUES, 1.0)
     for column in rows.T:
         assert abs(slope(column) - (order + 1)) < SLOPE_TOL, rows
-
-
-def test_geometric_integral_is_conserved_numerically(disk):
-    eps = 0.01
-    y = trajectory(DISK_VALUES, eps)
-    z = disk.forward_function(DISK_VALUES, eps)(y)[:4]
-    f = sp.lambdify(
-        ((P, dP, G, dG), (P0, G0, dP0, dG0), (*DISK_PARAMETERS, EPS)), disk.geometric_integral
-    )
-    values = f(tuple(z), (z[0, 0], z[2, 0], z[1, 0], z[3, 0]), (*DISK_VALUES.values(), eps))
-    assert np.abs(values - 1).max() < 10 * eps ** (disk.order + 1)
 
 
 # --------------------------------------------------------------------------- general body
