@@ -30,8 +30,10 @@ HEYOKA_COMPACT_MODE_MIN_DIM = 20
 DEFAULT_RK4_STEPS_PER_UNIT = 200
 
 #: Largest number of steps an adaptive integrator may take before reporting failure (guards against
-#: stiffness or blow-up turning a check into an endless loop).
-MAX_STEPS = 10_000_000
+#: stiffness or blow-up turning a check into an endless loop).  A million python-driven scipy steps
+#: take ~20 s; DOP853 at rtol 1e-14 needs ~30 steps per unit-frequency period, so 1e6 allows >3e4
+#: periods.
+MAX_STEPS = 1_000_000
 
 #: Default convergence tolerance of the shooting Newton iteration on the relative periodicity residual
 #: ||y(T) - y(0)||_inf / scale; a few hundred float64 ulps, reachable by an integrator at rtol 1e-13.

@@ -462,11 +462,19 @@ class Scipy:
                     "`max_steps` or loosen the tolerances (the problem may be stiff)."
                 )
                 break
+            t_before = solver.t
             solver_message = solver.step()
             n_steps += 1
             if solver.status == "failed":
                 status = STATUS_SOLVER_FAILED
                 message = f"scipy {self.method} failed: {solver_message}"
+                break
+            if solver.t <= t_before:  # LSODA keeps "stepping" with h = 0 at a singularity
+                status = STATUS_SOLVER_FAILED
+                message = (
+                    f"scipy {self.method} made no progress at t = {solver.t} (step size "
+                    f"{solver.step_size}): singularity or blow-up of the solution."
+                )
                 break
             dense = None
             while i < len(pending) and pending[i] <= solver.t:
@@ -653,10 +661,10 @@ class Heyoka:
             outcome, _, _, n, _, states = ta.propagate_grid(grid_fp, max_steps=self.max_steps)
             n_steps += n
             reached = float(ta.time) if math.isfinite(float(ta.time)) else float(t_before)
-            good = np.array([float(tg) <= reached for tg in grid]) & np.all(
-                np.isfinite(states.astype(float)), axis=1
-            )
-            ts, ys = grid[good], states[good].T
+            # on failure heyoka returns only the rows of the grid points it reached
+            states = np.asarray(states)[: len(grid)]
+            good = np.all(np.isfinite(states.astype(float)), axis=1)
+            ts, ys = grid[: len(states)][good], states[good].T.reshape(y0.size, -1)
         else:
             reached = float(ta.time)
             ts, ys = grid[:0], np.empty((y0.size, 0))
