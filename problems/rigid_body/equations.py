@@ -193,10 +193,11 @@ def _with_distance(expr: sp.Expr, R_value) -> sp.Expr:
 def torque(R_value=R) -> sp.Matrix:
     """Moment of the external forces about O, :math:`N = \\gamma \\times \\partial U/\\partial\\gamma`.
 
-    (:math:`\\gamma` is a space-fixed vector seen from the body; a virtual rotation
-    :math:`\\delta\\theta` changes it by :math:`\\gamma\\times\\delta\\theta`, so
-    :math:`\\delta U = (\\gamma\\times\\partial U/\\partial\\gamma)\\cdot\\delta\\theta`
-    up to sign conventions, giving :math:`N_x = Mg(y_0\\gamma'' - z_0\\gamma') + \\dots`.)
+    :math:`U` depends on the attitude only through the space-fixed :math:`\\gamma` seen from
+    the body. A small rotation :math:`\\delta\\theta` changes it by
+    :math:`\\delta\\gamma = \\gamma\\times\\delta\\theta`, so the virtual work is
+    :math:`N\\cdot\\delta\\theta = -\\delta U = (\\gamma\\times\\partial U/\\partial\\gamma)\\cdot\\delta\\theta`;
+    for uniform gravity this is :math:`Mg\\, r_G\\times\\gamma`.
     """
     u = potential(R_value)
     grad = sp.Matrix([sp.diff(u, gi) for gi in _GAMMA])
