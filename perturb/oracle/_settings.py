@@ -57,3 +57,8 @@ FD_REL_STEP = 6e-6
 #: Default relative tolerance of the integrator used *inside* the shooting method; one decade tighter
 #: than :data:`SHOOTING_TOL` so that the residual can actually get below the tolerance.
 SHOOTING_INTEGRATOR_RTOL = 1e-13
+
+#: A converged "orbit" whose motion over one period, max|f(y0)| * T, is below this fraction of the
+#: state scale is an equilibrium: the residual vanishes there for any period.  1e-8 is far above the
+#: round-off motion of a true fixed point and far below any physical oscillation we look for.
+EQUILIBRIUM_MOTION = 1e-8

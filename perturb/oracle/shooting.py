@@ -34,6 +34,7 @@ from attrs import field, frozen
 
 from perturb.errors import PerturbError, bad_value
 from perturb.oracle._settings import (
+    EQUILIBRIUM_MOTION,
     FD_REL_STEP,
     SHOOTING_INTEGRATOR_RTOL,
     SHOOTING_MAX_HALVINGS,
@@ -59,6 +60,7 @@ STATUS_MAX_ITER = -1
 STATUS_INTEGRATION_FAILED = -2
 STATUS_STALLED = -3
 STATUS_WRONG_DIRECTION = -4
+STATUS_EQUILIBRIUM = -5
 
 #: Singular values below this fraction of the largest count as zero in the rank of the Newton matrix.
 _RANK_RTOL = 1e-9
@@ -94,7 +96,8 @@ class PeriodicOrbit:
     status : int
         0 converged; -1 ``max_iter`` reached; -2 an integration failed; -3 stalled (no step reduces
         the residual: integrator accuracy limits it); -4 converged but crossing the section in the
-        wrong direction.
+        wrong direction; -5 converged onto an equilibrium (a fixed point is "periodic" with any
+        period), typically because a family parameter was not pinned.
     message : str
         What happened, with the numbers.
     trivial_multiplier_error : float
@@ -426,8 +429,16 @@ def find_periodic_orbit(
         f"converged in {iterations} iterations: residual {residual:.2e}, period {float(period)!r}, "
         f"trivial multiplier error {trivial_error:.1e}." + rank_note,
     )
-    crossing = float(np.asarray(rhs(y), dtype=float)[section])
-    if direction != 0 and np.sign(crossing) != direction:
+    velocity = np.asarray(rhs(y), dtype=float)
+    crossing = float(velocity[section])
+    if float(np.max(np.abs(velocity))) * period <= EQUILIBRIUM_MOTION * scale:
+        status = STATUS_EQUILIBRIUM
+        message = (
+            f"converged onto an equilibrium (|f(y0)| * T = {np.max(np.abs(velocity)) * period:.1e}),"
+            " not a periodic orbit; pin the amplitude or energy with `fixed_indices`, or start "
+            "closer to the orbit."
+        )
+    elif direction != 0 and np.sign(crossing) != direction:
         status = STATUS_WRONG_DIRECTION
         message = (
             f"converged, but the orbit crosses the section with dy[{section}]/dt = {crossing:.3e}, "
