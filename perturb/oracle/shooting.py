@@ -181,10 +181,10 @@ def _variational_rhs(rhs, jac):
     return augmented
 
 
-def _shooting_integrator(integrator, rhs, n: int) -> Integrator:
+def _shooting_integrator(integrator, aug_rhs, n: int) -> Integrator:
     """Resolve the integrator argument and adapt per-component tolerances to the augmented state."""
     if integrator is None:
-        if heyoka_available() and isinstance(rhs, SymbolicRHS):
+        if heyoka_available() and isinstance(aug_rhs, SymbolicRHS):
             return Heyoka()
         return Scipy("DOP853", rtol=SHOOTING_INTEGRATOR_RTOL)
     if isinstance(integrator, str):
@@ -316,7 +316,7 @@ def find_periodic_orbit(
 
     y0[section] = section_value
     aug_rhs = _variational_rhs(rhs, jac)
-    solver = _shooting_integrator(integrator, rhs, n)
+    solver = _shooting_integrator(integrator, aug_rhs, n)
     identity = np.eye(n)
 
     def shoot(y_start, period):
