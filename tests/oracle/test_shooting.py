@@ -133,7 +133,9 @@ def test_collapse_onto_an_equilibrium_is_reported():
 
 
 def test_symbolic_rhs_with_explicit_jacobian_uses_a_numeric_integrator(vdp_orbit):
-    orbit = find_periodic_orbit(van_der_pol(EPS), [2.0, 0.0], 6.3, section_index=1, jac=vdp_jacobian)
+    orbit = find_periodic_orbit(
+        van_der_pol(EPS), [2.0, 0.0], 6.3, section_index=1, jac=vdp_jacobian
+    )
     assert orbit.success, orbit.message
     assert "DOP853" in orbit.integrator  # the augmented rhs is numeric: heyoka cannot take it
     assert orbit.period == pytest.approx(vdp_orbit.period, rel=1e-11)
