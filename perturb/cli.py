@@ -51,13 +51,30 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     solve.add_argument("problem", help="problem name (see `perturb list`)")
     solve.add_argument(
-        "--set", dest="sets", action="append", default=[], metavar="NAME=VALUE",
+        "--set",
+        dest="sets",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
         help="set a parameter (repeatable); unset parameters take their defaults",
     )
-    solve.add_argument("--order", default="1", help="highest power of the small parameter kept (integer >= 1; default 1)")
-    solve.add_argument("--times", default=None, metavar="T1,T2,...", help="comma-separated times (physical units)")
-    solve.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
-    solve.add_argument("--euler", action="store_true", help="add the Euler angles (rigid bodies only)")
+    solve.add_argument(
+        "--order",
+        default="1",
+        help="highest power of the small parameter kept (integer >= 1; default 1)",
+    )
+    solve.add_argument(
+        "--times", default=None, metavar="T1,T2,...", help="comma-separated times (physical units)"
+    )
+    solve.add_argument(
+        "--format",
+        default="table",
+        choices=["table", "csv", "json"],
+        help="output format (default table)",
+    )
+    solve.add_argument(
+        "--euler", action="store_true", help="add the Euler angles (rigid bodies only)"
+    )
     return parser
 
 
@@ -70,7 +87,9 @@ def _parse_sets(items: Sequence[str]) -> dict[str, float]:
         try:
             out[name.strip()] = float(value)
         except ValueError:
-            raise _UsageError(f"--set {item!r}: {value!r} is not a number; write NAME=VALUE with a real VALUE") from None
+            raise _UsageError(
+                f"--set {item!r}: {value!r} is not a number; write NAME=VALUE with a real VALUE"
+            ) from None
     return out
 
 
@@ -90,7 +109,9 @@ def _parse_times(text: str | None) -> np.ndarray | None:
     try:
         values = np.array([float(v) for v in text.split(",") if v.strip()], dtype=float)
     except ValueError:
-        raise _UsageError(f"--times {text!r}: give comma-separated numbers, e.g. --times 0,0.5,1") from None
+        raise _UsageError(
+            f"--times {text!r}: give comma-separated numbers, e.g. --times 0,0.5,1"
+        ) from None
     if values.size == 0 or not np.all(np.isfinite(values)):
         raise _UsageError(f"--times {text!r}: give at least one finite time")
     return values
@@ -116,10 +137,14 @@ def _cmd_solve(args) -> int:
     times = _parse_times(args.times)
     problem = cls.create(**overrides)
     if args.euler and not hasattr(problem, "euler_angles"):
-        raise _UsageError(f"--euler: problem {args.problem!r} has no Euler angles (rigid bodies only)")
+        raise _UsageError(
+            f"--euler: problem {args.problem!r} has no Euler angles (rigid bodies only)"
+        )
     solution = problem.solve(order)
     if not solution.success:
-        print(f"perturb: {args.problem}: {solution.status.value}: {solution.message}", file=sys.stderr)
+        print(
+            f"perturb: {args.problem}: {solution.status.value}: {solution.message}", file=sys.stderr
+        )
         return EXIT_FAILED
     period = problem.period(solution)
     if times is None:
@@ -136,7 +161,10 @@ def _cmd_solve(args) -> int:
         "period": period,
         "t": times.tolist(),
         "state": {k: np.asarray(v, dtype=float).tolist() for k, v in state.items()},
-        **{k: {n: np.asarray(v, dtype=float).tolist() for n, v in d.items()} for k, d in extras.items()},
+        **{
+            k: {n: np.asarray(v, dtype=float).tolist() for n, v in d.items()}
+            for k, d in extras.items()
+        },
     }
     _print(payload, args.format, [("state", state), *extras.items()])
     return EXIT_OK
@@ -193,4 +221,3 @@ def run() -> None:  # pragma: no cover - console entry
 
 if __name__ == "__main__":  # pragma: no cover
     run()
-

@@ -47,7 +47,9 @@ class AccuracyWarning(UserWarning):
     """A result is returned but its accuracy is doubtful (small divisor, large expansion parameter)."""
 
 
-def bad_value(argument: str, value: object, fix: str, cls: type[ValueError] = InvalidParameterError):
+def bad_value(
+    argument: str, value: object, fix: str, cls: type[ValueError] = InvalidParameterError
+):
     """Build the one-line error used for every bad input: argument, value, fix.
 
     Examples

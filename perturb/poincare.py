@@ -114,14 +114,18 @@ class _Construction:
         for key in method.amplitudes:
             if key not in names:
                 raise bad_value(
-                    "amplitudes", {key: method.amplitudes[key]}, f"name a coordinate, one of {names}",
+                    "amplitudes",
+                    {key: method.amplitudes[key]},
+                    f"name a coordinate, one of {names}",
                     InvalidSystemError,
                 )
         phase = method.phase_coordinate
         if phase is None:
             phase = next(iter(method.amplitudes)) if len(method.amplitudes) == 1 else names[0]
         if phase not in names:
-            raise bad_value("phase_coordinate", phase, f"name a coordinate, one of {names}", InvalidSystemError)
+            raise bad_value(
+                "phase_coordinate", phase, f"name a coordinate, one of {names}", InvalidSystemError
+            )
         self.phase = names.index(phase)
         self.w_ref = self.system.frequencies[self.phase]
         self.harmonics: list[int | None] = []
@@ -131,7 +135,8 @@ class _Construction:
             self.harmonics.append(m)
             if m is None and names[i] in method.amplitudes:
                 raise bad_value(
-                    "amplitudes", {names[i]: method.amplitudes[names[i]]},
+                    "amplitudes",
+                    {names[i]: method.amplitudes[names[i]]},
                     f"{names[i]} is not resonant with the phase coordinate {phase} "
                     f"(omega ratio {ratio}); its generating amplitude vanishes, drop it",
                     InvalidSystemError,
@@ -147,7 +152,8 @@ class _Construction:
             stray = expr.free_symbols - allowed
             if stray:
                 raise bad_value(
-                    "amplitudes", {name: value},
+                    "amplitudes",
+                    {name: value},
                     f"it depends on {sorted(map(str, stray))}; use only declared parameters, "
                     "initial-value symbols and epsilon",
                     InvalidSystemError,
@@ -200,20 +206,48 @@ class _Construction:
         expr = self.given_series[i]
         if not (expr.free_symbols & set(self.system.initial_values)) and not expr.has(EPS):
             return expr if k == 0 else sp.S.Zero
-        # Substitute the initial values by their series (orders < k are known; order k must not enter).
+        # The initial values are series sum_j eps^j c_j; expand once with placeholder symbols c_j
+        # (cheap: small expressions), then put in what is known of the c_j at this order.
+        placeholders = self._placeholders(i)
         subs = {}
         for j, sym in enumerate(self.system.initial_values):
-            coord = j % self.n
-            if coord == i and expr.has(sym):
-                raise bad_value(
-                    "amplitudes", {self.names[i]: expr},
-                    "the initial value of a coordinate cannot depend on itself", InvalidSystemError,
-                )
             if not expr.has(sym):
                 continue
-            subs[sym] = self._initial_value_series(j, k)
-        series = sp.series(expr.subs(subs), EPS, 0, k + 1).removeO() if k else expr.subs(subs).subs(EPS, 0)
-        return sp.expand(sp.expand(series).coeff(EPS, k)) if k else sp.expand(series)
+            series = sp.Poly(self._initial_value_series(j, k), EPS)
+            for q, c in enumerate(placeholders[sym][: k + 1]):
+                subs[c] = series.coeff_monomial(EPS**q)
+        return sp.expand(self._placeholder_taylor(i, k).xreplace(subs))
+
+    def _placeholders(self, i: int) -> dict:
+        if not hasattr(self, "_placeholder_cache"):
+            self._placeholder_cache, self._taylor_cache = {}, {}
+        if i not in self._placeholder_cache:
+            expr = self.given_series[i]
+            table = {}
+            for j, sym in enumerate(self.system.initial_values):
+                if expr.has(sym) and j % self.n == i:
+                    raise bad_value(
+                        "amplitudes",
+                        {self.names[i]: expr},
+                        "the initial value of a coordinate cannot depend on itself",
+                        InvalidSystemError,
+                    )
+                table[sym] = [sp.Dummy(f"{sym.name}_{q}") for q in range(MAX_ORDER + 4)]
+            self._placeholder_cache[i] = table
+        return self._placeholder_cache[i]
+
+    def _placeholder_taylor(self, i: int, k: int) -> sp.Expr:
+        key = (i, k)
+        if key not in self._taylor_cache:
+            table = self._placeholders(i)
+            expr = self.given_series[i]
+            subs = {
+                sym: sp.Add(*(EPS**q * c for q, c in enumerate(cs[: k + 1])))
+                for sym, cs in table.items()
+                if expr.has(sym)
+            }
+            self._taylor_cache[key] = _taylor_coefficient(expr.xreplace(subs), k)
+        return self._taylor_cache[key]
 
     def _initial_value_series(self, j: int, k: int) -> sp.Expr:
         """x_i(0) or xdot_i(0) as a polynomial in ε through order ``k`` (using what is known)."""
@@ -231,14 +265,18 @@ class _Construction:
         """Series (to order k-1, padded to k) of the state and the initial values."""
         top = k - 1
         variables: dict[sp.Symbol, TrigSeries] = {}
-        omega_series = TrigSeries([TrigPoly.constant(w) for w in self.omega[: top + 1]]).truncate(top)
+        omega_series = TrigSeries([TrigPoly.constant(w) for w in self.omega[: top + 1]]).truncate(
+            top
+        )
         for i in range(self.n):
             xs = TrigSeries(self.x[i][: top + 1]).truncate(top)
             variables[self.system.coordinates[i]] = xs
             variables[self.system.velocities[i]] = (omega_series * xs.derivative()).truncate(top)
         for j, sym in enumerate(self.system.initial_values):
             value = variables[self.system.state_symbols[j]]
-            variables[sym] = TrigSeries([TrigPoly.constant(c.at_zero()) for c in value.coefficients])
+            variables[sym] = TrigSeries(
+                [TrigPoly.constant(c.at_zero()) for c in value.coefficients]
+            )
         return {sym: series.truncate(k) for sym, series in variables.items()}
 
     def _forcing(self, k: int) -> list[TrigPoly]:
@@ -248,7 +286,10 @@ class _Construction:
         forcing = []
         omega_new = self._new(f"Omega{k}")
         omegas = self.omega + [omega_new]
-        omega_sq = [sp.expand(sp.Add(*(omegas[a] * omegas[q - a] for a in range(q + 1)))) for q in range(k + 1)]
+        omega_sq = [
+            sp.expand(sp.Add(*(omegas[a] * omegas[q - a] for a in range(q + 1))))
+            for q in range(k + 1)
+        ]
         for i in range(self.n):
             total = TrigPoly()
             for m in range(1, k + 1):
@@ -318,9 +359,11 @@ class _Construction:
             return {}, ()
         unknowns = sorted(set().union(*(e.free_symbols for e in eqs)) & self.unknowns, key=str)
         if not unknowns:
-            residual = [sp.simplify(e) for e in eqs]
-            if any(r != 0 for r in residual):
-                raise _Failure(Status.INCONSISTENT, f"order {k}: conditions {residual} cannot vanish")
+            residual = [e for e in eqs if not _is_zero(e) and sp.simplify(e) != 0]
+            if residual:
+                raise _Failure(
+                    Status.INCONSISTENT, f"order {k}: conditions {residual} cannot vanish"
+                )
             self.pending = []
             return {}, ()
         linear = all(sp.Poly(e, *unknowns).total_degree() <= 1 for e in eqs)
@@ -338,7 +381,7 @@ class _Construction:
             if e == 0:
                 continue
             if not (e.free_symbols & self.unknowns):
-                if sp.simplify(e) != 0:
+                if not _is_zero(e) and sp.simplify(e) != 0:
                     raise _Failure(Status.INCONSISTENT, f"order {k}: condition {e} = 0 cannot hold")
                 continue
             still.append(e)
@@ -349,7 +392,10 @@ class _Construction:
         matrix, rhs = sp.linear_eq_to_matrix(eqs, unknowns)
         result = sp.linsolve((matrix, rhs), unknowns)
         if result == sp.S.EmptySet:
-            raise _Failure(Status.INCONSISTENT, f"order {k}: the linear periodicity conditions have no solution")
+            raise _Failure(
+                Status.INCONSISTENT,
+                f"order {k}: the linear periodicity conditions have no solution",
+            )
         (values,) = tuple(result)
         solution = {}
         for sym, val in zip(unknowns, values, strict=True):
@@ -362,22 +408,32 @@ class _Construction:
         return {s: sp.expand(v) if v.is_polynomial(*unknowns) else v for s, v in solution.items()}
 
     def _solve_nonlinear(self, eqs, unknowns, k, generating) -> tuple[dict, tuple]:
-        roots = sp.solve(eqs, unknowns, dict=True)
+        roots = sp.solve(eqs, unknowns, dict=True, simplify=False)
         if not roots:
             raise _Failure(Status.NO_ROOT, f"order {k}: amplitude equations {eqs} have no root")
-        amplitude_syms = {s for s in (*generating.cos_amplitudes, *generating.sin_amplitudes) if isinstance(s, sp.Symbol)}
+        amplitude_syms = {
+            s
+            for s in (*generating.cos_amplitudes, *generating.sin_amplitudes)
+            if isinstance(s, sp.Symbol)
+        }
         admissible = []
         for root in roots:
             full = {s: root.get(s, s) for s in amplitude_syms}
-            gen = [sp.sympify(a).xreplace(full) for a in (*generating.cos_amplitudes, *generating.sin_amplitudes)]
+            gen = [
+                sp.sympify(a).xreplace(full)
+                for a in (*generating.cos_amplitudes, *generating.sin_amplitudes)
+            ]
             gen = [g.xreplace(self.solved) for g in gen]
-            if all(sp.simplify(g) == 0 for g in gen):
+            if all(_is_zero(g) for g in gen):
                 continue  # trivial equilibrium
             if any(v.has(sp.I) and sp.simplify(sp.im(v)) != 0 for v in root.values()):
                 continue
             admissible.append(root)
         if not admissible:
-            raise _Failure(Status.NO_ROOT, f"order {k}: the amplitude equations {eqs} have only the trivial root")
+            raise _Failure(
+                Status.NO_ROOT,
+                f"order {k}: the amplitude equations {eqs} have only the trivial root",
+            )
         chosen = self._choose_branch(admissible, unknowns, generating)
         return chosen, tuple(admissible)
 
@@ -385,15 +441,32 @@ class _Construction:
         selector = self.method.branch
         if isinstance(selector, int) and not isinstance(selector, bool):
             if not 0 <= selector < len(roots):
-                raise bad_value("branch", selector, f"choose an index below {len(roots)}: {roots}", InvalidSystemError)
+                raise bad_value(
+                    "branch",
+                    selector,
+                    f"choose an index below {len(roots)}: {roots}",
+                    InvalidSystemError,
+                )
             return roots[selector]
         if isinstance(selector, Mapping):
-            wanted = {sp.Symbol(k) if isinstance(k, str) else k: sp.sympify(v) for k, v in selector.items()}
+            wanted = {
+                sp.Symbol(k) if isinstance(k, str) else k: sp.sympify(v)
+                for k, v in selector.items()
+            }
             for root in roots:
-                if all(sp.simplify(root.get(s, s) - v) == 0 for s, v in wanted.items() if s in unknowns):
+                # a root that leaves a wanted symbol free is compatible: a later order decides it
+                if all(
+                    _is_zero(root[s] - v) for s, v in wanted.items() if s in unknowns and s in root
+                ):
                     return root
-            raise bad_value("branch", selector, f"no root matches; the roots are {roots}", InvalidSystemError)
-        isolated = [r for r in roots if not (set().union(*(sp.sympify(v).free_symbols for v in r.values())) & set(unknowns))]
+            raise bad_value(
+                "branch", selector, f"no root matches; the roots are {roots}", InvalidSystemError
+            )
+        isolated = [
+            r
+            for r in roots
+            if not (set().union(*(sp.sympify(v).free_symbols for v in r.values())) & set(unknowns))
+        ]
         pool = isolated or roots
         phase_amp = generating.cos_amplitudes[self.phase]
 
@@ -423,8 +496,14 @@ class _Construction:
                 self.pending.extend(c.expression for c in conditions)
                 solved, branches = self._solve_conditions(k, generating)
                 self.steps.append(
-                    OrderStep(k, {n: f for n, f in zip(self.names, forcing, strict=True)}, quadratures,
-                              tuple(conditions), dict(solved), branches)
+                    OrderStep(
+                        k,
+                        {n: f for n, f in zip(self.names, forcing, strict=True)},
+                        quadratures,
+                        tuple(conditions),
+                        dict(solved),
+                        branches,
+                    )
                 )
                 k_done = k
                 if k >= method.order and not self._open_unknowns(method.order):
@@ -447,13 +526,19 @@ class _Construction:
             syms |= w.free_symbols
         return syms & self.unknowns
 
-    def _result(self, generating: GeneratingSolution, status: Status, message: str) -> PeriodicSolution:
+    def _result(
+        self, generating: GeneratingSolution, status: Status, message: str
+    ) -> PeriodicSolution:
         order = self.method.order
         gen = GeneratingSolution(
             coordinates=generating.coordinates,
             harmonics=generating.harmonics,
-            cos_amplitudes=tuple(sp.sympify(a).xreplace(self.solved) for a in generating.cos_amplitudes),
-            sin_amplitudes=tuple(sp.sympify(b).xreplace(self.solved) for b in generating.sin_amplitudes),
+            cos_amplitudes=tuple(
+                sp.sympify(a).xreplace(self.solved) for a in generating.cos_amplitudes
+            ),
+            sin_amplitudes=tuple(
+                sp.sympify(b).xreplace(self.solved) for b in generating.sin_amplitudes
+            ),
             phase_coordinate=generating.phase_coordinate,
             reference_frequency=generating.reference_frequency,
         )
@@ -483,9 +568,33 @@ class _Construction:
         )
 
 
+def _taylor_coefficient(expr: sp.Expr, k: int) -> sp.Expr:
+    """Coefficient of ε^k in the Maclaurin expansion of ``expr`` (k-fold derivative at 0 over k!).
+
+    Much faster than ``sympy.series`` on nested radicals of polynomials, the form first-integral
+    constraints take.
+    """
+    if not expr.has(EPS):
+        return sp.expand(expr) if k == 0 else sp.S.Zero
+    if expr.is_polynomial(EPS):
+        return sp.expand(sp.expand(expr).coeff(EPS, k))
+    value = expr
+    for _ in range(k):
+        value = sp.diff(value, EPS)
+    return sp.expand(value.subs(EPS, 0) / sp.factorial(k))
+
+
+def _is_zero(expr) -> bool:
+    """Cheap exact zero test for amplitudes (numbers, symbols and rational expressions)."""
+    expr = sp.sympify(expr)
+    return expr == 0 or sp.expand(expr) == 0 or sp.cancel(expr) == 0
+
+
 def _probe_values(expr: sp.Expr) -> dict:
     """Deterministic generic numeric values for the free symbols of ``expr`` (for ordering roots)."""
-    return {s: sp.Rational(7 + 3 * i, 10 + i) for i, s in enumerate(sorted(expr.free_symbols, key=str))}
+    return {
+        s: sp.Rational(7 + 3 * i, 10 + i) for i, s in enumerate(sorted(expr.free_symbols, key=str))
+    }
 
 
 class _Failure(Exception):

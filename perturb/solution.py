@@ -11,7 +11,7 @@ import sympy as sp
 from attrs import field, frozen
 
 from perturb.errors import InvalidParameterError, PerturbError
-from perturb.steps import S, GeneratingSolution, OrderStep
+from perturb.steps import GeneratingSolution, OrderStep, S
 from perturb.system import EPS, QuasilinearSystem, Regime
 
 __all__ = ["PeriodicSolution", "SolutionFailed", "Status"]
@@ -24,12 +24,16 @@ class Status(enum.Enum):
 
     SUCCESS = "the periodicity conditions were solved at every order"
     NO_ROOT = "the amplitude equations have no admissible (non-trivial) root"
-    INCONSISTENT = "the periodicity conditions are inconsistent at some order (no periodic solution)"
+    INCONSISTENT = (
+        "the periodicity conditions are inconsistent at some order (no periodic solution)"
+    )
     UNDETERMINED = (
         "the periodicity conditions leave some amplitudes free (a continuous family): fix them "
         "with `amplitudes=`"
     )
-    NOT_POLYNOMIAL = "the right-hand side is not polynomial in the state; give numeric parameter values"
+    NOT_POLYNOMIAL = (
+        "the right-hand side is not polynomial in the state; give numeric parameter values"
+    )
 
     @property
     def ok(self) -> bool:
@@ -127,7 +131,9 @@ class PeriodicSolution:
 
     def latex(self) -> str:
         """The solution as LaTeX: one line per coordinate and the period."""
-        lines = [f"{sp.latex(sp.Symbol(c))} = {sp.latex(self.coordinate(c))}" for c in self.coordinates]
+        lines = [
+            f"{sp.latex(sp.Symbol(c))} = {sp.latex(self.coordinate(c))}" for c in self.coordinates
+        ]
         lines.append(f"T = {sp.latex(self.period_series())}")
         return " \\\\\n".join(lines)
 
@@ -157,10 +163,16 @@ class PeriodicSolution:
         cos_rows, sin_rows = [], []
         for row in self.terms:
             cos_rows.append(
-                [sp.Add(*(EPS**k * t.coefficient(j)[0] for k, t in enumerate(row))) for j in range(harmonics + 1)]
+                [
+                    sp.Add(*(EPS**k * t.coefficient(j)[0] for k, t in enumerate(row)))
+                    for j in range(harmonics + 1)
+                ]
             )
             sin_rows.append(
-                [sp.Add(*(EPS**k * t.coefficient(j)[1] for k, t in enumerate(row))) for j in range(harmonics + 1)]
+                [
+                    sp.Add(*(EPS**k * t.coefficient(j)[1] for k, t in enumerate(row)))
+                    for j in range(harmonics + 1)
+                ]
             )
         exprs = [self.frequency_expr, cos_rows, sin_rows]
         fn = sp.lambdify([EPS, *params], exprs, modules="numpy", cse=True)
@@ -169,10 +181,14 @@ class PeriodicSolution:
     def _epsilon(self, value) -> np.ndarray:
         value = np.asarray(value, dtype=float)
         if not np.all(np.isfinite(value)):
-            raise InvalidParameterError(f"`{self.parameter}` = {value} is not finite: give a finite value")
+            raise InvalidParameterError(
+                f"`{self.parameter}` = {value} is not finite: give a finite value"
+            )
         if self.system.regime is Regime.LARGE:
             if np.any(value == 0):
-                raise InvalidParameterError(f"`{self.parameter}` = 0: the large parameter must be non-zero")
+                raise InvalidParameterError(
+                    f"`{self.parameter}` = 0: the large parameter must be non-zero"
+                )
             return 1.0 / value
         return value
 
@@ -184,7 +200,10 @@ class PeriodicSolution:
             raise InvalidParameterError(
                 f"`values` lacks {missing}: give a value for every free parameter of the solution"
             )
-        return [np.asarray(values[p.name] if p.name in values else values[p], dtype=float) for p in params]
+        return [
+            np.asarray(values[p.name] if p.name in values else values[p], dtype=float)
+            for p in params
+        ]
 
     def coefficients(self, parameter_value, values: Mapping | None = None):
         """Numeric ``(Omega, cos, sin)``: cos/sin have shape ``(n, harmonics + 1, *broadcast)``."""
@@ -193,8 +212,12 @@ class PeriodicSolution:
         args = self._params(values)
         omega, cos_rows, sin_rows = fn(eps, *args)
         shape = np.broadcast_shapes(np.shape(eps), *(np.shape(a) for a in args))
-        cos = np.array([[np.broadcast_to(np.asarray(c, float), shape) for c in row] for row in cos_rows])
-        sin = np.array([[np.broadcast_to(np.asarray(c, float), shape) for c in row] for row in sin_rows])
+        cos = np.array(
+            [[np.broadcast_to(np.asarray(c, float), shape) for c in row] for row in cos_rows]
+        )
+        sin = np.array(
+            [[np.broadcast_to(np.asarray(c, float), shape) for c in row] for row in sin_rows]
+        )
         return np.broadcast_to(np.asarray(omega, float), shape), cos, sin
 
     def period_at(self, parameter_value, values: Mapping | None = None):

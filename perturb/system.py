@@ -124,7 +124,9 @@ class QuasilinearSystem:
         names.append(self.parameter.name)
         duplicates = sorted({n_ for n_ in names if names.count(n_) > 1})
         if duplicates:
-            raise InvalidSystemError(f"symbol names {duplicates} are used twice: give each symbol one role")
+            raise InvalidSystemError(
+                f"symbol names {duplicates} are used twice: give each symbol one role"
+            )
         self._check_frequencies()
         self._check_symbols()
         self._check_vanishing()
@@ -261,7 +263,9 @@ class QuasilinearSystem:
             else self.first_integrals,
         )
 
-    def vector_field(self, parameter_value: float, values: Mapping | None = None, initial_state=None):
+    def vector_field(
+        self, parameter_value: float, values: Mapping | None = None, initial_state=None
+    ):
         """Numeric first-order form ``y' = F(t, y)`` of the system, ``y = (x, xdot)``.
 
         Parameters
@@ -284,7 +288,9 @@ class QuasilinearSystem:
         subs = {p: values[p.name] for p in self.parameters if p.name in values}
         missing = [p.name for p in self.parameters if p.name not in values]
         if missing:
-            raise InvalidSystemError(f"`values` lacks {missing}: give every declared parameter a value")
+            raise InvalidSystemError(
+                f"`values` lacks {missing}: give every declared parameter a value"
+            )
         if self.initial_values:
             if initial_state is None:
                 raise InvalidSystemError(

@@ -76,7 +76,9 @@ class TrigPoly:
         return out
 
     def as_expr(self, s: sp.Symbol) -> sp.Expr:
-        return sp.Add(*(c * sp.cos(j * s) + sd * sp.sin(j * s) for j, (c, sd) in sorted(self.terms.items())))
+        return sp.Add(
+            *(c * sp.cos(j * s) + sd * sp.sin(j * s) for j, (c, sd) in sorted(self.terms.items()))
+        )
 
     # ------------------------------------------------------------------ algebra
     def map(self, fn: Callable[[sp.Expr], sp.Expr]) -> TrigPoly:

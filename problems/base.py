@@ -61,9 +61,13 @@ class ParameterSpec:
         try:
             value = float(value)
         except (TypeError, ValueError):
-            raise InvalidParameterError(f"`{self.name}` = {value!r} is not a number: give a real value") from None
+            raise InvalidParameterError(
+                f"`{self.name}` = {value!r} is not a number: give a real value"
+            ) from None
         if math.isnan(value) or (math.isinf(value) and not self.allow_inf):
-            raise InvalidParameterError(f"`{self.name}` = {value} is not finite: give a finite real value")
+            raise InvalidParameterError(
+                f"`{self.name}` = {value} is not finite: give a finite real value"
+            )
         if self.check is not None:
             fix = self.check(value)
             if fix:
@@ -104,6 +108,7 @@ class Problem(ABC):
 
     def check_values(self, values: Mapping[str, float]) -> None:
         """Whole-set checks beyond single parameters (e.g. the triangle inequality); raise on failure."""
+        return None
 
     # ------------------------------------------------------------------ to override
     @classmethod
@@ -121,7 +126,9 @@ class Problem(ABC):
 
     def symbol_values(self) -> dict[str, float]:
         """Numeric values of the system's free symbols, by name."""
-        return {p.name: self.values[p.name] for p in self.system().parameters if p.name in self.values}
+        return {
+            p.name: self.values[p.name] for p in self.system().parameters if p.name in self.values
+        }
 
     def parameter_value(self) -> float:
         """The value passed to the solution for its own parameter (ε, or μ if LARGE)."""

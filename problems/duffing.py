@@ -25,8 +25,13 @@ class Duffing(Problem):
     @classmethod
     def build_system(cls) -> QuasilinearSystem:
         return QuasilinearSystem(
-            coordinates=[X], velocities=[XDOT], frequencies=[1], rhs=[-EPS * X**3],
-            parameter=EPS, parameters=[AMPLITUDE], name="duffing",
+            coordinates=[X],
+            velocities=[XDOT],
+            frequencies=[1],
+            rhs=[-EPS * X**3],
+            parameter=EPS,
+            parameters=[AMPLITUDE],
+            name="duffing",
         )
 
     def epsilon(self) -> float:

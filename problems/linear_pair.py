@@ -31,7 +31,9 @@ class LinearPair(Problem):
     """Two linearly coupled oscillators, x continuing the unit-frequency mode."""
 
     name = "linear-pair"
-    summary = "linear pair xddot + x = eps kappa y, yddot + omega^2 y = eps kappa x (exact frequencies)"
+    summary = (
+        "linear pair xddot + x = eps kappa y, yddot + omega^2 y = eps kappa x (exact frequencies)"
+    )
     parameter_specs = (
         ParameterSpec("eps", 0.1, "coupling scale (small parameter)"),
         ParameterSpec("kappa", 1.0, "coupling constant"),
@@ -42,9 +44,13 @@ class LinearPair(Problem):
     @classmethod
     def build_system(cls) -> QuasilinearSystem:
         return QuasilinearSystem(
-            coordinates=[X, Y], velocities=[XDOT, YDOT], frequencies=[1, OMEGA],
-            rhs=[EPS * KAPPA * Y, EPS * KAPPA * X], parameter=EPS,
-            parameters=[KAPPA, OMEGA, AMPLITUDE], name="linear-pair",
+            coordinates=[X, Y],
+            velocities=[XDOT, YDOT],
+            frequencies=[1, OMEGA],
+            rhs=[EPS * KAPPA * Y, EPS * KAPPA * X],
+            parameter=EPS,
+            parameters=[KAPPA, OMEGA, AMPLITUDE],
+            name="linear-pair",
         )
 
     def epsilon(self) -> float:

@@ -38,11 +38,16 @@ class ResonantPair(Problem):
     @classmethod
     def build_system(cls) -> QuasilinearSystem:
         return QuasilinearSystem(
-            coordinates=[X, Y], velocities=[XDOT, YDOT], frequencies=[1, 1],
+            coordinates=[X, Y],
+            velocities=[XDOT, YDOT],
+            frequencies=[1, 1],
             rhs=[EPS * (-(X**3) + KAPPA * (Y - X)), EPS * (-(Y**3) + KAPPA * (X - Y))],
-            parameter=EPS, parameters=[KAPPA, AMPLITUDE], name="resonant-pair",
+            parameter=EPS,
+            parameters=[KAPPA, AMPLITUDE],
+            name="resonant-pair",
             first_integrals=[
-                (XDOT**2 + YDOT**2 + X**2 + Y**2) / 2 + EPS * ((X**4 + Y**4) / 4 + KAPPA * (X - Y) ** 2 / 2)
+                (XDOT**2 + YDOT**2 + X**2 + Y**2) / 2
+                + EPS * ((X**4 + Y**4) / 4 + KAPPA * (X - Y) ** 2 / 2)
             ],
         )
 

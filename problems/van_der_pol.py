@@ -22,8 +22,12 @@ class VanDerPol(Problem):
     @classmethod
     def build_system(cls) -> QuasilinearSystem:
         return QuasilinearSystem(
-            coordinates=[X], velocities=[XDOT], frequencies=[1], rhs=[EPS * (1 - X**2) * XDOT],
-            parameter=EPS, name="van-der-pol",
+            coordinates=[X],
+            velocities=[XDOT],
+            frequencies=[1],
+            rhs=[EPS * (1 - X**2) * XDOT],
+            parameter=EPS,
+            name="van-der-pol",
         )
 
     def epsilon(self) -> float:

@@ -13,8 +13,15 @@ REF_RTOL, REF_ATOL = 1e-13, 1e-14
 def integrate(rhs, y0, t):
     """Reference trajectory at times ``t`` (DOP853 at REF_RTOL)."""
     t = np.asarray(t, float)
-    sol = solve_ivp(rhs, (0.0, float(t[-1])), np.asarray(y0, float), method="DOP853",
-                    t_eval=t, rtol=REF_RTOL, atol=REF_ATOL)
+    sol = solve_ivp(
+        rhs,
+        (0.0, float(t[-1])),
+        np.asarray(y0, float),
+        method="DOP853",
+        t_eval=t,
+        rtol=REF_RTOL,
+        atol=REF_ATOL,
+    )
     assert sol.success, sol.message
     return sol.y
 
@@ -27,7 +34,9 @@ def shoot_1dof(rhs, x0_guess, period_guess):
         y = integrate(rhs, [x0, 0.0], [0.0, T])[:, -1]
         return [y[0] - x0, y[1]]
 
-    (x0, T), info, ier, msg = fsolve(residual, [x0_guess, period_guess], xtol=1e-13, full_output=True)
+    (x0, T), info, ier, msg = fsolve(
+        residual, [x0_guess, period_guess], xtol=1e-13, full_output=True
+    )
     assert ier == 1, msg
     return x0, T
 

@@ -17,7 +17,12 @@ def test_duffing_frequency_is_the_lindstedt_textbook_series():
     # Nayfeh, Perturbation Methods (1973) §4.1: omega = 1 + 3/8 eps A^2 - 21/256 eps^2 A^4 + 81/2048 eps^3 A^6
     sol = PoincareMethod(order=3, amplitudes={"x": A}).solve(DUFFING)
     assert sol.success
-    expected = 1 + sp.Rational(3, 8) * EPS * A**2 - sp.Rational(21, 256) * EPS**2 * A**4 + sp.Rational(81, 2048) * EPS**3 * A**6
+    expected = (
+        1
+        + sp.Rational(3, 8) * EPS * A**2
+        - sp.Rational(21, 256) * EPS**2 * A**4
+        + sp.Rational(81, 2048) * EPS**3 * A**6
+    )
     assert sp.expand(sol.frequency_expr - expected) == 0
     # first-order correction x1 = A^3 (cos 3s - cos s)/32
     assert sp.expand(sol.terms[0][1].as_expr(S) - A**3 * (sp.cos(3 * S) - sp.cos(S)) / 32) == 0
@@ -50,7 +55,12 @@ def test_large_and_small_regimes_give_the_same_solution():
     assert large.system.regime is Regime.LARGE
     assert sp.expand(large.coordinate("x") - small.coordinate("x").subs(EPS, 1 / mu)) == 0
     t = np.linspace(0, 10, 7)
-    np.testing.assert_allclose(large.evaluate(t, 20.0, {"A": 1.1}), small.evaluate(t, 0.05, {"A": 1.1}), rtol=1e-13, atol=1e-14)
+    np.testing.assert_allclose(
+        large.evaluate(t, 20.0, {"A": 1.1}),
+        small.evaluate(t, 0.05, {"A": 1.1}),
+        rtol=1e-13,
+        atol=1e-14,
+    )
 
 
 def test_linear_pair_is_reproduced_exactly():

@@ -34,7 +34,9 @@ def test_bad_systems_raise_one_clear_error(kwargs, fragment):
 
 
 def test_expansion_and_leading_order():
-    sys = QuasilinearSystem([x, y], [xd, yd], [1, 1], [EPS**2 * x * y + EPS**3 * y, EPS**2 * x**2], parameter=EPS)
+    sys = QuasilinearSystem(
+        [x, y], [xd, yd], [1, 1], [EPS**2 * x * y + EPS**3 * y, EPS**2 * x**2], parameter=EPS
+    )
     assert sys.leading_order == 2
     coeffs = sys.expansion(3)
     assert coeffs[0][2] == x * y and coeffs[0][3] == y and coeffs[1][1] == 0

@@ -29,8 +29,20 @@ def truncation_bound(problem, order, eps):
     for row in nxt.terms:
         for c, s_ in row[order + 1].terms.values():
             size = max(size, abs(float(c.xreplace(vals))) + abs(float(s_.xreplace(vals))))
-    omega_next = abs(float(nxt.frequency[order + 1].xreplace(vals))) if len(nxt.frequency) > order + 1 else 0.0
-    amplitude = float(np.max(np.abs(problem.solve(order).initial_state(problem.parameter_value(), problem.symbol_values()))))
+    omega_next = (
+        abs(float(nxt.frequency[order + 1].xreplace(vals)))
+        if len(nxt.frequency) > order + 1
+        else 0.0
+    )
+    amplitude = float(
+        np.max(
+            np.abs(
+                problem.solve(order).initial_state(
+                    problem.parameter_value(), problem.symbol_values()
+                )
+            )
+        )
+    )
     return eps ** (order + 1) * (3 * size + 2 * np.pi * omega_next * (1 + amplitude)) + ROUNDOFF
 
 
@@ -68,8 +80,18 @@ def test_regime_equivalence(name, eps, order):
     """Solving the system written in mu = 1/eps gives the same orbit after the renaming."""
     problem = get_problem(name).create(eps=eps)
     small = problem.solve(order)
-    large = PoincareMethod(order=order, **problem.method_options()).solve(problem.system().as_large_parameter())
+    large = PoincareMethod(order=order, **problem.method_options()).solve(
+        problem.system().as_large_parameter()
+    )
     values = problem.symbol_values()
     t = np.linspace(0.0, 7.0, 9)
-    np.testing.assert_allclose(large.evaluate(t, 1.0 / eps, values), small.evaluate(t, eps, values), rtol=1e-12, atol=1e-12)
-    assert sp.simplify(large.period_series().subs(large.parameter, 1 / sp.Symbol("e")) - small.period_series().subs(small.parameter, sp.Symbol("e"))) == 0
+    np.testing.assert_allclose(
+        large.evaluate(t, 1.0 / eps, values), small.evaluate(t, eps, values), rtol=1e-12, atol=1e-12
+    )
+    assert (
+        sp.simplify(
+            large.period_series().subs(large.parameter, 1 / sp.Symbol("e"))
+            - small.period_series().subs(small.parameter, sp.Symbol("e"))
+        )
+        == 0
+    )
