@@ -22,6 +22,9 @@ _EPILOG = """examples:
   perturb list
   perturb solve duffing --set eps=0.05 --set amplitude=1.2 --order 2
   perturb solve van-der-pol --order 3 --times 0,1,2,3 --format json
+  perturb solve disk --euler --format json
+  perturb validate duffing --set eps=0.05
+  perturb reproduce paper
 """
 
 
@@ -74,6 +77,44 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     solve.add_argument(
         "--euler", action="store_true", help="add the Euler angles (rigid bodies only)"
+    )
+    validate = sub.add_parser(
+        "validate",
+        help="check a problem's periodic solution against the true motion and give a verdict",
+        description="Integrate the original equations from the analytic initial state, find the true "
+        "periodic orbit by shooting, measure the errors and their slope in the expansion parameter, "
+        "and say whether the analytic solution is valid.",
+    )
+    validate.add_argument("problem", help="problem name (see `perturb list`)")
+    validate.add_argument(
+        "--set",
+        dest="sets",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="set a parameter (repeatable)",
+    )
+    validate.add_argument("--order", default="1", help="order of the analytic solution (default 1)")
+    validate.add_argument(
+        "--integrator",
+        default=None,
+        help="rk4, dop853, rk45, radau, lsoda or heyoka (default: heyoka if installed, else dop853)",
+    )
+    validate.add_argument(
+        "--format", default="table", choices=["table", "json"], help="output format (default table)"
+    )
+    reproduce = sub.add_parser(
+        "reproduce",
+        help="reproduce a published paper's numbers beside the true motion",
+        description="Reproduce a paper's printed constants and tables, the corrected solution and the "
+        "true motion, and list its errata.",
+    )
+    reproduce.add_argument("paper", help="paper name (`paper`: the seed paper on the disk)")
+    reproduce.add_argument(
+        "--format", default="table", choices=["table", "json"], help="output format (default table)"
+    )
+    reproduce.add_argument(
+        "--output", default=None, metavar="DIR", help="also write the report files into DIR"
     )
     return parser
 
@@ -170,6 +211,31 @@ def _cmd_solve(args) -> int:
     return EXIT_OK
 
 
+def _cmd_validate(args) -> int:
+    from perturb.validation import validate
+    from problems import get_problem
+
+    cls = get_problem(args.problem)
+    problem = cls.create(**_parse_sets(args.sets))
+    report = validate(problem, order=_parse_order(args.order), integrator=args.integrator)
+    if args.format == "json":
+        print(json.dumps(report.as_dict(), allow_nan=True))
+    else:
+        print(report.as_table())
+    return EXIT_OK if report.completed else EXIT_FAILED
+
+
+def _cmd_reproduce(args) -> int:
+    from problems.rigid_body.paper import reproduce
+
+    report = reproduce(args.paper, output=args.output)
+    if args.format == "json":
+        print(json.dumps(report.as_dict(), allow_nan=True))
+    else:
+        print(report.as_table())
+    return EXIT_OK
+
+
 def _print(payload: dict, fmt: str, blocks) -> None:
     if fmt == "json":
         print(json.dumps(payload, allow_nan=True))
@@ -204,6 +270,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _cmd_list()
         if args.command == "solve":
             return _cmd_solve(args)
+        if args.command == "validate":
+            return _cmd_validate(args)
+        if args.command == "reproduce":
+            return _cmd_reproduce(args)
         raise _UsageError(f"unknown command {args.command!r}")  # pragma: no cover
     except _UsageError as exc:
         print(f"perturb: error: {exc}", file=sys.stderr)
