@@ -35,6 +35,7 @@ import sympy as sp
 from attrs import field, frozen, validators
 
 from perturb._defaults import MAX_ORDER
+from perturb.cache import cached
 from perturb.errors import InvalidSystemError, bad_value
 from perturb.series import TrigSeries, evaluate_polynomial
 from perturb.solution import PeriodicSolution, Status
@@ -87,9 +88,53 @@ class PoincareMethod:
     branch: object = None
 
     # ------------------------------------------------------------------ public
+    cache: bool = field(default=True, eq=False, repr=False)
+
     def solve(self, system: QuasilinearSystem) -> PeriodicSolution:
-        """Construct the periodic solution of ``system``; see the module docstring."""
-        return _Construction(self, system).run()
+        """Construct the periodic solution of ``system``; see the module docstring.
+
+        The result is read from / written to the disk cache (:mod:`perturb.cache`) unless
+        ``cache=False``.
+        """
+        if not self.cache:
+            return _Construction(self, system).run()
+        return cached(
+            "solution", self._cache_key(system), lambda: _Construction(self, system).run()
+        )
+
+    def _cache_key(self, system: QuasilinearSystem) -> tuple:
+        def text(value):
+            return (
+                sp.srepr(sp.sympify(value))
+                if isinstance(value, (sp.Basic, int, float))
+                else repr(value)
+            )
+
+        fields = (
+            system.coordinates,
+            system.velocities,
+            system.frequencies,
+            system.rhs,
+            system.parameter,
+            system.parameters,
+            system.initial_values,
+            system.first_integrals,
+        )
+        amplitudes = sorted((k, text(v)) for k, v in self.amplitudes.items())
+        branch = (
+            sorted((str(k), text(v)) for k, v in self.branch.items())
+            if isinstance(self.branch, Mapping)
+            else repr(self.branch)
+        )
+        return (
+            tuple(sp.srepr(f) for f in fields),
+            system.regime.value,
+            system.name,
+            self.order,
+            amplitudes,
+            self.phase_coordinate,
+            branch,
+        )
 
 
 def solve(system: QuasilinearSystem, order: int = 1, **options) -> PeriodicSolution:

@@ -1,6 +1,7 @@
 """Shared test configuration: hypothesis profiles (scipy's approach) and small helpers."""
 
 import os
+import tempfile
 
 from hypothesis import HealthCheck, settings
 
@@ -16,3 +17,6 @@ settings.register_profile(
 )
 settings.register_profile("dev", deadline=None, max_examples=60)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+
+# Tests never read a user's cache: each session derives everything afresh into its own folder.
+os.environ["PERTURB_CACHE_DIR"] = tempfile.mkdtemp(prefix="perturb-test-cache-")

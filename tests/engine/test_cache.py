@@ -1,0 +1,39 @@
+"""The disk cache returns what was computed, survives corrupt entries and can be switched off."""
+
+import sympy as sp
+
+from perturb import EPS, PoincareMethod, QuasilinearSystem
+from perturb.cache import cache_dir
+
+x, xd, A = sp.symbols("x xdot A")
+SYSTEM = QuasilinearSystem([x], [xd], [1], [-EPS * x**3], parameters=[A])
+
+
+def test_second_solve_reads_the_same_solution(tmp_path, monkeypatch):
+    monkeypatch.setenv("PERTURB_CACHE_DIR", str(tmp_path))
+    first = PoincareMethod(order=2, amplitudes={"x": A}).solve(SYSTEM)
+    files = list(tmp_path.glob("solution-*.pkl"))
+    assert len(files) == 1
+    second = PoincareMethod(order=2, amplitudes={"x": A}).solve(SYSTEM)
+    assert second is not first  # read back from disk ...
+    assert sp.expand(second.coordinate("x") - first.coordinate("x")) == 0  # ... and equal
+    assert second.frequency == first.frequency
+    # a different option is a different entry
+    PoincareMethod(order=1, amplitudes={"x": A}).solve(SYSTEM)
+    assert len(list(tmp_path.glob("solution-*.pkl"))) == 2
+
+
+def test_corrupt_entry_is_recomputed(tmp_path, monkeypatch):
+    monkeypatch.setenv("PERTURB_CACHE_DIR", str(tmp_path))
+    PoincareMethod(order=1, amplitudes={"x": A}).solve(SYSTEM)
+    (entry,) = tmp_path.glob("solution-*.pkl")
+    entry.write_bytes(b"not a pickle")
+    sol = PoincareMethod(order=1, amplitudes={"x": A}).solve(SYSTEM)
+    assert sol.success and sol.frequency[1] == sp.Rational(3, 8) * A**2
+
+
+def test_cache_can_be_switched_off(tmp_path, monkeypatch):
+    monkeypatch.setenv("PERTURB_CACHE_DIR", "off")
+    assert cache_dir() is None
+    assert PoincareMethod(order=1, amplitudes={"x": A}).solve(SYSTEM).success
+    assert not list(tmp_path.iterdir())
