@@ -23,3 +23,8 @@ FFT_TRIM = 1e-13
 #: Distance of a frequency ratio to an integer below which a non-resonant coordinate is flagged as
 #: near-resonant (small divisor 1/(omega_i**2 - j**2) larger than 1/NEAR_RESONANCE).
 NEAR_RESONANCE = 1e-3
+
+#: Floating-point coefficients smaller than this (in absolute value) are round-off of the numeric
+#: quadrature (FFT of O(1) samples carries errors ~1e-16 times the number of harmonics) and are
+#: set to zero before the periodicity conditions are solved.
+NUMERIC_ZERO = 1e-12

@@ -34,10 +34,10 @@ from collections.abc import Mapping
 import sympy as sp
 from attrs import field, frozen, validators
 
-from perturb._defaults import MAX_ORDER
+from perturb._defaults import FFT_POINTS, FFT_TRIM, MAX_ORDER, NUMERIC_ZERO
 from perturb.cache import cached
 from perturb.errors import InvalidSystemError, bad_value
-from perturb.series import TrigSeries, evaluate_polynomial
+from perturb.series import NotNumeric, TrigSeries, evaluate_analytic, evaluate_polynomial
 from perturb.solution import PeriodicSolution, Status
 from perturb.steps import Condition, GeneratingSolution, OrderStep
 from perturb.system import EPS, QuasilinearSystem
@@ -74,6 +74,11 @@ class PoincareMethod:
     phase_coordinate : str, optional
         The coordinate whose velocity vanishes at ``t = 0`` (fixes the phase of an autonomous system).
         Default: the only coordinate in ``amplitudes`` if there is one, else the first coordinate.
+    quadrature : {"auto", "exact", "numeric"}
+        How the forcing of each order is expanded in harmonics: ``exact`` linearises products of
+        trigonometric polynomials (polynomial right-hand sides only); ``numeric`` computes Fourier
+        coefficients by FFT quadrature (any analytic right-hand side, numeric parameters and fixed
+        generating amplitudes needed); ``auto`` (default) uses exact where it can.
     branch : mapping or int, optional
         Which root of the amplitude equations to follow: a mapping ``{symbol name: value}`` selects the
         root that has these values; an integer indexes the admissible roots in the order listed in
@@ -86,6 +91,7 @@ class PoincareMethod:
         default=None, validator=validators.optional(validators.instance_of(str))
     )
     branch: object = None
+    quadrature: str = field(default="auto", validator=validators.in_(("auto", "exact", "numeric")))
 
     # ------------------------------------------------------------------ public
     cache: bool = field(default=True, eq=False, repr=False)
@@ -134,6 +140,7 @@ class PoincareMethod:
             amplitudes,
             self.phase_coordinate,
             branch,
+            self.quadrature,
         )
 
 
@@ -341,17 +348,29 @@ class _Construction:
                 f_m = expansion[i][m]
                 if f_m == 0:
                     continue
-                try:
-                    value = evaluate_polynomial(f_m, variables, k - m)
-                except sp.PolynomialError as exc:
-                    raise _NotPolynomial(str(exc)) from None
+                value = self._evaluate(f_m, variables, k - m)
                 total = total + value.coefficients[k - m]
             for q in range(1, k + 1):  # -(Omega^2)_q x_{i,k-q}''
                 if k - q < len(self.x[i]) and omega_sq[q] != 0:
                     total = total - self.x[i][k - q].derivative().derivative().scale(omega_sq[q])
-            forcing.append(total.expand())
+            forcing.append(_chop(total.expand()))
         self.omega.append(omega_new)
         return forcing
+
+    def _evaluate(self, expr: sp.Expr, variables, order: int) -> TrigSeries:
+        """Series of ``expr`` on the state series: exact for polynomials, else numeric quadrature."""
+        if self.method.quadrature != "numeric":
+            try:
+                return evaluate_polynomial(expr, variables, order)
+            except sp.PolynomialError as exc:
+                if self.method.quadrature == "exact":
+                    raise _NotPolynomial(
+                        f"{exc}; use quadrature='auto' with numeric parameters"
+                    ) from None
+        try:
+            return evaluate_analytic(expr, variables, order, FFT_POINTS, FFT_TRIM)
+        except NotNumeric as exc:
+            raise _NotPolynomial(str(exc)) from None
 
     def _solve_order(self, k: int, forcing: list[TrigPoly]) -> tuple[dict, list[Condition]]:
         """Quadratures and periodicity conditions of order k (conditions returned unsolved)."""
@@ -630,9 +649,21 @@ def _taylor_coefficient(expr: sp.Expr, k: int) -> sp.Expr:
 
 
 def _is_zero(expr) -> bool:
-    """Cheap exact zero test for amplitudes (numbers, symbols and rational expressions)."""
+    """Cheap zero test: exact for symbolic expressions, round-off tolerant for floating numbers."""
     expr = sp.sympify(expr)
+    if expr.is_number and expr.has(sp.Float):
+        return abs(complex(expr)) < NUMERIC_ZERO
     return expr == 0 or sp.expand(expr) == 0 or sp.cancel(expr) == 0
+
+
+def _chop(poly: TrigPoly) -> TrigPoly:
+    """Drop floating-point round-off (|c| < NUMERIC_ZERO) from the coefficients of ``poly``."""
+
+    def chop(expr: sp.Expr) -> sp.Expr:
+        floats = {f: 0 for f in expr.atoms(sp.Float) if abs(f) < NUMERIC_ZERO}
+        return sp.expand(expr.xreplace(floats)) if floats else expr
+
+    return poly.map(chop)
 
 
 def _probe_values(expr: sp.Expr) -> dict:

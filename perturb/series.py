@@ -101,3 +101,93 @@ def evaluate_polynomial(
                 term = term * power(sym, e)
         total = total + term
     return total
+
+
+class NotNumeric(ValueError):
+    """The numeric quadrature needs numbers where symbols remain."""
+
+
+def _multi_indices(n: int, top: int):
+    """All multi-indices of length ``n`` with total degree ``<= top``."""
+    if n == 0:
+        yield ()
+        return
+    for first in range(top + 1):
+        for rest in _multi_indices(n - 1, top - first):
+            yield (first, *rest)
+
+
+def fourier_samples(values, trim: float) -> TrigPoly:
+    """Numeric Fourier coefficients of a real 2π-periodic function sampled at N equispaced points."""
+    import numpy as np
+
+    values = np.asarray(values, dtype=float)
+    n = values.size
+    spectrum = np.fft.rfft(values) / n
+    scale = max(float(np.max(np.abs(spectrum))), 1e-300)
+    terms = {}
+    for j in range(min(spectrum.size, (n + 1) // 2)):
+        c = spectrum[j].real * (1 if j == 0 else 2)
+        s = -spectrum[j].imag * 2 if j else 0.0
+        c = c if abs(c) > trim * scale else 0.0
+        s = s if abs(s) > trim * scale else 0.0
+        if c or s:
+            terms[j] = (sp.Float(c), sp.Float(s))
+    return TrigPoly(terms)
+
+
+def evaluate_analytic(
+    expr: sp.Expr, variables: Mapping[sp.Symbol, TrigSeries], order: int, n_points: int, trim: float
+) -> TrigSeries:
+    """Numeric-quadrature fallback of :func:`evaluate_polynomial` for non-polynomial ``expr``.
+
+    Expands ``expr`` in Taylor series about the order-0 series, :math:`f(V_0 + \\delta) =
+    \\sum_\\alpha \\partial^\\alpha f(V_0)\\,\\delta^\\alpha/\\alpha!`, with each derivative's Fourier
+    coefficients computed numerically (FFT on ``n_points`` samples, coefficients below ``trim`` times
+    the largest dropped). The order-0 series and every parameter must be numeric.
+
+    Raises
+    ------
+    NotNumeric
+        If the order-0 series or the expression still contain free symbols.
+    """
+    import numpy as np
+
+    syms = [v for v in variables if expr.has(v)]
+    stray = expr.free_symbols - set(syms)
+    if stray:
+        raise NotNumeric(
+            f"the right-hand side is not polynomial in the state and depends on {sorted(map(str, stray))}: "
+            "give numeric values for the parameters (QuasilinearSystem.with_values)"
+        )
+    grid = 2 * np.pi * np.arange(n_points) / n_points
+    s = sp.Symbol("s")
+    base, deltas = [], []
+    for sym in syms:
+        v0 = variables[sym].coefficients[0]
+        if v0.free_symbols():
+            raise NotNumeric(
+                f"the right-hand side is not polynomial in {sym} and its generating solution still has "
+                f"unknowns {sorted(map(str, v0.free_symbols()))}: fix the generating amplitudes "
+                "(`amplitudes=`) and the parameter values"
+            )
+        base.append(
+            np.broadcast_to(sp.lambdify(s, v0.as_expr(s), "numpy")(grid), grid.shape).astype(float)
+        )
+        deltas.append(TrigSeries([TrigPoly(), *variables[sym].coefficients[1:]]).truncate(order))
+    total = TrigSeries([TrigPoly() for _ in range(order + 1)])
+    for alpha in _multi_indices(len(syms), order):
+        derivative = expr
+        for sym, a in zip(syms, alpha, strict=True):
+            if a:
+                derivative = sp.diff(derivative, sym, a) / sp.factorial(a)
+        if derivative == 0:
+            continue
+        samples = sp.lambdify(syms, derivative, "numpy")(*base)
+        coeff = fourier_samples(np.broadcast_to(samples, grid.shape), trim)
+        term = TrigSeries([coeff] + [TrigPoly() for _ in range(order)])
+        for delta, a in zip(deltas, alpha, strict=True):
+            for _ in range(a):
+                term = term * delta
+        total = total + term
+    return total
