@@ -48,7 +48,7 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
-from perturb.errors import InvalidParameterError, PerturbError, UnknownNameError, bad_value
+from perturb.errors import PerturbError, UnknownNameError, bad_value
 from perturb.oracle import (
     INTEGRATORS,
     Heyoka,
@@ -61,6 +61,7 @@ from perturb.oracle import (
     get_integrator,
     heyoka_available,
 )
+from perturb.oracle._settings import SHOOTING_TOL
 
 __all__ = [
     "Condition",
@@ -127,6 +128,13 @@ DEFAULT_RTOL = 1e-12
 #: Newton iterations allowed to the shooting: from a seed within O(ε^(n+1)) it converges in < 8;
 #: the cap bounds the time spent when the expansion is wrong and the seed is far from any orbit.
 SHOOTING_ITERATIONS = 20
+
+#: Shooting on a stiff system: Radau at rtol 1e-11 (explicit and Taylor methods crawl at the
+#: stability limit).  The periodicity tolerance is looser than for smooth motion because the fast
+#: transitions of a relaxation cycle amplify the per-step error ~1e4-fold over one period
+#: (van der Pol at eps = 10 stalls at a residual ~1e-7).
+STIFF_SHOOTING_INTEGRATOR = Scipy("Radau", rtol=1e-11)
+STIFF_SHOOTING_TOL = 1e-6
 
 #: A velocity component counts as zero at the start (candidate Poincaré section) below this fraction
 #: of the state scale.
@@ -764,6 +772,23 @@ def _resolve_integrator(integrator, rtol: float, stiff: bool, symbolic: bool) ->
 # --------------------------------------------------------------------------------------------------
 
 
+def _generating_period(problem, solution) -> float:
+    """2π/Ω₀ (the ε = 0 period), the time unit when the analytic period is unusable."""
+    values = problem.symbol_values()
+    omega0 = sp.sympify(solution.frequency[0]).subs(
+        {
+            s: values[s.name]
+            for s in sp.sympify(solution.frequency[0]).free_symbols
+            if s.name in values
+        }
+    )
+    try:
+        omega0 = float(omega0)
+    except TypeError:
+        return 2 * math.pi
+    return 2 * math.pi / omega0 if omega0 > 0 else 2 * math.pi
+
+
 def _analytic(problem, solution, names, t) -> np.ndarray:
     state = problem.state(solution, t)
     return np.array([np.asarray(state[name], dtype=float) for name in names])
@@ -821,19 +846,22 @@ def _component_errors(names, analytic, numeric) -> dict:
     return components, float(np.max(abs_err)), float(np.max(rel))
 
 
-def _one_period_error(problem, order, integrator_choice, rtol) -> float:
+def _one_period_error(problem, order, integrator_choice, rtol, stiff=False) -> float:
     """Max relative error of the analytic solution over one period, from its initial state."""
     solution = problem.solve(order)
     if not solution.success:
         return math.nan
     names = tuple(problem.state_names())
-    period = problem.period(solution)
-    t = np.linspace(0.0, period, SAMPLES_PER_PERIOD + 1)
-    analytic = _analytic(problem, solution, names, t)
+    with np.errstate(all="ignore"):
+        period = float(problem.period(solution))
+        if not (math.isfinite(period) and period > 0):
+            return math.nan
+        t = np.linspace(0.0, period, SAMPLES_PER_PERIOD + 1)
+        analytic = _analytic(problem, solution, names, t)
     if not np.all(np.isfinite(analytic)):
         return math.nan
     original = original_system(problem, analytic[:, 0])
-    solver = _resolve_integrator(integrator_choice, rtol, False, original.symbolic)
+    solver = _resolve_integrator(integrator_choice, rtol, stiff, original.symbolic)
     traj = solver.integrate(original.rhs, (0.0, period), analytic[:, 0], t_eval=t)
     if not traj.success:
         return math.nan
@@ -861,7 +889,7 @@ def _fit_slope(epsilons, errors, order) -> SlopeFit:
 
 
 def _orbit_check(
-    problem, solution, original, y0, period, setup, integrator_choice, rtol
+    problem, solution, original, y0, period, setup, integrator_choice, rtol, stiff=False
 ) -> OrbitCheck:
     names = original.names
     orbit = find_periodic_orbit(
@@ -873,7 +901,8 @@ def _orbit_check(
         direction=setup["direction"],
         n_trivial=setup["n_trivial"],
         max_iter=SHOOTING_ITERATIONS,
-        integrator=setup.get("integrator", integrator_choice),
+        integrator=setup.get("integrator", STIFF_SHOOTING_INTEGRATOR if stiff else None),
+        tol=STIFF_SHOOTING_TOL if stiff else SHOOTING_TOL,
     )
     nan = math.nan
     if not orbit.success:
@@ -895,7 +924,7 @@ def _orbit_check(
     true_period = orbit.period
     phases = np.linspace(0.0, 1.0, SAMPLES_PER_PERIOD + 1)
     analytic = _analytic(problem, solution, names, phases * period)
-    solver = _resolve_integrator(integrator_choice, rtol, False, original.symbolic)
+    solver = _resolve_integrator(integrator_choice, rtol, stiff, original.symbolic)
     traj = solver.integrate(
         original.rhs, (0.0, true_period), orbit.initial_state, t_eval=phases * true_period
     )
@@ -1094,14 +1123,36 @@ def validate(
             timings=timings,
         )
 
-    period = problem.period(solution)
-    y_analytic0 = _analytic(problem, solution, names, np.zeros(1))[:, 0]
-    if not (math.isfinite(period) and period > 0) or not np.all(np.isfinite(y_analytic0)):
-        raise InvalidParameterError(
-            f"`problem` parameters {problem.resolved_parameters()} give a non-finite analytic "
-            f"initial state {y_analytic0.tolist()} or period {period}: choose parameters where the "
-            "solution is defined"
+    with np.errstate(all="ignore"):
+        period = float(problem.period(solution))
+        y_analytic0 = _analytic(problem, solution, names, np.zeros(1))[:, 0]
+    breakdown = None
+    if not (math.isfinite(period) and period > 0):
+        breakdown = (
+            f"the analytic period is {period:.6g}, not a positive number, so the series for the "
+            "frequency has broken down"
         )
+        period = _generating_period(problem, solution)
+    if not np.all(np.isfinite(y_analytic0)):
+        breakdown = f"the analytic initial state {y_analytic0.tolist()} is not finite"
+        if start_override is None:
+            return ValidationReport(
+                **base,
+                valid=False,
+                verdict=f"The analytic solution breaks down: {breakdown}.",
+                completed=False,
+                message=breakdown,
+                status=-1,
+                t_reached=0.0,
+                period=period,
+                errors={},
+                slope=None,
+                periodic_orbit=None,
+                invariants={},
+                integrator="",
+                stiffness=None,
+                timings=timings,
+            )
     y0 = y_analytic0 if start_override is None else start_override
     original = original_system(problem, y0)
 
@@ -1147,7 +1198,15 @@ def validate(
         setup = _shooting_setup(problem, names, y_analytic0, original.rhs, len(invariants))
         try:
             orbit = _orbit_check(
-                problem, solution, original, y_analytic0, period, setup, None, rtol
+                problem,
+                solution,
+                original,
+                y_analytic0,
+                period,
+                setup,
+                integrator,
+                rtol,
+                stiff=stiffness.stiff,
             )
         except PerturbError as exc:  # the seed itself was rejected: report, do not abort
             orbit = OrbitCheck(
@@ -1180,7 +1239,9 @@ def validate(
                 continue
             eps_grid.append(eps * factor)
             try:
-                err_grid.append(_one_period_error(variant, order, integrator, rtol))
+                err_grid.append(
+                    _one_period_error(variant, order, integrator, rtol, stiffness.stiff)
+                )
             except (PerturbError, ValueError):
                 err_grid.append(math.nan)
         if eps_grid:
@@ -1197,7 +1258,7 @@ def validate(
             )
         timings["slope"] = time.perf_counter() - clock
 
-    valid, verdict = _verdict(conditions, traj, errors, max_rel, fit, orbit, periods)
+    valid, verdict = _verdict(conditions, breakdown, traj, errors, max_rel, fit, orbit, periods)
     timings["total"] = sum(timings.values())
     return ValidationReport(
         **base,
@@ -1218,11 +1279,13 @@ def validate(
     )
 
 
-def _verdict(conditions, traj, errors, max_rel, fit, orbit, periods) -> tuple[bool, str]:
+def _verdict(conditions, breakdown, traj, errors, max_rel, fit, orbit, periods) -> tuple[bool, str]:
     """The verdict rules, in order (see ``docs/validation.md``)."""
     failed = [c for c in conditions if not c.ok]
     if failed:
         return False, f"The expansion cannot hold: {failed[0].sentence}."
+    if breakdown is not None:
+        return False, f"The analytic solution breaks down: {breakdown}."
     if not traj.success:
         return False, (
             f"The true motion could not be computed: the integration stopped at t = "
