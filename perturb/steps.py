@@ -7,6 +7,8 @@ conditions, period correction).
 
 from __future__ import annotations
 
+import re
+
 import sympy as sp
 from attrs import field, frozen
 
@@ -66,7 +68,13 @@ class Condition:
     expression: sp.Expr
 
     def latex(self) -> str:
-        return f"{self.name} = {sp.latex(self.expression)} = 0"
+        match = re.fullmatch(r"(d?)g_(\w+),(\d+)(/ds)?\(2pi\)", self.name)
+        if match:
+            dot = r"\dot " if match.group(1) else ""
+            name = f"{dot}g_{{{match.group(2)},{match.group(3)}}}(2\\pi)"
+        else:
+            name = self.name
+        return f"{name} = {sp.latex(self.expression)} = 0"
 
 
 @frozen
@@ -100,6 +108,10 @@ class OrderStep:
 
     def __str__(self) -> str:
         lines = [f"order {self.order}:"]
+        for name, r in self.forcing.items():
+            lines.append(f"  R_{name},{self.order}(s) = {as_trig(r)}")
+        for name, g in self.quadratures.items():
+            lines.append(f"  g_{name},{self.order}(s) = {as_trig(g)}")
         for c in self.conditions:
             lines.append(f"  condition {c.name} = {c.expression}")
         for k, v in self.solved.items():
@@ -109,7 +121,9 @@ class OrderStep:
         return "\n".join(lines)
 
     def latex(self) -> str:
-        parts = [c.latex() for c in self.conditions]
+        parts = [f"R_{{{n},{self.order}}}(s) = {sp.latex(as_trig(r))}" for n, r in self.forcing.items()]
+        parts += [f"g_{{{n},{self.order}}}(s) = {sp.latex(as_trig(g))}" for n, g in self.quadratures.items()]
+        parts += [c.latex() for c in self.conditions]
         parts += [f"{sp.latex(k)} = {sp.latex(v)}" for k, v in self.solved.items()]
         return r" \\ ".join(parts)
 
