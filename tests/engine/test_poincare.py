@@ -131,3 +131,24 @@ def test_inconsistent_conditions_fail():
     sol = PoincareMethod(order=1, amplitudes={"x": 1, "y": 0}).solve(sys)
     assert not sol.success
     assert sol.status in (Status.INCONSISTENT, Status.NO_ROOT)
+
+
+def test_first_integral_is_constant_to_the_truncation_order():
+    """The resonant pair's energy varies along the analytic orbit only at O(eps^(N+1))."""
+    problem = get_problem("resonant-pair").create()
+    system = problem.system()
+    (energy,) = system.first_integrals
+    values = problem.symbol_values()
+    spreads = []
+    eps_values = np.array([0.01, 0.02, 0.04])
+    for eps in eps_values:
+        sol = problem.solve(1)
+        y = sol.evaluate(np.linspace(0, 7, 50), eps, values)
+        h = sp.lambdify(
+            system.state_symbols,
+            energy.subs({EPS: eps, **{sp.Symbol(k, positive=True): v for k, v in values.items()}}),
+        )
+        e = h(*y)
+        spreads.append(np.ptp(e))
+    slope = np.polyfit(np.log(eps_values), np.log(spreads), 1)[0]
+    assert abs(slope - 2) < 0.3  # order 1: the energy is conserved through O(eps)
