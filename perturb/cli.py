@@ -37,6 +37,30 @@ class _Parser(argparse.ArgumentParser):
         raise _UsageError(message)
 
 
+def _add_problem_arguments(parser: argparse.ArgumentParser) -> None:
+    """PROBLEM, --set and --order: shared by every command that builds a problem's solution."""
+    parser.add_argument("problem", help="problem name (see `perturb list`)")
+    parser.add_argument(
+        "--set",
+        dest="sets",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="set a parameter (repeatable); unset parameters take their defaults",
+    )
+    parser.add_argument(
+        "--order",
+        default="1",
+        help="highest power of the small parameter kept (integer >= 1; default 1)",
+    )
+
+
+def _add_format(parser: argparse.ArgumentParser, choices: list[str]) -> None:
+    parser.add_argument(
+        "--format", default="table", choices=choices, help="output format (default table)"
+    )
+
+
 def _build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="perturb",
@@ -52,29 +76,11 @@ def _build_parser() -> argparse.ArgumentParser:
         description="Construct PROBLEM's periodic solution by Poincaré's method and print the state "
         "at the requested times (default: one period, 101 samples from t = 0).",
     )
-    solve.add_argument("problem", help="problem name (see `perturb list`)")
-    solve.add_argument(
-        "--set",
-        dest="sets",
-        action="append",
-        default=[],
-        metavar="NAME=VALUE",
-        help="set a parameter (repeatable); unset parameters take their defaults",
-    )
-    solve.add_argument(
-        "--order",
-        default="1",
-        help="highest power of the small parameter kept (integer >= 1; default 1)",
-    )
+    _add_problem_arguments(solve)
     solve.add_argument(
         "--times", default=None, metavar="T1,T2,...", help="comma-separated times (physical units)"
     )
-    solve.add_argument(
-        "--format",
-        default="table",
-        choices=["table", "csv", "json"],
-        help="output format (default table)",
-    )
+    _add_format(solve, ["table", "csv", "json"])
     solve.add_argument(
         "--euler", action="store_true", help="add the Euler angles (rigid bodies only)"
     )
@@ -85,24 +91,13 @@ def _build_parser() -> argparse.ArgumentParser:
         "periodic orbit by shooting, measure the errors and their slope in the expansion parameter, "
         "and say whether the analytic solution is valid.",
     )
-    validate.add_argument("problem", help="problem name (see `perturb list`)")
-    validate.add_argument(
-        "--set",
-        dest="sets",
-        action="append",
-        default=[],
-        metavar="NAME=VALUE",
-        help="set a parameter (repeatable)",
-    )
-    validate.add_argument("--order", default="1", help="order of the analytic solution (default 1)")
+    _add_problem_arguments(validate)
     validate.add_argument(
         "--integrator",
         default=None,
         help="rk4, dop853, rk45, radau, lsoda or heyoka (default: heyoka if installed, else dop853)",
     )
-    validate.add_argument(
-        "--format", default="table", choices=["table", "json"], help="output format (default table)"
-    )
+    _add_format(validate, ["table", "json"])
     reproduce = sub.add_parser(
         "reproduce",
         help="reproduce a published paper's numbers beside the true motion",
@@ -110,9 +105,7 @@ def _build_parser() -> argparse.ArgumentParser:
         "true motion, and list its errata.",
     )
     reproduce.add_argument("paper", help="paper name (`paper`: the seed paper on the disk)")
-    reproduce.add_argument(
-        "--format", default="table", choices=["table", "json"], help="output format (default table)"
-    )
+    _add_format(reproduce, ["table", "json"])
     reproduce.add_argument(
         "--output", default=None, metavar="DIR", help="also write the report files into DIR"
     )

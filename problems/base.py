@@ -116,9 +116,11 @@ class Problem(ABC):
     def build_system(cls) -> QuasilinearSystem:
         """The symbolic quasilinear system (no numbers: derived once per class)."""
 
-    @abstractmethod
     def epsilon(self) -> float:
-        """The value of the expansion parameter ε for these parameters."""
+        """The value of the expansion parameter ε for these parameters (default: parameter ``eps``)."""
+        if "eps" not in self.values:
+            raise NotImplementedError(f"{type(self).__name__} must define epsilon()")
+        return self.values["eps"]
 
     def method_options(self) -> dict:
         """Options of :class:`perturb.PoincareMethod` (amplitudes, phase coordinate, branch)."""

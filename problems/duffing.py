@@ -34,8 +34,5 @@ class Duffing(Problem):
             name="duffing",
         )
 
-    def epsilon(self) -> float:
-        return self.values["eps"]
-
     def method_options(self) -> dict:
         return {"amplitudes": {"x": AMPLITUDE}}

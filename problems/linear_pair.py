@@ -53,9 +53,6 @@ class LinearPair(Problem):
             name="linear-pair",
         )
 
-    def epsilon(self) -> float:
-        return self.values["eps"]
-
     def method_options(self) -> dict:
         return {"amplitudes": {"x": AMPLITUDE}}
 

@@ -51,9 +51,6 @@ class ResonantPair(Problem):
             ],
         )
 
-    def epsilon(self) -> float:
-        return self.values["eps"]
-
     def method_options(self) -> dict:
         sign = int(self.values["mode"])
         return {"amplitudes": {"x": AMPLITUDE}, "branch": {"a_y0": sign * AMPLITUDE}}

@@ -29,6 +29,3 @@ class VanDerPol(Problem):
             parameter=EPS,
             name="van-der-pol",
         )
-
-    def epsilon(self) -> float:
-        return self.values["eps"]
