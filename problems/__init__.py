@@ -18,6 +18,8 @@ _LAZY = {
     "van-der-pol": "problems.van_der_pol:VanDerPol",
     "linear-pair": "problems.linear_pair:LinearPair",
     "resonant-pair": "problems.resonant_pair:ResonantPair",
+    "disk": "problems.rigid_body.disk:DiskInNewtonianField",
+    "rigid-body": "problems.rigid_body.fast_spin:FastSpinRigidBody",
 }
 
 ALL_PROBLEMS: dict[str, type[Problem]] = {}

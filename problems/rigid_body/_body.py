@@ -1,0 +1,343 @@
+"""Shared machinery of the fast-spin rigid-body problems (``disk`` and ``rigid-body``).
+
+Both problems take the same physical parameters, reduce the dimensionless Euler–Poisson system
+(:math:`\\tau = r_0 t`, :math:`\\varepsilon = c/r_0`, :math:`c = \\sqrt{Mgl/C}`) to a quasilinear system
+in :math:`(P, G)` with :mod:`problems.rigid_body.reduction`, and map the periodic solution back to the
+physical state :math:`(p, q, r, \\gamma, \\gamma', \\gamma'')` in physical time.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from abc import abstractmethod
+from functools import cache
+
+import numpy as np
+import sympy as sp
+
+from perturb import PeriodicSolution, PoincareMethod
+from perturb.errors import AccuracyWarning, InvalidParameterError
+from problems.base import _SOLUTION_CACHE, ParameterSpec, Problem, positive
+from problems.rigid_body import equations as eq
+from problems.rigid_body.euler_angles import angles_from_state, precession_by_quadrature
+from problems.rigid_body.reduction import INITIAL_VALUES, Reduction, check_gamma3_0
+
+__all__ = ["FastSpinBody", "STATE_NAMES", "geometric_constraint"]
+
+#: Names of the physical state components, in the order of :func:`equations.full_rhs`.
+STATE_NAMES = ("p", "q", "r", "gamma1", "gamma2", "gamma3")
+#: Above this value of eps = c/r0 the fast-spin expansion is not even qualitatively right
+#: (reference section (f): at eps = 232 the motion is tumbling).
+EPSILON_WARN = 0.1
+#: Relative tolerance of the reference integration (the reference's oracle: integral drift <= 1e-11).
+ORACLE_RTOL = 1e-12
+#: Periods followed by :meth:`FastSpinBody.true_motion_errors` by default.
+TRACK_PERIODS = 5
+
+
+def _direction_cosine(value: float) -> str | None:
+    return None if abs(value) <= 1 else "a direction cosine needs |gamma3_0| <= 1"
+
+
+def _spin(value: float) -> str | None:
+    if value > 0:
+        return None
+    return "give the initial spin r0 > 0 (the scaling tau = r0 t needs it; flip the body axes for r0 < 0)"
+
+
+def _distance(value: float) -> str | None:
+    return None if value > 0 else "give R > 0 (R = inf: no Newtonian centre, k = 0)"
+
+
+def body_parameter_specs(
+    A: float, B: float, C: float, z0: float, gamma3_0: float, r0: float
+) -> tuple[ParameterSpec, ...]:
+    """The common parameter list with problem-specific defaults for A, B, C, z0, gamma3_0, r0."""
+    return (
+        ParameterSpec("A", A, "principal moment of inertia about x at the fixed point", positive),
+        ParameterSpec("B", B, "principal moment of inertia about y", positive),
+        ParameterSpec("C", C, "principal moment of inertia about z (the spin axis)", positive),
+        ParameterSpec("M", 200.0, "mass of the body", positive),
+        ParameterSpec("g", 1.5e-7, "field strength at the fixed point", positive),
+        ParameterSpec(
+            "R", 2000.0, "distance of the Newtonian centre (inf: none)", _distance, allow_inf=True
+        ),
+        ParameterSpec("x0", 1.0, "centre of mass, x body coordinate"),
+        ParameterSpec("y0", 6.0, "centre of mass, y body coordinate"),
+        ParameterSpec("z0", z0, "centre of mass, z body coordinate"),
+        ParameterSpec("r0", r0, "initial spin about the body z axis (fast: r0 >> c)", _spin),
+        ParameterSpec(
+            "gamma3_0",
+            gamma3_0,
+            "initial cosine between body z and the vertical",
+            _direction_cosine,
+        ),
+    )
+
+
+def geometric_constraint(reduction: Reduction) -> sp.Expr:
+    """G(0) from the geometric integral :math:`|\\gamma(0)|^2 = 1` (phase fixed by dG(0) = 0).
+
+    The reduction's ``initial_full_state`` gives :math:`\\gamma(0), \\gamma'(0), \\gamma''(0)` in the
+    initial values; with :math:`\\dot G(0) = 0` the constraint is solved for :math:`G_0`, taking the
+    root with :math:`\\gamma(0) > 0`. :math:`\\gamma(0) - G_0` does not contain :math:`G_0`.
+    """
+    p0, g0, dp0, dg0 = INITIAL_VALUES
+    g1, g2, g3 = reduction.initial_full_state[3:]
+    g2 = g2.subs(dg0, 0)
+    shift = sp.expand(g1 - g0)
+    if shift.has(g0) or g2.has(g0) or g3.has(g0):
+        raise AssertionError("gamma(0) - G0, gamma'(0) or gamma''(0) depends on G0")
+    return sp.sqrt(1 - g3**2 - g2**2) - shift
+
+
+class FastSpinBody(Problem):
+    """Base of the fast-spin body problems (abstract: see :class:`problems.base.Problem`)."""
+
+    #: Whether the reduced parameters include z0' (the general body).
+    uses_z0 = False
+
+    # ------------------------------------------------------------------ to provide
+    @classmethod
+    @abstractmethod
+    def reduction_for(cls, order: int) -> Reduction:
+        """The reduction whose truncation suffices for a solution of ``order``."""
+
+    @classmethod
+    def reduction(cls) -> Reduction:
+        """The reduction of the class's system (the one :meth:`system` returns)."""
+        return cls.reduction_for(1)
+
+    @classmethod
+    def build_system(cls):
+        return cls.reduction().system
+
+    # ------------------------------------------------------------------ validation
+    def check_values(self, values) -> None:
+        if values["x0"] == 0 and values["y0"] == 0:
+            raise InvalidParameterError(
+                "`x0` = 0 is invalid together with y0 = 0: the centre of mass on the spin axis "
+                "(l = 0) gives c = 0; give x0 or y0 != 0"
+            )
+        eq._check_triangle({"A": values["A"], "B": values["B"], "C": values["C"]})
+        check_gamma3_0(values["gamma3_0"])
+        if abs(values["gamma3_0"]) == 1:
+            raise InvalidParameterError(
+                f"`gamma3_0` = {values['gamma3_0']:g} is invalid: with the spin axis vertical the "
+                "generating amplitude M3 = sqrt(1 - gamma3_0**2) vanishes; give |gamma3_0| < 1"
+            )
+
+    # ------------------------------------------------------------------ scales
+    def body(self) -> eq.RigidBodyParameters:
+        """The dimensional body data."""
+        v = self.values
+        return eq.RigidBodyParameters(
+            A=v["A"], B=v["B"], C=v["C"], x0=v["x0"], y0=v["y0"], z0=v["z0"], M=v["M"], g=v["g"],
+            R=v["R"],
+        )  # fmt: skip
+
+    def scale_c(self) -> float:
+        """:math:`c = \\sqrt{Mgl/C}` (angular-velocity scale of gravity)."""
+        v = self.values
+        return math.sqrt(v["M"] * v["g"] * math.hypot(v["x0"], v["y0"]) / v["C"])
+
+    def epsilon(self) -> float:
+        """:math:`\\varepsilon = c/r_0` (the paper's :math:`\\mu^{-1}`)."""
+        return self.scale_c() / self.values["r0"]
+
+    def symbol_values(self) -> dict[str, float]:
+        v = self.values
+        arm = math.hypot(v["x0"], v["y0"])
+        out = {
+            "a": v["A"] / v["C"],
+            "b": v["B"] / v["C"],
+            "k": 3 * v["C"] / (v["R"] * v["M"] * arm),
+            "x0p": v["x0"] / arm,
+            "y0p": v["y0"] / arm,
+            "gamma3_0": v["gamma3_0"],
+        }
+        if self.uses_z0:
+            out["z0p"] = v["z0"] / arm
+        return out
+
+    # ------------------------------------------------------------------ solving
+    def method_options(self) -> dict:
+        return {
+            "amplitudes": {"G": geometric_constraint(self.reduction())},
+            "phase_coordinate": "G",
+        }
+
+    def _options_for(self, order: int) -> dict:
+        options = self.method_options()
+        if self.reduction_for(order) is not self.reduction():
+            options["amplitudes"] = {"G": geometric_constraint(self.reduction_for(order))}
+        return options
+
+    def solve(self, order: int = 1) -> PeriodicSolution:
+        """The symbolic periodic solution of ``order`` (cached; higher orders use a longer reduction)."""
+        reduction = self.reduction_for(order)
+        options = self._options_for(order)
+        key = (
+            type(self).__module__,
+            type(self).__qualname__,
+            order,
+            reduction.order,
+            repr(sorted(options.items())),
+        )
+        if key not in _SOLUTION_CACHE:
+            method = PoincareMethod(order=order, **options)
+            _SOLUTION_CACHE[key] = method.solve(reduction.system)
+        return _SOLUTION_CACHE[key]
+
+    def _reduction_of(self, solution: PeriodicSolution) -> Reduction:
+        for order in range(1, solution.order + 1):
+            candidate = self.reduction_for(order)
+            if candidate.system == solution.system or candidate.system.rhs == solution.system.rhs:
+                return candidate
+        return self.reduction_for(solution.order)
+
+    # ------------------------------------------------------------------ physical state
+    def state_names(self) -> tuple[str, ...]:
+        return STATE_NAMES
+
+    def nondimensional_state(self, solution: PeriodicSolution, tau) -> np.ndarray:
+        """:math:`(p_1, q_1, r_1, \\gamma, \\gamma', \\gamma'')` at :math:`\\tau = r_0 t` (shape (6, ...))."""
+        eps = self.epsilon()
+        values = self.symbol_values()
+        pv = _user_parameter(solution, eps)
+        reduced = solution.evaluate(tau, pv, values)
+        z0 = solution.initial_state(pv, values)
+        names = solution.state_names
+        z = {n: reduced[i] for i, n in enumerate(names)}
+        z_start = dict(zip(names, z0, strict=True))
+        inverse = self._reduction_of(solution).inverse_function(values, eps)
+        return inverse(
+            (z["P"], z["dP"], z["G"], z["dG"]),
+            (z_start["P"], z_start["G"], z_start["dP"], z_start["dG"]),
+        )
+
+    def state(self, solution: PeriodicSolution, t) -> dict[str, np.ndarray]:
+        """The physical state at physical times ``t``: p = c p1, q = c q1, r = r0 r1, gammas."""
+        t = np.asarray(t, dtype=float)
+        r0 = self.values["r0"]
+        eps = self.epsilon()
+        if eps >= EPSILON_WARN:
+            warnings.warn(
+                f"eps = c/r0 = {eps:.4g} is not small: the fast-spin series does not describe the "
+                "motion (give a larger r0)",
+                AccuracyWarning,
+                stacklevel=2,
+            )
+        y = self.nondimensional_state(solution, r0 * t)
+        c = self.scale_c()
+        scales = (c, c, r0, 1.0, 1.0, 1.0)
+        return {n: s * y[i] for i, (n, s) in enumerate(zip(STATE_NAMES, scales, strict=True))}
+
+    def state_vector(self, solution: PeriodicSolution, t) -> np.ndarray:
+        """:meth:`state` stacked as an array of shape (6, ...)."""
+        s = self.state(solution, t)
+        return np.array([s[n] for n in STATE_NAMES])
+
+    def period(self, solution: PeriodicSolution) -> float:
+        """The period in physical time, :math:`T_\\tau / r_0`."""
+        pv = _user_parameter(solution, self.epsilon())
+        return float(solution.period_at(pv, self.symbol_values())) / self.values["r0"]
+
+    def report_extras(self) -> dict:
+        eps = self.epsilon()
+        sentence = (
+            "fast-spin expansion in eps = c/r0 = 1/mu (the paper calls it a slow-spin, "
+            "large-parameter technique, but it is the same series): valid only for eps << 1, "
+            "i.e. r0 >> c"
+        )
+        if eps >= EPSILON_WARN:
+            sentence += f"; here eps = {eps:.4g}, so the solution does NOT describe the motion"
+        return {"mu": 1.0 / eps, "regime": sentence}
+
+    def euler_angles(self, solution: PeriodicSolution, t) -> dict[str, np.ndarray]:
+        """Euler angles (z-x-z) along the solution: theta, psi (psi(0) = 0), phi."""
+        t = np.asarray(t, dtype=float)
+        s = self.state(solution, t)
+        theta, phi = angles_from_state(s["gamma1"], s["gamma2"], s["gamma3"])
+        psi = precession_by_quadrature(
+            lambda times: self.state(solution, times), t, self.period(solution)
+        )
+        return {"theta": theta, "psi": psi, "phi": phi}
+
+    # ------------------------------------------------------------------ original equations
+    def original_rhs(self, solution: PeriodicSolution | None = None):
+        """The dimensional Euler–Poisson right-hand side ``f(t, y)`` on (p, q, r, gammas)."""
+        return eq.full_rhs(self.body())
+
+    def original_jacobian(self):
+        """Jacobian ``J(t, y)`` of :meth:`original_rhs`."""
+        return eq.full_jacobian(self.body())
+
+    def original_symbolic(self) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Expr, ...]]:
+        """(state symbols, rhs expressions with every number substituted), e.g. for heyoka."""
+        return _symbolic_rhs(tuple(sorted(self.values.items())))
+
+    def true_motion_errors(
+        self, solution: PeriodicSolution, periods: float = TRACK_PERIODS, samples: int = 200
+    ) -> dict[str, float]:
+        """Largest errors of the analytic state against the integrated Euler–Poisson motion.
+
+        The full dimensional system is integrated (scipy DOP853, ``rtol = ORACLE_RTOL``, absolute
+        tolerances scaled per component) from the analytic state at ``t = 0`` over ``periods``
+        periods. Errors are in the natural scales: p, q over c, r over r0, the gammas as they are.
+
+        Returns
+        -------
+        dict
+            ``{name: max |analytic - true| / scale}`` and ``"integrals"``, the largest relative drift
+            of the energy, area and geometric integrals along the integrated trajectory.
+        """
+        from scipy.integrate import solve_ivp
+
+        period = self.period(solution)
+        t = np.linspace(0.0, periods * period, samples)
+        analytic = self.state_vector(solution, t)
+        c, r0 = self.scale_c(), self.values["r0"]
+        scales = np.array([c, c, r0, 1.0, 1.0, 1.0])
+        result = solve_ivp(
+            self.original_rhs(),
+            (0.0, t[-1]),
+            analytic[:, 0],
+            method="DOP853",
+            rtol=ORACLE_RTOL,
+            atol=ORACLE_RTOL * scales,
+            t_eval=t,
+        )
+        if not result.success:
+            raise RuntimeError(f"the Euler–Poisson integration failed: {result.message}")
+        errors = np.max(np.abs(analytic - result.y), axis=1) / scales
+        out = dict(zip(STATE_NAMES, map(float, errors), strict=True))
+        ints = self.integrals(result.y)
+        drift = np.max(np.abs(ints - ints[:, :1]), axis=1) / np.maximum(np.abs(ints[:, 0]), 1e-300)
+        out["integrals"] = float(np.max(drift))
+        return out
+
+    def integrals(self, y) -> np.ndarray:
+        """(energy, area, geometric) of physical states ``y`` (shape (6,) or (6, n))."""
+        return eq.integrals_function(self.body())(y)
+
+
+def _user_parameter(solution: PeriodicSolution, eps: float) -> float:
+    from perturb import Regime
+
+    return 1.0 / eps if solution.system.regime is Regime.LARGE else eps
+
+
+@cache
+def _symbolic_rhs(items: tuple) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Expr, ...]]:
+    v = dict(items)
+    distance = sp.oo if math.isinf(v["R"]) else v["R"]
+    rhs = eq.euler_poisson_equations(distance)
+    subs = {
+        eq.A: v["A"], eq.B: v["B"], eq.C: v["C"], eq.M: v["M"], eq.g: v["g"],
+        eq.x0: v["x0"], eq.y0: v["y0"], eq.z0: v["z0"],
+    }  # fmt: skip
+    if not math.isinf(v["R"]):
+        subs[eq.R] = v["R"]
+    return eq.DIMENSIONAL_STATE, tuple(sp.expand(e.subs(subs)) for e in rhs)

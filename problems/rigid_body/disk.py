@@ -1,0 +1,151 @@
+"""The disk (A + B = C) about a fixed point in gravity and a Newtonian field: ``perturb solve disk``.
+
+The seed paper's problem, treated as what it really is (reference SUMMARY): the classical fast-spin
+expansion in :math:`\\varepsilon = c/r_0` (the paper's :math:`\\mu^{-1}`), at the resonance
+:math:`\\omega^2 = (C-A)(C-B)/(AB) = 1` that the disk sits on. The reduced system
+
+.. math::
+
+    \\ddot P + P = \\varepsilon^2 F_2 + \\varepsilon^3 F_3 + \\dots, \\qquad
+    \\ddot G + G = \\varepsilon^2 \\Phi_2 + \\varepsilon^3 \\Phi_3 + \\dots
+
+(:func:`problems.rigid_body.reduction.disk_reduction`) is solved by the resonant Poincaré conditions
+on the branch :math:`M_1 = M_2 = 0` (``a_P0 = b_P0 = 0``), with :math:`G(0)` fixed by the geometric
+integral and the phase by :math:`\\dot G(0) = 0`. The small divisor :math:`1/(1-\\omega^2)` of the
+non-resonant theory is replaced by the :math:`O(\\varepsilon^2)` detuning
+:math:`D = \\tfrac12 k M_3^2`: the amplitudes are :math:`\\beta = \\varepsilon v/(k M_3^2)`.
+
+Defaults are the paper's example (31) (with z0 = 0). There :math:`\\varepsilon = 232`: the solution
+is computed but does not describe the motion (``report_extras()["regime"]`` says so).
+"""
+
+from __future__ import annotations
+
+import math
+
+import sympy as sp
+
+from perturb import PeriodicSolution
+from perturb.errors import InvalidParameterError
+from problems import register
+from problems.rigid_body._body import FastSpinBody, body_parameter_specs
+from problems.rigid_body.equations import a, b
+from problems.rigid_body.reduction import Reduction, disk_reduction
+
+__all__ = ["DiskInNewtonianField", "DISK_RTOL"]
+
+#: Relative tolerance of A + B = C (round-off in user input must not reject a disk).
+DISK_RTOL = 1e-9
+#: The reduction order needed for a solution of order n is n + 2 (the first forcing is O(eps**2)).
+_FORCING_DELAY = 2
+#: Highest solution order offered: order 2 needs F4 and its conditions are far slower (> 40 s).
+MAX_DISK_ORDER = 1
+#: Branch of the amplitude equations: the paper's family M1 = M2 = 0.
+BRANCH_M1_M2_ZERO = {"a_P0": 0, "b_P0": 0}
+
+
+@register
+class DiskInNewtonianField(FastSpinBody):
+    """A disk (A + B = C, centre of mass in the disk plane z0 = 0) spinning fast about its axis.
+
+    Parameters (``Problem.create``): ``A B C M g R x0 y0 z0 r0 gamma3_0`` — the paper's (31)
+    by default. ``R = inf`` removes the Newtonian centre (k = 0); the disk's detuning then vanishes
+    and the solution of this branch does not exist (:meth:`solve` says so).
+    """
+
+    name = "disk"
+    summary = (
+        "disk A+B=C about a fixed point, gravity + Newtonian centre; fast spin eps = c/r0 "
+        "(the paper's 1/mu), resonant omega = 1"
+    )
+    parameter_specs = body_parameter_specs(A=9.0, B=11.0, C=20.0, z0=0.0, gamma3_0=7e-6, r0=1.3e-5)
+
+    # ------------------------------------------------------------------ validation
+    def check_values(self, values) -> None:
+        super().check_values(values)
+        A, B, C = values["A"], values["B"], values["C"]
+        excess = A + B - C
+        if abs(excess) > DISK_RTOL * C:
+            raise InvalidParameterError(
+                f"`C` = {C:g} is invalid: a disk needs A + B = C, but A + B - C = {excess:g} "
+                f"(relative {excess / C:.3g}); set C = {A + B:g}, or use the problem `rigid-body` "
+                "for a general body"
+            )
+        if values["z0"] != 0:
+            raise InvalidParameterError(
+                f"`z0` = {values['z0']:g} is invalid: the disk reduction assumes the centre of mass "
+                "in the plane z0 = 0 (otherwise 1/(1 - omega**2) is singular); set z0 = 0, or use "
+                "`rigid-body` with C != A + B"
+            )
+
+    # ------------------------------------------------------------------ system
+    @classmethod
+    def reduction_for(cls, order: int) -> Reduction:
+        if (
+            isinstance(order, bool)
+            or not isinstance(order, int)
+            or not 1 <= order <= MAX_DISK_ORDER
+        ):
+            raise InvalidParameterError(
+                f"`order` = {order!r} is invalid: the disk solution is implemented to order "
+                f"{MAX_DISK_ORDER}; pass order=1"
+            )
+        return disk_reduction(order + _FORCING_DELAY)
+
+    def method_options(self) -> dict:
+        return {**super().method_options(), "branch": dict(BRANCH_M1_M2_ZERO)}
+
+    def solve(self, order: int = 1) -> PeriodicSolution:
+        if self.symbol_values()["k"] == 0:
+            raise InvalidParameterError(
+                f"`R` = {self.values['R']:g} is invalid for the disk: k = 3C/(RMl) = 0 makes the "
+                "detuning k*M3**2/2 vanish, and the amplitudes eps*v/(k*M3**2) of the M1 = M2 = 0 "
+                "branch do not exist; give a finite R"
+            )
+        return super().solve(order)
+
+    # ------------------------------------------------------------------ reference formulas
+    def detuning(self) -> float:
+        """:math:`D = \\tfrac12 k M_3^2` on the branch :math:`M_1 = M_2 = 0`."""
+        v = self.symbol_values()
+        return 0.5 * v["k"] * (1 - v["gamma3_0"] ** 2)
+
+    def paper_amplitudes(self) -> tuple[float, float]:
+        """The paper's :math:`\\beta_1/\\varepsilon = v_1k^*`, :math:`\\beta_2/\\varepsilon = v_2k^*` (its (21)–(23)).
+
+        With the typo of (21) fixed (:math:`\\gamma_0'^2 \\to y_0'^2`) and :math:`k^* = 2/(k(C_1+1)M_3^2)`
+        as printed. The reference shows these are :math:`1/b` times ours, with the sign of
+        :math:`\\beta_2` reversed (erratum 7).
+        """
+        v = self.symbol_values()
+        a_, b_, k_, x, y, g3 = (v[n] for n in ("a", "b", "k", "x0p", "y0p", "gamma3_0"))
+        m3 = math.sqrt(1 - g3**2)
+        v1 = (
+            m3
+            * g3
+            * (2 * (1 + a_) * y**2 / a_**2 - 2 * (1 + b_) * x**2 / b_**2 + a_ * k_**2 * m3**2)
+        )
+        v2 = -6 * m3 * g3 * x * y / (a_ * b_)
+        c1 = b_ - a_
+        k_star = 2 / (k_ * (c1 + 1) * m3**2)
+        return v1 * k_star, v2 * k_star
+
+    def paper_period_correction(self) -> float:
+        """The paper's :math:`(T - 2\\pi)/\\varepsilon^2` from its (20)/(27) (erratum 6: k C1 M3**2)."""
+        v = self.symbol_values()
+        m3 = math.sqrt(1 - v["gamma3_0"] ** 2)
+        c1 = v["b"] - v["a"]
+        return math.pi * (2 * m3 * v["x0p"] + v["k"] * (v["gamma3_0"] ** 2 + c1 * m3**2))
+
+
+def first_harmonics(expr: sp.Expr, generating: dict) -> tuple[sp.Expr, sp.Expr]:
+    """cos and sin coefficients of the first harmonic of ``expr`` on a generating solution.
+
+    ``generating`` maps the reduced state and initial-value symbols to functions of ``tau``.
+    """
+    from problems.rigid_body.equations import tau
+
+    f = sp.expand(expr.subs(generating))
+    cos_c = sp.integrate(sp.expand(f * sp.cos(tau)), (tau, 0, 2 * sp.pi)) / sp.pi
+    sin_c = sp.integrate(sp.expand(f * sp.sin(tau)), (tau, 0, 2 * sp.pi)) / sp.pi
+    return sp.expand(cos_c.subs(b, 1 - a)), sp.expand(sin_c.subs(b, 1 - a))
