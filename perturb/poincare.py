@@ -454,7 +454,12 @@ class _Construction:
 
     def _solve_linear(self, eqs, unknowns, k) -> dict:
         matrix, rhs = sp.linear_eq_to_matrix(eqs, unknowns)
-        result = sp.linsolve((matrix, rhs), unknowns)
+        try:
+            result = sp.linsolve((matrix, rhs), unknowns)
+        except (NotImplementedError, ZeroDivisionError, ValueError) as exc:
+            raise _Failure(
+                Status.INCONSISTENT, f"order {k}: the linear periodicity conditions failed: {exc}"
+            ) from None
         if result == sp.S.EmptySet:
             raise _Failure(
                 Status.INCONSISTENT,
@@ -472,7 +477,13 @@ class _Construction:
         return {s: sp.expand(v) if v.is_polynomial(*unknowns) else v for s, v in solution.items()}
 
     def _solve_nonlinear(self, eqs, unknowns, k, generating) -> tuple[dict, tuple]:
-        roots = sp.solve(eqs, unknowns, dict=True, simplify=False)
+        try:
+            roots = sp.solve(eqs, unknowns, dict=True, simplify=False)
+        except (NotImplementedError, sp.PolynomialError, ValueError) as exc:
+            raise _Failure(
+                Status.NO_ROOT,
+                f"order {k}: sympy could not solve the amplitude equations {eqs}: {exc}",
+            ) from None
         if not roots:
             raise _Failure(Status.NO_ROOT, f"order {k}: amplitude equations {eqs} have no root")
         amplitude_syms = {

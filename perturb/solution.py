@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import enum
+import warnings
 from collections.abc import Mapping
 from functools import cached_property
 
@@ -10,7 +11,8 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
-from perturb.errors import InvalidParameterError, PerturbError
+from perturb._defaults import NEAR_RESONANCE
+from perturb.errors import AccuracyWarning, InvalidParameterError, PerturbError
 from perturb.steps import GeneratingSolution, OrderStep, S
 from perturb.system import EPS, QuasilinearSystem, Regime
 
@@ -210,7 +212,8 @@ class PeriodicSolution:
         fn, _, h = self._compiled
         eps = self._epsilon(parameter_value)
         args = self._params(values)
-        omega, cos_rows, sin_rows = fn(eps, *args)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            omega, cos_rows, sin_rows = fn(eps, *args)
         shape = np.broadcast_shapes(np.shape(eps), *(np.shape(a) for a in args))
         cos = np.array(
             [[np.broadcast_to(np.asarray(c, float), shape) for c in row] for row in cos_rows]
@@ -218,7 +221,39 @@ class PeriodicSolution:
         sin = np.array(
             [[np.broadcast_to(np.asarray(c, float), shape) for c in row] for row in sin_rows]
         )
-        return np.broadcast_to(np.asarray(omega, float), shape), cos, sin
+        omega = np.broadcast_to(np.asarray(omega, float), shape)
+        if not (
+            np.all(np.isfinite(cos)) and np.all(np.isfinite(sin)) and np.all(np.isfinite(omega))
+        ):
+            raise SolutionFailed(
+                f"the solution's coefficients are not finite at {self.parameter} = {parameter_value} "
+                f"and {dict(values or {})}: a small divisor vanishes there (a resonance the "
+                "construction assumed absent, or a vanishing detuning); choose other parameter values"
+            )
+        self._warn_near_resonance(args)
+        return omega, cos, sin
+
+    def _warn_near_resonance(self, args) -> None:
+        """AccuracyWarning when a non-resonant frequency ratio comes close to a harmonic present."""
+        harmonics = self.generating.harmonics
+        if all(m is not None for m in harmonics):
+            return
+        params = self._compiled[1]
+        subs = dict(zip(params, (np.asarray(a, float).ravel()[0] for a in args), strict=True))
+        w_ref = float(sp.sympify(self.generating.reference_frequency).subs(subs))
+        top = self._compiled[2]
+        for i, m in enumerate(harmonics):
+            if m is not None:
+                continue
+            ratio = float(sp.sympify(self.system.frequencies[i]).subs(subs)) / w_ref
+            j = round(ratio)
+            if 1 <= j <= top and abs(ratio - j) < NEAR_RESONANCE:
+                warnings.warn(
+                    f"{self.coordinates[i]}: frequency ratio {ratio:.6g} is within {NEAR_RESONANCE} of the "
+                    f"harmonic {j}; the small divisor 1/(omega^2 - {j}^2) makes the solution inaccurate",
+                    AccuracyWarning,
+                    stacklevel=3,
+                )
 
     def period_at(self, parameter_value, values: Mapping | None = None):
         """Period :math:`2\\pi/\\Omega` at the given parameter value(s)."""

@@ -152,3 +152,17 @@ def test_first_integral_is_constant_to_the_truncation_order():
         spreads.append(np.ptp(e))
     slope = np.polyfit(np.log(eps_values), np.log(spreads), 1)[0]
     assert abs(slope - 2) < 0.3  # order 1: the energy is conserved through O(eps)
+
+
+def test_vanishing_small_divisor_is_an_error_not_a_nan():
+    """A non-resonant coordinate pushed onto a resonance by its parameter value fails loudly."""
+    from perturb import AccuracyWarning, SolutionFailed
+
+    w = sp.Symbol("w", positive=True)
+    sys = QuasilinearSystem([x, y], [xd, yd], [1, w], [-EPS * x**3, EPS * x**3], parameters=[w])
+    sol = PoincareMethod(order=1, amplitudes={"x": 1}).solve(sys)
+    assert sol.success
+    with pytest.raises(SolutionFailed, match="small divisor"):
+        sol.evaluate([0.0, 1.0], 0.1, {"w": 3.0})  # harmonic 3 of x^3 resonates with w = 3
+    with pytest.warns(AccuracyWarning, match="within"):
+        sol.evaluate([0.0, 1.0], 0.1, {"w": 3.0 + 1e-5})
