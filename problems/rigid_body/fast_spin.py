@@ -29,8 +29,9 @@ from problems.rigid_body.reduction import Reduction, general_body_reduction
 
 __all__ = ["FastSpinRigidBody", "MAX_BODY_ORDER", "RESONANCE_TOL"]
 
-#: |omega - j| below this (j = 1, 2, ...) is rejected as resonant: the forced response's divisor
-#: omega**2 - j**2 would be smaller than ~2 j * RESONANCE_TOL.
+#: |omega - 1| (or omega) below this is rejected: the forced response's divisor 1 - omega**2 (or
+#: omega**2) would be smaller than ~2 * RESONANCE_TOL. (The triangle inequality gives omega <= 1, so
+#: no other integer resonance j**2 - omega**2 = 0 can occur.)
 RESONANCE_TOL = NEAR_RESONANCE
 #: Highest solution order offered (order n uses the reduction of order n + 1).
 MAX_BODY_ORDER = 2
@@ -74,17 +75,17 @@ class FastSpinRigidBody(FastSpinBody):
                 f"omega**2 = (C-A)(C-B)/(AB) = {w2:.3g} <= 0, no oscillation; give C larger or "
                 "smaller than both A and B"
             )
-        omega = math.sqrt(w2)
-        j = max(1, round(omega))
-        if abs(omega - j) < RESONANCE_TOL:
-            hint = (
-                "this is the disk C = A + B: use the problem `disk`"
-                if j == 1
-                else f"the {j}:1 resonance is not implemented; move C away"
-            )
+        omega = math.sqrt(w2)  # the triangle inequality gives 0 < omega <= 1
+        if omega < RESONANCE_TOL:
             raise InvalidParameterError(
-                f"`C` = {C:g} is invalid: omega = {omega:.9g} is within {RESONANCE_TOL:g} of {j}, "
-                f"where the forced response has a small divisor 1/(omega**2 - {j * j}); {hint}"
+                f"`C` = {C:g} is invalid: omega = {omega:.3g} is within {RESONANCE_TOL:g} of 0 (C "
+                "nearly equal to A or B), where the constant response carries 1/omega**2; move C away"
+            )
+        if abs(omega - 1) < RESONANCE_TOL:
+            raise InvalidParameterError(
+                f"`C` = {C:g} is invalid: omega = {omega:.9g} is within {RESONANCE_TOL:g} of 1, "
+                "where the forced response has the small divisor 1/(1 - omega**2); this is the "
+                "disk C = A + B: use the problem `disk`"
             )
 
     @classmethod
