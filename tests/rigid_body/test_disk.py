@@ -118,7 +118,8 @@ def test_paper_geometry_matches_the_true_periodic_orbit(solution):
     assert beta2 == pytest.approx(TRUE_BETA2, rel=REL_TOL)
     assert alpha == pytest.approx(TRUE_ALPHA, rel=REL_TOL)
     # the same numbers from the numeric solution at eps = 1e-4 (physical period too)
-    z = dict(zip(solution.state_names, solution.initial_state(PAPER_EPS, problem.symbol_values())))
+    start = solution.initial_state(PAPER_EPS, problem.symbol_values())
+    z = dict(zip(solution.state_names, start, strict=True))
     assert z["P"] / PAPER_EPS == pytest.approx(TRUE_BETA1, rel=REL_TOL)
     assert z["dP"] / PAPER_EPS == pytest.approx(TRUE_BETA2, rel=REL_TOL)
     tau_period = problem.period(solution) * problem.values["r0"]
