@@ -62,6 +62,7 @@ from perturb.oracle import (
     heyoka_available,
 )
 from perturb.oracle._settings import SHOOTING_TOL
+from perturb.oracle.integrators import STATUS_MAX_STEPS
 
 __all__ = [
     "Condition",
@@ -135,6 +136,24 @@ SHOOTING_ITERATIONS = 20
 #: (van der Pol at eps = 10 stalls at a residual ~1e-7).
 STIFF_SHOOTING_INTEGRATOR = Scipy("Radau", rtol=1e-11)
 STIFF_SHOOTING_TOL = 1e-6
+
+#: Factor by which a parameter is scaled to test whether it is a pure-ε knob (see `_epsilon_knob`);
+#: any value far enough from 1 to measure the exponent to ~1e-12 works.
+KNOB_PROBE = 2.0
+
+#: A component whose analytic value varies over one period by less than this fraction of its size
+#: is treated as a family parameter (a first integral's value: a spin, a direction cosine) and is
+#: pinned in the default shooting set-up of problems without a ``shooting_setup`` hook.
+SLOW_COMPONENT = 1e-2
+
+#: Relative tolerance of Radau on stiff systems: its Newton iterations stop converging much
+#: below 1e-10, and a stiff relaxation cycle is not reproducible to better than that anyway.
+STIFF_RTOL = 1e-10
+
+#: Step budget of the integration when the preconditions fail: the verdict is already "invalid",
+#: the run only shows how the motion departs; 20 000 Taylor steps take ~0.1 s, whereas a tumbling
+#: body integrated from a meaningless analytic state can need 1e7 steps over the horizon.
+INVALID_MAX_STEPS = 20_000
 
 #: A velocity component counts as zero at the start (candidate Poincaré section) below this fraction
 #: of the state scale.
@@ -460,6 +479,8 @@ class ValidationReport:
             lines.append(
                 f"run failed: {self.message} (status {self.status}, t reached {self.t_reached:g})"
             )
+        elif self.status != 0:
+            lines.append(f"note: {self.message}")
         lines.append("conditions:")
         for c in self.conditions:
             lines.append(f"  [{'ok' if c.ok else 'FAIL'}] {c.name} = {c.value:.6g}: {c.sentence}")
@@ -651,6 +672,9 @@ def original_system(problem, y0: np.ndarray | None = None) -> OriginalSystem:
         integral_names = tuple(getattr(integrals, "names", ()))
         if not integral_names and hasattr(problem, "first_integral_names"):
             integral_names = tuple(problem.first_integral_names())
+    elif callable(getattr(problem, "integrals", None)):
+        integrals = problem.integrals
+        integral_names = tuple(getattr(problem, "integral_names", ()))
     elif _uses_default_equations(problem):
         system = problem.system()
         subs = _system_substitutions(problem, y0)
@@ -671,24 +695,73 @@ def original_system(problem, y0: np.ndarray | None = None) -> OriginalSystem:
     )
 
 
+def _epsilon_knob(problem) -> tuple[str, float] | None:
+    """A parameter that changes ε as a power law and nothing else the solution depends on.
+
+    Each parameter is scaled by :data:`KNOB_PROBE`; it qualifies if ``symbol_values()`` (the
+    solution's parameters) stay the same while ε changes.  Returns ``(name, exponent)`` with
+    :math:`\varepsilon \\propto p^{exponent}`, preferring exponents of modulus 1 (e.g. the disk's
+    ``r0``: ε = c/r0).
+    """
+    eps = float(problem.epsilon())
+    values = problem.symbol_values()
+    best = None
+    for name, value in problem.values.items():
+        if not (isinstance(value, float | int) and math.isfinite(value) and value != 0):
+            continue
+        try:
+            probe = type(problem).create(**{**problem.values, name: value * KNOB_PROBE})
+        except (PerturbError, ValueError):
+            continue
+        if probe.symbol_values() != values:
+            continue
+        ratio = float(probe.epsilon()) / eps
+        if not (ratio > 0 and math.isfinite(ratio)) or abs(ratio - 1) < 1e-12:
+            continue
+        exponent = math.log(ratio) / math.log(KNOB_PROBE)
+        if best is None or abs(abs(exponent) - 1) < abs(abs(best[1]) - 1):
+            best = (name, exponent)
+    return best
+
+
 def _with_epsilon(problem, eps: float):
-    """``problem`` with ε replaced (hook ``with_epsilon`` or the ``eps`` parameter), or None."""
+    """``problem`` with ε replaced (hook ``with_epsilon``, the ``eps`` parameter, or a pure-ε knob).
+
+    Returns None when none of these exists.
+    """
     if hasattr(problem, "with_epsilon"):
         return problem.with_epsilon(eps)
     if "eps" in problem.values:
         return type(problem).create(**{**problem.values, "eps": eps})
-    return None
+    knob = _epsilon_knob(problem)
+    if knob is None:
+        return None
+    name, exponent = knob
+    factor = (eps / float(problem.epsilon())) ** (1.0 / exponent)
+    return type(problem).create(**{**problem.values, name: problem.values[name] * factor})
 
 
-def _shooting_setup(problem, names, y0, rhs, n_integrals) -> dict:
-    """Section, pinned components and number of trivial multipliers (hook or default)."""
-    if hasattr(problem, "shooting_setup"):
-        setup = dict(problem.shooting_setup())
+def _shooting_setup(problem, y0, rhs, n_integrals, samples, override=None) -> dict:
+    """Section, pinned components and number of trivial multipliers.
+
+    From ``override`` (the ``shooting_setup`` argument of :func:`validate`), else the problem's
+    ``shooting_setup()`` hook, else defaults: for a quasilinear problem, the section is the phase
+    coordinate's velocity and the coordinates with user-fixed amplitudes are pinned; otherwise the
+    components that stay constant to :data:`SLOW_COMPONENT` along the analytic period (family
+    parameters) are pinned and the section is the component closest to zero at the start, relative
+    to its amplitude.
+    """
+    setup = override
+    if setup is None and hasattr(problem, "shooting_setup"):
+        setup = problem.shooting_setup()
+    if setup is not None:
+        setup = dict(setup)
         setup.setdefault("fixed_indices", ())
         setup.setdefault("direction", 0)
         setup.setdefault("n_trivial", 1 + n_integrals)
         return setup
     scale = max(float(np.max(np.abs(y0))), 1.0)
+    amp = _amplitudes(samples)
     pinned: list[int] = []
     section = None
     if _uses_default_equations(problem):
@@ -704,12 +777,14 @@ def _shooting_setup(problem, names, y0, rhs, n_integrals) -> dict:
         pinned = [coords.index(a) for a in amplitudes if a in coords]
         n_trivial = 1 + max(len(pinned), n_integrals)
     else:
+        spread = (np.max(samples, axis=1) - np.min(samples, axis=1)) / amp
+        pinned = [i for i in range(len(y0)) if spread[i] < SLOW_COMPONENT]
         n_trivial = 1 + n_integrals
     if section is None or abs(y0[section]) > SECTION_ZERO * scale:
         candidates = [i for i in range(len(y0)) if i not in pinned]
-        section = min(candidates, key=lambda i: abs(y0[i]))
+        section = min(candidates, key=lambda i: abs(y0[i]) / amp[i])
     velocity = float(np.asarray(rhs(y0))[section])
-    direction = int(np.sign(velocity)) if abs(velocity) > SECTION_ZERO * scale else 0
+    direction = int(np.sign(velocity)) if abs(velocity) > SECTION_ZERO * amp[section] else 0
     return {
         "section_index": section,
         "fixed_indices": tuple(pinned),
@@ -733,14 +808,22 @@ def _check_positive(name: str, value, fix: str) -> float:
     return number
 
 
-def _resolve_integrator(integrator, rtol: float, stiff: bool, symbolic: bool) -> Integrator:
-    """The integrator to run: the user's (name or object) or the choice from stiffness."""
+def _resolve_integrator(
+    integrator, rtol: float, stiff: bool, symbolic: bool, max_steps: int | None = None
+) -> Integrator:
+    """The integrator to run: the user's (name or object) or the choice from stiffness.
+
+    ``max_steps`` (a step budget) switches the default to the cheapest explicit method: a budgeted
+    run only has to show how the motion departs, and heyoka's steps cost microseconds where
+    Radau's cost a millisecond.
+    """
+    budget = {} if max_steps is None else {"max_steps": max_steps}
     if integrator is None:
-        if stiff:
-            return Scipy("Radau", rtol=max(rtol, 1e-10))
+        if stiff and max_steps is None:
+            return Scipy("Radau", rtol=max(rtol, STIFF_RTOL))
         if symbolic and heyoka_available():
-            return Heyoka()
-        return Scipy("DOP853", rtol=rtol)
+            return Heyoka(**budget)
+        return Scipy("DOP853", rtol=rtol, **budget)
     if isinstance(integrator, str):
         key = integrator.lower()
         if key not in INTEGRATORS:
@@ -749,14 +832,16 @@ def _resolve_integrator(integrator, rtol: float, stiff: bool, symbolic: bool) ->
                 f"{sorted(INTEGRATORS)}"
             )
         if key in ("dop853", "rk45", "radau", "lsoda"):
-            return get_integrator(key, rtol=rtol)
-        if key == "heyoka" and not symbolic:
-            raise bad_value(
-                "integrator",
-                integrator,
-                "this problem gives no symbolic equations (original_symbolic), which heyoka "
-                "needs; use 'dop853'",
-            )
+            return get_integrator(key, rtol=rtol, **budget)
+        if key == "heyoka":
+            if not symbolic:
+                raise bad_value(
+                    "integrator",
+                    integrator,
+                    "this problem gives no symbolic equations (original_symbolic), which heyoka "
+                    "needs; use 'dop853'",
+                )
+            return get_integrator(key, **budget)
         return get_integrator(key)
     if not isinstance(integrator, Integrator):
         raise bad_value(
@@ -1003,9 +1088,10 @@ def validate(
     *,
     rtol: float = DEFAULT_RTOL,
     initial_state: Sequence[float] | None = None,
-    shoot: bool = True,
-    slope: bool = True,
+    shoot: bool | None = None,
+    slope: bool | None = None,
     samples_per_period: int = SAMPLES_PER_PERIOD,
+    shooting_setup: Mapping | None = None,
 ) -> ValidationReport:
     """Check ``problem``'s analytic periodic solution against the true motion.
 
@@ -1027,11 +1113,15 @@ def validate(
         Start the integration here instead of at the analytic initial state (same order as
         ``problem.state_names()``); the comparison is still with the analytic solution.
     shoot : bool, optional
-        Find the true periodic orbit by shooting.
+        Find the true periodic orbit by shooting.  Default: only when the preconditions hold.
     slope : bool, optional
-        Measure the convergence slope in ε (needs ``with_epsilon`` or an ``eps`` parameter).
+        Measure the convergence slope in ε.  Default: only when the preconditions hold.
     samples_per_period : int, optional
         Output points per period of the comparison (>= 4).
+    shooting_setup : mapping, optional
+        Overrides the problem's ``shooting_setup()`` hook: ``section_index``, ``fixed_indices``,
+        ``direction``, ``n_trivial`` (and optionally ``integrator``) for
+        :func:`perturb.oracle.find_periodic_orbit`.
 
     Returns
     -------
@@ -1162,7 +1252,9 @@ def validate(
         problem, solution, names, np.linspace(0.0, period, STIFFNESS_SAMPLES, endpoint=False)
     )
     stiffness = stiffness_indicator(original.rhs, samples, period)
-    solver = _resolve_integrator(integrator, rtol, stiffness.stiff, original.symbolic)
+    hopeless = any(not c.ok for c in conditions) or breakdown is not None
+    budget = INVALID_MAX_STEPS if hopeless else None
+    solver = _resolve_integrator(integrator, rtol, stiffness.stiff, original.symbolic, budget)
     timings["stiffness"] = time.perf_counter() - clock
 
     # trajectory comparison
@@ -1193,9 +1285,15 @@ def validate(
 
     # the true periodic orbit
     orbit = None
+    if shoot is None:
+        shoot = not hopeless
+    if slope is None:
+        slope = not hopeless
     if shoot and traj.success:
         clock = time.perf_counter()
-        setup = _shooting_setup(problem, names, y_analytic0, original.rhs, len(invariants))
+        setup = _shooting_setup(
+            problem, y_analytic0, original.rhs, len(invariants), samples, shooting_setup
+        )
         try:
             orbit = _orbit_check(
                 problem,
@@ -1260,12 +1358,20 @@ def validate(
 
     valid, verdict = _verdict(conditions, breakdown, traj, errors, max_rel, fit, orbit, periods)
     timings["total"] = sum(timings.values())
+    completed, message = traj.success, traj.message
+    if hopeless and traj.status == STATUS_MAX_STEPS:  # a deliberate cut, not a numerical failure
+        completed = True
+        message = (
+            f"stopped at t = {traj.t_reached:.6g} by the step budget {INVALID_MAX_STEPS} of a run "
+            "whose preconditions fail (errors cover [0, t_reached]); pass an integrator with a "
+            "larger max_steps to go further"
+        )
     return ValidationReport(
         **base,
         valid=valid,
         verdict=verdict,
-        completed=traj.success,
-        message=traj.message,
+        completed=completed,
+        message=message,
         status=traj.status,
         t_reached=traj.t_reached,
         period=period,
