@@ -121,8 +121,13 @@ class OrderStep:
         return "\n".join(lines)
 
     def latex(self) -> str:
-        parts = [f"R_{{{n},{self.order}}}(s) = {sp.latex(as_trig(r))}" for n, r in self.forcing.items()]
-        parts += [f"g_{{{n},{self.order}}}(s) = {sp.latex(as_trig(g))}" for n, g in self.quadratures.items()]
+        parts = [
+            f"R_{{{n},{self.order}}}(s) = {sp.latex(as_trig(r))}" for n, r in self.forcing.items()
+        ]
+        parts += [
+            f"g_{{{n},{self.order}}}(s) = {sp.latex(as_trig(g))}"
+            for n, g in self.quadratures.items()
+        ]
         parts += [c.latex() for c in self.conditions]
         parts += [f"{sp.latex(k)} = {sp.latex(v)}" for k, v in self.solved.items()]
         return r" \\ ".join(parts)
