@@ -780,14 +780,27 @@ def _shooting_setup(problem, y0, rhs, n_integrals, samples, override=None) -> di
         spread = (np.max(samples, axis=1) - np.min(samples, axis=1)) / amp
         pinned = [i for i in range(len(y0)) if spread[i] < SLOW_COMPONENT]
         n_trivial = 1 + n_integrals
+    velocity = np.asarray(rhs(y0), dtype=float)
+    section_value = 0.0
     if section is None or abs(y0[section]) > SECTION_ZERO * scale:
+        # a section through the seed itself, on the most transversal free component: moving the
+        # seed onto some "zero" section would break the first integrals it satisfies
         candidates = [i for i in range(len(y0)) if i not in pinned]
-        section = min(candidates, key=lambda i: abs(y0[i]) / amp[i])
-    velocity = float(np.asarray(rhs(y0))[section])
-    direction = int(np.sign(velocity)) if abs(velocity) > SECTION_ZERO * amp[section] else 0
+        section = max(candidates, key=lambda i: abs(velocity[i]) / amp[i])
+        section_value = float(y0[section])
+        if not _uses_default_equations(problem):
+            # one pinned component per first integral (each makes the orbits a family): add the
+            # free components at their extremes (|y0|/amplitude largest, stationary on the section)
+            extra = sorted(
+                (i for i in candidates if i != section), key=lambda i: -abs(y0[i]) / amp[i]
+            )
+            pinned += extra[: max(0, n_integrals - len(pinned))]
+    crossing = float(velocity[section])
+    direction = int(np.sign(crossing)) if abs(crossing) > SECTION_ZERO * amp[section] else 0
     return {
         "section_index": section,
-        "fixed_indices": tuple(pinned),
+        "section_value": section_value,
+        "fixed_indices": tuple(sorted(pinned)),
         "direction": direction,
         "n_trivial": min(n_trivial, len(y0)),
     }
@@ -982,6 +995,7 @@ def _orbit_check(
         y0,
         period,
         section_index=setup["section_index"],
+        section_value=setup.get("section_value", 0.0),
         fixed_indices=setup["fixed_indices"],
         direction=setup["direction"],
         n_trivial=setup["n_trivial"],
