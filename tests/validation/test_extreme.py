@@ -1,0 +1,181 @@
+"""Stiff, long and extreme cases of validate() (issue 4 item 3).
+
+Each case asserts a property that means something: a verdict with its reason, finite numbers, a
+failed status with the solver's message, or a bound on the drift of the first integrals.
+"""
+
+import math
+import warnings
+
+import pytest
+
+from perturb.errors import InvalidParameterError
+from perturb.oracle import heyoka_available
+from perturb.validation import MAX_RELATIVE_ERROR, validate
+from problems import get_problem
+
+#: Relative drift of an energy integral over 10^4 periods that a machine-precision Taylor
+#: integrator must stay under: a random walk of ~1e-16 per step over ~1e6 steps gives ~1e-13.
+LONG_DRIFT_BOUND = 1e-12
+
+
+@pytest.mark.skipif(not heyoka_available(), reason="heyoka not installed")
+def test_duffing_ten_thousand_periods_with_heyoka():
+    report = validate(
+        get_problem("duffing").create(eps=0.05),
+        periods=1e4,
+        integrator="heyoka",
+        shoot=False,
+        slope=False,
+        samples_per_period=8,
+    )
+    assert report.completed
+    energy = report.invariants["energy"]
+    assert energy.relative_drift < LONG_DRIFT_BOUND
+    # the O(eps^2) period error of the order-1 solution accumulates into an O(1) phase error
+    assert not report.valid and "departs" in report.verdict
+
+
+def test_duffing_long_horizon_with_order_two_stays_closer():
+    """Order 2 removes the eps^2 period error: over 1000 periods it is far closer than order 1."""
+    problem = get_problem("duffing").create(eps=0.05)
+    kw = dict(periods=1000, shoot=False, slope=False, samples_per_period=8)
+    first, second = validate(problem, order=1, **kw), validate(problem, order=2, **kw)
+    assert second.errors["max_relative"] < first.errors["max_relative"] / 5
+
+
+def test_failed_integration_reports_the_solver_message():
+    """RK4 with a step budget it cannot keep: heyoka-free failure path through a tiny budget."""
+    from perturb.oracle import Scipy
+
+    problem = get_problem("van-der-pol").create(eps=0.1)
+    report = validate(
+        problem, integrator=Scipy("DOP853", max_steps=5), periods=5, shoot=False, slope=False
+    )
+    assert not report.completed and not report.valid
+    assert report.status < 0 and "max_steps" in report.message
+    assert 0 < report.t_reached < 5 * report.period
+    assert "could not be computed" in report.verdict
+
+
+# ------------------------------------------------------------------------------------ the disk
+
+disk_module = pytest.importorskip("problems.rigid_body.disk")
+
+
+def _disk(**overrides):
+    return get_problem("disk").create(**overrides)
+
+
+#: Lever arm l = sqrt(x0^2 + y0^2) of the paper's disk (x0, y0 = 1, 6).
+PAPER_ARM = math.hypot(1.0, 6.0)
+
+
+def _newtonian_distance(k: float, C=20.0, M=200.0, arm=PAPER_ARM) -> float:
+    """R giving k = 3C/(R M l)."""
+    return 3 * C / (k * M * arm)
+
+
+def _fast_disk(eps=0.004, k=0.4, gamma3_0=0.25):
+    c = _disk().scale_c()
+    return _disk(r0=c / eps, R=_newtonian_distance(k), gamma3_0=gamma3_0)
+
+
+@pytest.fixture(autouse=True)
+def _quiet():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the disk warns at large eps, on purpose
+        yield
+
+
+def test_disk_paper_parameters_invalid():
+    report = validate(_disk())
+    assert report.epsilon == pytest.approx(232.355, rel=1e-5)
+    assert not report.valid and "not small" in report.verdict
+    assert report.completed  # the budgeted comparison is a deliberate cut
+
+
+def test_disk_fast_spin_valid():
+    report = validate(_fast_disk())
+    assert report.epsilon == pytest.approx(0.004)
+    assert report.valid, report.verdict
+    assert report.slope.consistent and abs(report.slope.slope - 2) < 0.2
+    orbit = report.periodic_orbit
+    assert orbit.success and orbit.trivial_ok and orbit.n_trivial == 4
+    # energy, area and geometric integrals conserved along the heyoka trajectory
+    assert all(d.relative_drift < 1e-12 for d in report.invariants.values())
+
+
+def test_disk_r0_to_zero_fails_with_reason():
+    report = validate(_disk(r0=1e-9))
+    assert not report.valid and "not small" in report.verdict
+    # a meaningless analytic state (eps ~ 3e6) blows up: the solver's message is kept
+    if not report.completed:
+        assert report.message and report.status < 0
+
+
+def test_disk_r0_to_infinity_reaches_the_oracle_floor():
+    report = validate(_fast_disk(eps=1e-6))
+    assert report.valid
+    assert report.errors["max_relative"] < 1e-9
+    # errors at the oracle's floor cannot give a slope: said, not guessed
+    assert report.slope.consistent is None and "dropped" in report.slope.note
+
+
+def test_disk_gamma3_to_zero_valid():
+    report = validate(_fast_disk(gamma3_0=1e-6))
+    assert report.valid and math.isfinite(report.errors["max_relative"])
+
+
+def test_disk_gamma3_to_one_invalid():
+    """M3 = sqrt(1 - gamma3_0^2) -> 0: the detuning k M3^2/2 vanishes, the amplitudes blow up."""
+    report = validate(_fast_disk(gamma3_0=0.99999))
+    assert not report.valid
+
+
+def test_disk_gamma3_exactly_one_is_bad_input():
+    with pytest.raises(InvalidParameterError, match="gamma3_0"):
+        _fast_disk(gamma3_0=1.0)
+
+
+def test_disk_no_newtonian_centre_is_bad_input():
+    """R -> inf: k = 0, the M1 = M2 = 0 branch does not exist; the error names R."""
+    with pytest.raises(InvalidParameterError, match="`R`"):
+        validate(_disk(R=math.inf, r0=_disk().scale_c() / 0.004, gamma3_0=0.25))
+
+
+def test_disk_large_R_small_detuning_invalid():
+    """k -> 0 (R large): the small divisor kM3^2 makes |beta|^2 >> kM3^2 and the series fails."""
+    report = validate(_fast_disk(k=1e-4))
+    assert not report.valid
+    assert report.errors["max_relative"] > MAX_RELATIVE_ERROR or "cannot hold" in report.verdict
+
+
+def test_disk_strong_newtonian_field_valid():
+    report = validate(_fast_disk(k=40.0))
+    assert report.valid, report.verdict
+    assert report.periodic_orbit.success
+
+
+# ------------------------------------------------------------------------------ the rigid body
+
+
+def test_rigid_body_default_valid():
+    pytest.importorskip("problems.rigid_body.fast_spin")
+    report = validate(get_problem("rigid-body").create(), slope=False)
+    assert report.valid, report.verdict
+    assert report.periodic_orbit.orbit_error < 0.01
+
+
+def test_rigid_body_c_minus_b_to_zero():
+    """C - B -> 0: the generating frequency sqrt((C-A)(C-B)/(AB)) -> 0 (a small divisor)."""
+    pytest.importorskip("problems.rigid_body.fast_spin")
+    cls = get_problem("rigid-body")
+    try:
+        problem = cls.create(C=11.0 + 1e-3)
+    except InvalidParameterError as exc:  # refusing the degenerate body, naming it, is fine
+        assert "C" in str(exc) or "B" in str(exc)
+        return
+    report = validate(problem, periods=3, slope=False)
+    assert report.completed and not report.valid
+    assert "departs" in report.verdict
