@@ -59,7 +59,7 @@ def _as_mapping(value) -> dict:
 
 @frozen
 class PoincareMethod:
-    """Poincaré's method (small or large parameter) for a :class:`QuasilinearSystem`.
+    r"""Poincaré's method (small or large parameter) for a :class:`QuasilinearSystem`.
 
     Parameters
     ----------
@@ -79,6 +79,14 @@ class PoincareMethod:
         trigonometric polynomials (polynomial right-hand sides only); ``numeric`` computes Fourier
         coefficients by FFT quadrature (any analytic right-hand side, numeric parameters and fixed
         generating amplitudes needed); ``auto`` (default) uses exact where it can.
+    dependent_condition : {"auto", "phase-sine", "none"}
+        A first integral makes one periodicity condition a consequence of the others: the one for the
+        position of the phase coordinate, :math:`g_{ref,k}(2\pi) = 0` (the integral fixes
+        :math:`x_{ref}(T)` once the other components have returned). ``phase-sine`` does not impose it
+        (its residual is kept in ``solution.dependent_residuals``); ``none`` imposes every condition;
+        ``auto`` (default) drops it when the system declares first integrals. Dropping it matters for
+        reduced systems truncated in ε, where the integral holds only to the truncation order and
+        imposing the dependent condition at the highest orders would make the conditions inconsistent.
     branch : mapping or int, optional
         Which root of the amplitude equations to follow: a mapping ``{symbol name: value}`` selects the
         root that has these values; an integer indexes the admissible roots in the order listed in
@@ -92,6 +100,9 @@ class PoincareMethod:
     )
     branch: object = None
     quadrature: str = field(default="auto", validator=validators.in_(("auto", "exact", "numeric")))
+    dependent_condition: str = field(
+        default="auto", validator=validators.in_(("auto", "phase-sine", "none"))
+    )
 
     # ------------------------------------------------------------------ public
     cache: bool = field(default=True, eq=False, repr=False)
@@ -141,6 +152,7 @@ class PoincareMethod:
             self.phase_coordinate,
             branch,
             self.quadrature,
+            self.dependent_condition,
         )
 
 
@@ -179,6 +191,10 @@ class _Construction:
                 "phase_coordinate", phase, f"name a coordinate, one of {names}", InvalidSystemError
             )
         self.phase = names.index(phase)
+        dependent = self.method.dependent_condition
+        if dependent == "auto":
+            dependent = "phase-sine" if self.system.first_integrals else "none"
+        self.drop_phase_sine = dependent == "phase-sine"
         self.w_ref = self.system.frequencies[self.phase]
         self.harmonics: list[int | None] = []
         for i, w in enumerate(self.system.frequencies):
@@ -393,7 +409,13 @@ class _Construction:
                 continue
             rc, rs = r.coefficient(m)
             # g(2 pi) and dg/ds(2 pi) of the quadrature with zero initial data (paper's (16) form)
-            conditions.append(Condition(f"g_{name},{k}(2pi)", sp.expand(-sp.pi * rs / (m * w2))))
+            conditions.append(
+                Condition(
+                    f"g_{name},{k}(2pi)",
+                    sp.expand(-sp.pi * rs / (m * w2)),
+                    imposed=not (i == self.phase and self.drop_phase_sine),
+                )
+            )
             conditions.append(Condition(f"dg_{name},{k}/ds(2pi)", sp.expand(sp.pi * rc / w2)))
             # zero initial data: subtract the periodic part's initial value and slope
             p0, dp0 = part.at_zero(), part.derivative().at_zero()
@@ -561,6 +583,7 @@ class _Construction:
         max_k = method.order + max(lead, 1) + 1
         self.expansion = system.expansion(max_k)
         self.pending: list[sp.Expr] = []
+        self.dependent: list[Condition] = []
         generating = self._generating()
         status, message = Status.SUCCESS, ""
         k_done = 0
@@ -568,7 +591,8 @@ class _Construction:
             for k in range(1, max_k + 1):
                 forcing = self._forcing(k)
                 quadratures, conditions = self._solve_order(k, forcing)
-                self.pending.extend(c.expression for c in conditions)
+                self.pending.extend(c.expression for c in conditions if c.imposed)
+                self.dependent.extend(c for c in conditions if not c.imposed)
                 solved, branches = self._solve_conditions(k, generating)
                 self.steps.append(
                     OrderStep(
@@ -640,6 +664,9 @@ class _Construction:
             deviations=deviations,
             status=status,
             message=message,
+            dependent_residuals={
+                c.name: sp.expand(c.expression.xreplace(self.solved)) for c in self.dependent
+            },
         )
 
 

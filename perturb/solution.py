@@ -71,6 +71,9 @@ class PeriodicSolution:
     status : Status
     message : str
         Human-readable detail of the status.
+    dependent_residuals : dict
+        Periodicity conditions not imposed because a first integral makes them dependent, with the
+        solved values put in: they vanish to the accuracy of the integral (a check, not an input).
     """
 
     system: QuasilinearSystem
@@ -82,6 +85,7 @@ class PeriodicSolution:
     deviations: dict = field(eq=False)
     status: Status = Status.SUCCESS
     message: str = ""
+    dependent_residuals: dict = field(factory=dict, eq=False)
 
     # ------------------------------------------------------------------ status
     @property

@@ -66,6 +66,7 @@ class Condition:
 
     name: str
     expression: sp.Expr
+    imposed: bool = True  #: False for a condition a first integral makes dependent (not solved)
 
     def latex(self) -> str:
         match = re.fullmatch(r"(d?)g_(\w+),(\d+)(/ds)?\(2pi\)", self.name)
