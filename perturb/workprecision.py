@@ -1,0 +1,306 @@
+"""Error against run time for a problem: the analytic solution beside the numerical integrators.
+
+:func:`work_precision` measures, over the same horizon and output grid,
+
+- the analytic solution at orders ``1..N``: its error against the true motion from its own initial
+  state, with the *evaluation* cost (``problem.state`` on the grid) and the *derivation* cost (the
+  symbolic construction) reported as separate rows;
+- RK4 at several steps per unit time, the scipy methods at several tolerances and heyoka (JIT
+  compilation excluded, done once before timing): their error against a reference run.
+
+Times are medians of ``repeat`` runs.  The reference is heyoka in extended precision when available
+(``long double``/``real128``), else DOP853 at ``REFERENCE_RTOL``.  The error is the maximum over the
+output grid and the components of ``|y - y_ref| / amplitude`` (amplitude = max |y_ref| per component).
+
+Suggested CLI (not wired here)::
+
+    perturb work-precision PROBLEM [--set NAME=VALUE ...] [--periods 10] [--orders 3]
+                           [--repeat 3] [--format table|csv|json] [--plot FILE.png]
+"""
+
+from __future__ import annotations
+
+import math
+import statistics
+import time
+from collections.abc import Callable, Sequence
+
+import numpy as np
+from attrs import frozen
+
+from perturb.errors import bad_value
+from perturb.oracle import RK4, Heyoka, Scipy, heyoka_available
+from perturb.validation import AMPLITUDE_FLOOR, SAMPLES_PER_PERIOD, original_system
+
+__all__ = ["WorkPoint", "WorkPrecision", "work_precision"]
+
+#: Steps per unit time of the RK4 runs: a factor 2 apart, from visibly inaccurate (error ~1e-3 on
+#: unit-frequency oscillators over 10 periods) to the round-off plateau.
+RK4_STEPS = (10, 20, 40, 80, 160, 320)
+
+#: The scipy methods compared (the explicit high-order one, the default one, two stiff ones).
+SCIPY_METHODS = ("DOP853", "RK45", "Radau", "LSODA")
+
+#: Tolerances of the scipy runs: from engineering accuracy to three digits above round-off.
+SCIPY_TOLERANCES = (1e-6, 1e-8, 1e-10, 1e-12)
+
+#: Tolerance of the reference when heyoka's extended precision is unavailable: one decade below the
+#: tightest compared tolerance.
+REFERENCE_RTOL = 1e-13
+
+#: Repeated runs per point (the median is reported); 3 removes most scheduling noise.
+DEFAULT_REPEAT = 3
+
+
+@frozen
+class WorkPoint:
+    """One row of the work–precision table.
+
+    Attributes
+    ----------
+    method : str
+        ``"analytic"``, ``"analytic derivation"``, ``"rk4"``, ``"scipy DOP853"``, ``"heyoka"``...
+    setting : str
+        ``"order 2"``, ``"80 steps/unit"``, ``"rtol=1e-10"``, ``"tol=eps"``.
+    error : float
+        Max relative error over the grid (NaN for the derivation rows and failed runs).
+    seconds : float
+        Median wall time.
+    """
+
+    method: str
+    setting: str
+    error: float
+    seconds: float
+
+
+@frozen
+class WorkPrecision:
+    """The table of :func:`work_precision` and how it was measured.
+
+    Attributes
+    ----------
+    problem : str
+    periods : float
+    horizon : float
+    reference : str
+        The integrator of the reference runs.
+    points : tuple of WorkPoint
+    """
+
+    problem: str
+    periods: float
+    horizon: float
+    reference: str
+    points: tuple
+
+    def as_csv(self) -> str:
+        """``method,setting,error,seconds`` lines (with a header)."""
+        lines = ["method,setting,error,seconds"]
+        lines += [f"{p.method},{p.setting},{p.error:.6e},{p.seconds:.6e}" for p in self.points]
+        return "\n".join(lines)
+
+    def as_table(self) -> str:
+        """Aligned text table."""
+        lines = [
+            f"# work-precision {self.problem}: {self.periods:g} periods (t = {self.horizon:.6g}), "
+            f"reference {self.reference}",
+            f"{'method':<22s} {'setting':<16s} {'error':>11s} {'seconds':>11s}",
+        ]
+        for p in self.points:
+            lines.append(f"{p.method:<22s} {p.setting:<16s} {p.error:11.3e} {p.seconds:11.4g}")
+        return "\n".join(lines)
+
+    def as_dict(self) -> dict:
+        return {
+            "problem": self.problem,
+            "periods": self.periods,
+            "horizon": self.horizon,
+            "reference": self.reference,
+            "points": [
+                {"method": p.method, "setting": p.setting, "error": p.error, "seconds": p.seconds}
+                for p in self.points
+            ],
+        }
+
+    def plot(self, ax=None):
+        """Work–precision diagram (log error against log seconds), one line per method.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+
+        Raises
+        ------
+        ImportError
+            If matplotlib is not installed (``pip install perturb[plot]``).
+        """
+        try:
+            import matplotlib.pyplot as plt
+        except ImportError as exc:  # pragma: no cover - depends on the environment
+            raise ImportError(
+                "the work-precision plot needs matplotlib: pip install 'perturb[plot]'"
+            ) from exc
+        if ax is None:
+            fig, ax = plt.subplots(figsize=(6, 4.5))
+        else:
+            fig = ax.figure
+        methods = dict.fromkeys(p.method for p in self.points if math.isfinite(p.error))
+        for method in methods:
+            pts = [p for p in self.points if p.method == method and math.isfinite(p.error)]
+            ax.loglog([p.seconds for p in pts], [p.error for p in pts], "o-", label=method)
+        ax.set_xlabel("wall time [s]")
+        ax.set_ylabel("max relative error")
+        ax.set_title(f"{self.problem}: {self.periods:g} periods")
+        ax.legend(fontsize="small")
+        ax.grid(True, which="both", alpha=0.3)
+        return fig
+
+
+def _median_time(fn: Callable[[], object], repeat: int):
+    times, result = [], None
+    for _ in range(repeat):
+        start = time.perf_counter()
+        result = fn()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times), result
+
+
+def _relative_error(y: np.ndarray, ref: np.ndarray) -> float:
+    if y.shape != ref.shape or not np.all(np.isfinite(y)):
+        return math.nan
+    amp = np.max(np.abs(ref), axis=1)
+    amp = np.maximum(amp, AMPLITUDE_FLOOR * max(float(np.max(amp)), 1e-300))
+    return float(np.max(np.abs(y - ref) / amp[:, None]))
+
+
+def _derivation_seconds(problem, order: int) -> float:
+    """Time of the symbolic construction, bypassing caches where the problem allows it."""
+    from perturb import PoincareMethod
+    from problems.base import Problem
+
+    start = time.perf_counter()
+    if type(problem).solve is Problem.solve:
+        PoincareMethod(order=order, cache=False, **problem.method_options()).solve(problem.system())
+    else:  # the problem's own solve (possibly cached: then this is the cache look-up)
+        problem.solve(order)
+    return time.perf_counter() - start
+
+
+def work_precision(
+    problem,
+    *,
+    periods: float = 10,
+    orders: int | Sequence[int] = 3,
+    rk4_steps: Sequence[float] = RK4_STEPS,
+    scipy_methods: Sequence[str] = SCIPY_METHODS,
+    tolerances: Sequence[float] = SCIPY_TOLERANCES,
+    heyoka: bool = True,
+    repeat: int = DEFAULT_REPEAT,
+    samples_per_period: int = SAMPLES_PER_PERIOD,
+) -> WorkPrecision:
+    """Error against wall time of the analytic solution and of the integrators.
+
+    Parameters
+    ----------
+    problem : problems.Problem
+    periods : float, optional
+        Horizon in periods of the order-1 analytic solution (> 0).
+    orders : int or sequence of int, optional
+        Orders of the analytic solution: ``N`` means ``1..N``.  Orders the problem refuses are
+        skipped.
+    rk4_steps : sequence of float, optional
+        RK4 steps per unit time.
+    scipy_methods, tolerances : sequences, optional
+        scipy methods and their relative tolerances (every pair is run).
+    heyoka : bool, optional
+        Include heyoka (machine-precision Taylor) if installed and the equations are symbolic.
+    repeat : int, optional
+        Runs per point; the median time is reported.
+    samples_per_period : int, optional
+        Output points per period of the error measurement.
+
+    Returns
+    -------
+    WorkPrecision
+        ``.as_csv()`` gives the ``method,setting,error,seconds`` table, ``.plot()`` a Figure.
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        For ``periods <= 0``, ``repeat < 1``, a non-positive tolerance or step count, or an order < 1.
+    """
+    if not (isinstance(periods, int | float) and math.isfinite(periods) and periods > 0):
+        raise bad_value("periods", periods, "pass a positive number of periods")
+    if not isinstance(repeat, int) or repeat < 1:
+        raise bad_value("repeat", repeat, "pass an integer >= 1")
+    for tol in tolerances:
+        if not (isinstance(tol, int | float) and math.isfinite(tol) and tol > 0):
+            raise bad_value("tolerances", tol, "every tolerance must be a positive number")
+    for steps in rk4_steps:
+        if not (isinstance(steps, int | float) and math.isfinite(steps) and steps > 0):
+            raise bad_value("rk4_steps", steps, "every step count must be positive")
+    order_list = list(range(1, orders + 1)) if isinstance(orders, int) else list(orders)
+    if not order_list or any(not isinstance(k, int) or k < 1 for k in order_list):
+        raise bad_value("orders", orders, "pass N >= 1 or a list of integers >= 1")
+
+    names = tuple(problem.state_names())
+    base = problem.solve(1)
+    period = problem.period(base)
+    n_out = int(math.ceil(periods * samples_per_period)) + 1
+    horizon = periods * period
+    t = np.linspace(0.0, horizon, n_out)
+    y0 = np.array([np.asarray(problem.state(base, 0.0)[n], dtype=float) for n in names])
+    original = original_system(problem, y0)
+    symbolic = original.symbolic and heyoka_available()
+    reference = Heyoka(high_precision=True) if symbolic else Scipy("DOP853", rtol=REFERENCE_RTOL)
+    references: dict[bytes, np.ndarray] = {}
+
+    def truth(start: np.ndarray) -> np.ndarray:
+        key = start.tobytes()
+        if key not in references:
+            traj = reference.integrate(original.rhs, (0.0, horizon), start, t_eval=t)
+            traj.raise_for_status()
+            references[key] = np.asarray(traj.y, dtype=float)
+        return references[key]
+
+    points: list[WorkPoint] = []
+    for k in order_list:
+        try:
+            derive = _derivation_seconds(problem, k)
+            solution = problem.solve(k)
+        except ValueError:
+            continue
+        if not solution.success:
+            continue
+        seconds, state = _median_time(lambda s=solution: problem.state(s, t), repeat)
+        y = np.array([np.asarray(state[n], dtype=float) for n in names])
+        error = _relative_error(y, truth(y[:, 0].copy()))
+        points.append(WorkPoint("analytic", f"order {k}", error, seconds))
+        points.append(WorkPoint("analytic derivation", f"order {k}", math.nan, derive))
+
+    ref = truth(y0)
+    runs: list[tuple[str, str, object]] = []
+    runs += [("rk4", f"{s:g} steps/unit", RK4(steps_per_unit=s)) for s in rk4_steps]
+    runs += [
+        (f"scipy {m}", f"rtol={tol:g}", Scipy(m, rtol=tol))
+        for m in scipy_methods
+        for tol in tolerances
+    ]
+    if heyoka and symbolic:
+        hy = Heyoka()
+        hy.integrate(original.rhs, (0.0, min(horizon, period)), y0)  # JIT compile, not timed
+        runs.append(("heyoka", "tol=eps", hy))
+    for method, setting, integrator in runs:
+        seconds, traj = _median_time(
+            lambda i=integrator: i.integrate(original.rhs, (0.0, horizon), y0, t_eval=t), repeat
+        )
+        error = _relative_error(np.asarray(traj.y, dtype=float), ref) if traj.success else math.nan
+        points.append(WorkPoint(method, setting, error, seconds))
+    return WorkPrecision(
+        problem=getattr(problem, "name", type(problem).__name__),
+        periods=float(periods),
+        horizon=horizon,
+        reference=reference.name,
+        points=tuple(points),
+    )
