@@ -2,12 +2,13 @@
 
 The folder is ``$PERTURB_CACHE_DIR`` if set, else ``$XDG_CACHE_HOME/perturb`` or ``~/.cache/perturb``.
 Set ``PERTURB_CACHE_DIR=off`` to disable it.  Entries are pickles keyed by a hash of everything the
-result depends on (the inputs' ``srepr`` and the perturb version), so a change of input or of
-version never reads a stale entry; an unreadable entry is recomputed and overwritten.
+result depends on (the inputs' ``srepr``, the perturb version and the engine's source code), so a
+change of input, version or engine never reads a stale entry; an unreadable entry is recomputed and overwritten.
 """
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import os
 import pickle
@@ -35,10 +36,19 @@ def cache_dir() -> Path | None:
     return Path(base) / "perturb"
 
 
+@functools.cache
+def _code_fingerprint() -> str:
+    """Hash of the engine's source: an edited engine never reads results of an older one."""
+    digest = hashlib.sha256()
+    for path in sorted(Path(__file__).parent.glob("*.py")):
+        digest.update(path.read_bytes())
+    return digest.hexdigest()[:16]
+
+
 def _key(parts: tuple) -> str:
     from perturb import __version__
 
-    text = repr((CACHE_FORMAT, __version__, *parts))
+    text = repr((CACHE_FORMAT, __version__, _code_fingerprint(), *parts))
     return hashlib.sha256(text.encode()).hexdigest()[:32]
 
 

@@ -654,6 +654,13 @@ class _Construction:
                 continue
             values = [t.at_zero() for t in terms[i]]
             deviations[name] = tuple(values[1:])
+            slopes = [t.derivative().at_zero() for t in terms[i]]
+            omega = self.omega[: len(frequency)]
+            velocity = [
+                sp.expand(sum(omega[a] * slopes[q - a] for a in range(q + 1) if a < len(omega)))
+                for q in range(len(slopes))
+            ]
+            deviations[self.system.velocities[i].name] = tuple(velocity[1:])
         return PeriodicSolution(
             system=self.system,
             order=order,

@@ -67,7 +67,8 @@ class PeriodicSolution:
         The construction, order by order.
     deviations : dict
         ``{coordinate name: (beta_1, beta_2, ...)}``: the Maclaurin coefficients of the initial-value
-        deviations :math:`\\beta_i(\\varepsilon) = x_i(0) - M_i`.
+        deviations :math:`\\beta_i(\\varepsilon) = x_i(0) - M_i`; under the velocity's name the same for
+        :math:`\\dot x_i(0)` (resonant coordinates).
     status : Status
     message : str
         Human-readable detail of the status.
