@@ -138,10 +138,20 @@ def test_disk_gamma3_exactly_one_is_bad_input():
         _fast_disk(gamma3_0=1.0)
 
 
-def test_disk_no_newtonian_centre_is_bad_input():
-    """R -> inf: k = 0, the M1 = M2 = 0 branch does not exist; the error names R."""
-    with pytest.raises(InvalidParameterError, match="`R`"):
-        validate(_disk(R=math.inf, r0=_disk().scale_c() / 0.004, gamma3_0=0.25))
+def test_disk_no_newtonian_centre_fails_with_reason():
+    """R -> inf: k = 0, the M1 = M2 = 0 branch does not exist; the reason names R.
+
+    The disk either refuses the parameters (InvalidParameterError) or returns a failed construction;
+    validate then reports completed = False with the construction's message.
+    """
+    try:
+        problem = _disk(R=math.inf, r0=_disk().scale_c() / 0.004, gamma3_0=0.25)
+        report = validate(problem)
+    except InvalidParameterError as exc:
+        assert "`R`" in str(exc)
+        return
+    assert not report.valid and not report.completed
+    assert "R" in report.message and "construction failed" in report.verdict
 
 
 def test_disk_large_R_small_detuning_invalid():
