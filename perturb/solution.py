@@ -33,6 +33,7 @@ class Status(enum.Enum):
         "the periodicity conditions leave some amplitudes free (a continuous family): fix them "
         "with `amplitudes=`"
     )
+    SINGULAR = "a divisor of the solution vanishes at these parameter values (a degenerate detuning or a resonance)"
     NOT_POLYNOMIAL = (
         "the right-hand side is not polynomial in the state; give numeric parameter values"
     )

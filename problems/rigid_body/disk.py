@@ -23,9 +23,10 @@ from __future__ import annotations
 
 import math
 
+import attrs
 import sympy as sp
 
-from perturb import PeriodicSolution
+from perturb import PeriodicSolution, Status
 from perturb.errors import InvalidParameterError
 from problems import register
 from problems.rigid_body._body import FastSpinBody, body_parameter_specs
@@ -38,8 +39,9 @@ __all__ = ["DiskInNewtonianField", "DISK_RTOL"]
 DISK_RTOL = 1e-9
 #: The reduction order needed for a solution of order n is n + 2 (the first forcing is O(eps**2)).
 _FORCING_DELAY = 2
-#: Highest solution order offered: order 2 needs F4 and its conditions are far slower (> 40 s).
-MAX_DISK_ORDER = 1
+#: Highest solution order offered: order 2 needs F4 (reduction to eps**4) and takes about a minute
+#: cold (then it is read from the disk cache); order 3 would need F5 and is not offered.
+MAX_DISK_ORDER = 2
 #: Branch of the amplitude equations: the paper's family M1 = M2 = 0.
 BRANCH_M1_M2_ZERO = {"a_P0": 0, "b_P0": 0}
 
@@ -88,7 +90,7 @@ class DiskInNewtonianField(FastSpinBody):
         ):
             raise InvalidParameterError(
                 f"`order` = {order!r} is invalid: the disk solution is implemented to order "
-                f"{MAX_DISK_ORDER}; pass order=1"
+                f"{MAX_DISK_ORDER}; pass order=1 or 2"
             )
         return disk_reduction(order + _FORCING_DELAY)
 
@@ -96,13 +98,18 @@ class DiskInNewtonianField(FastSpinBody):
         return {**super().method_options(), "branch": dict(BRANCH_M1_M2_ZERO)}
 
     def solve(self, order: int = 1) -> PeriodicSolution:
+        solution = super().solve(order)
         if self.symbol_values()["k"] == 0:
-            raise InvalidParameterError(
-                f"`R` = {self.values['R']:g} is invalid for the disk: k = 3C/(RMl) = 0 makes the "
-                "detuning k*M3**2/2 vanish, and the amplitudes eps*v/(k*M3**2) of the M1 = M2 = 0 "
-                "branch do not exist; give a finite R"
+            return attrs.evolve(
+                solution,
+                status=Status.SINGULAR,
+                message=(
+                    f"R = {self.values['R']:g} gives k = 3C/(RMl) = 0: the detuning k*M3**2/2 of the "
+                    "branch M1 = M2 = 0 vanishes and its amplitudes eps*v/(k*M3**2) do not exist "
+                    "(no Newtonian centre, no periodic solution on this branch); give a finite R"
+                ),
             )
-        return super().solve(order)
+        return solution
 
     # ------------------------------------------------------------------ reference formulas
     def detuning(self) -> float:
