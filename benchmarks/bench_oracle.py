@@ -154,7 +154,7 @@ def main(argv=None) -> int:
         print(f"{name:<34s} {e:10.2e} {s:10.4f} {j:9.3f} {target:>22s} {flag:>4s}")
     print(
         f"oracle / bare time ratio: {ratio:.3f} (oracle overhead {med['oracle'] - med['bare']:.2e} s "
-        "per call, mostly copy.copy of the compiled taylor_adaptive)"
+        "per call: argument checks and the Trajectory)"
     )
     ok = (
         err["oracle"] <= TARGET_ERROR and ratio <= TARGET_RATIO and shoot <= TARGET_SHOOTING_SECONDS
