@@ -25,6 +25,7 @@ _EPILOG = """examples:
   perturb solve disk --euler --format json
   perturb validate duffing --set eps=0.05
   perturb reproduce paper
+  perturb work-precision duffing --periods 10 --orders 3 --format csv
 """
 
 
@@ -97,7 +98,39 @@ def _build_parser() -> argparse.ArgumentParser:
         default=None,
         help="rk4, dop853, rk45, radau, lsoda or heyoka (default: heyoka if installed, else dop853)",
     )
+    validate.add_argument(
+        "--periods",
+        default="10",
+        help="horizon of the trajectory comparison, in periods (default 10)",
+    )
     _add_format(validate, ["table", "json"])
+    work = sub.add_parser(
+        "work-precision",
+        help="error against run time: analytic orders 1..N, RK4, scipy and heyoka",
+        description="For PROBLEM over a horizon, measure the error against a reference trajectory and "
+        "the wall time (median of repeated runs) of the analytic solution at orders 1..N "
+        "(derivation and evaluation timed apart), RK4 at several steps, the scipy methods at "
+        "several tolerances and heyoka.",
+    )
+    work.add_argument("problem", help="problem name (see `perturb list`)")
+    work.add_argument(
+        "--set",
+        dest="sets",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="set a parameter (repeatable)",
+    )
+    work.add_argument("--periods", default="10", help="horizon in periods (default 10)")
+    work.add_argument("--orders", default="3", help="analytic orders 1..N (default 3)")
+    work.add_argument("--repeat", default="3", help="runs per point, median reported (default 3)")
+    work.add_argument(
+        "--plot",
+        default=None,
+        metavar="FILE",
+        help="also save a work-precision plot (needs matplotlib)",
+    )
+    _add_format(work, ["table", "csv", "json"])
     reproduce = sub.add_parser(
         "reproduce",
         help="reproduce a published paper's numbers beside the true motion",
@@ -210,12 +243,57 @@ def _cmd_validate(args) -> int:
 
     cls = get_problem(args.problem)
     problem = cls.create(**_parse_sets(args.sets))
-    report = validate(problem, order=_parse_order(args.order), integrator=args.integrator)
+    report = validate(
+        problem,
+        order=_parse_order(args.order),
+        integrator=args.integrator,
+        periods=_parse_positive("--periods", args.periods, float),
+    )
     if args.format == "json":
         print(json.dumps(report.as_dict(), allow_nan=True))
     else:
         print(report.as_table())
     return EXIT_OK if report.completed else EXIT_FAILED
+
+
+def _parse_positive(flag: str, text: str, kind=float):
+    try:
+        value = kind(text)
+    except ValueError:
+        raise _UsageError(
+            f"{flag} {text!r} is not a number: give a positive {kind.__name__}"
+        ) from None
+    if not value > 0 or value != value or value == float("inf"):
+        raise _UsageError(f"{flag} {text!r} is invalid: give a finite value > 0")
+    return value
+
+
+def _cmd_work_precision(args) -> int:
+    from perturb.workprecision import work_precision
+    from problems import get_problem
+
+    cls = get_problem(args.problem)
+    problem = cls.create(**_parse_sets(args.sets))
+    periods = _parse_positive("--periods", args.periods, float)
+    orders = _parse_positive("--orders", args.orders, int)
+    repeat = _parse_positive("--repeat", args.repeat, int)
+    if args.plot is not None:
+        try:
+            import matplotlib  # noqa: F401
+        except ImportError:
+            raise _UsageError(
+                "--plot needs matplotlib: pip install 'perturb[plot]', or drop --plot"
+            ) from None
+    result = work_precision(problem, periods=periods, orders=orders, repeat=repeat)
+    if args.format == "json":
+        print(json.dumps(result.as_dict(), allow_nan=True))
+    elif args.format == "csv":
+        print(result.as_csv())
+    else:
+        print(result.as_table())
+    if args.plot is not None:
+        result.plot().savefig(args.plot)
+    return EXIT_OK
 
 
 def _cmd_reproduce(args) -> int:
@@ -267,6 +345,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _cmd_validate(args)
         if args.command == "reproduce":
             return _cmd_reproduce(args)
+        if args.command == "work-precision":
+            return _cmd_work_precision(args)
         raise _UsageError(f"unknown command {args.command!r}")  # pragma: no cover
     except _UsageError as exc:
         print(f"perturb: error: {exc}", file=sys.stderr)
