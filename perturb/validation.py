@@ -489,6 +489,8 @@ class ValidationReport:
             f"{self.integrator}"
         )
         comps = self.errors.get("components", {})
+        if "note" in self.errors:
+            lines.append(f"  {self.errors['note']}")
         if comps:
             lines.append(
                 f"  {'component':>12s} {'max abs err':>13s} {'rel err':>11s} {'amplitude':>11s}"
@@ -1284,7 +1286,12 @@ def validate(
     analytic = _analytic(problem, solution, names, t[:reached])
     errors: dict[str, Any] = {"horizon": horizon}
     max_rel = math.nan
-    if reached:
+    if reached <= 1:  # only t = 0, where both start from the same state: nothing was compared
+        errors["note"] = (
+            f"the integration stopped at t = {traj.t_reached:.6g}, before the first comparison time "
+            f"{t[1]:.6g}: no error was measured"
+        )
+    else:
         components, max_abs, max_rel = _component_errors(names, analytic, numeric)
         first = min(reached, samples_per_period + 1)
         _, _, first_rel = _component_errors(names, analytic[:, :first], numeric[:, :first])
