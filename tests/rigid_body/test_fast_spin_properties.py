@@ -23,18 +23,18 @@ SETTINGS = settings(max_examples=12, deadline=None, suppress_health_check=[Healt
 def bodies(draw):
     A = draw(st.floats(1.0, 10.0))
     B = draw(st.floats(1.0, 10.0))
-    fraction = draw(st.floats(0.0, 1.0))
+    # draw omega**2 = (C - A)(C - B)/(AB) directly, away from 0 and 1, and solve for C: no rejection
+    w2 = draw(st.floats(MIN_DIVISOR, 1 - MIN_DIVISOR))
     oblate = draw(st.booleans())
-    low, high = (max(A, B), A + B) if oblate else (abs(A - B), min(A, B))
-    C = low + fraction * (high - low)
+    root = math.sqrt((A - B) ** 2 + 4 * A * B * w2)
+    C = (A + B + root) / 2 if oblate else (A + B - root) / 2
+    assume(C >= abs(A - B))  # the prolate root can break the triangle inequality
     x0 = draw(st.floats(-3.0, 3.0))
     y0 = draw(st.floats(-3.0, 3.0).filter(lambda v: abs(v) > 0.1))
     z0 = draw(st.floats(-1.0, 1.0))
     gamma3 = draw(st.floats(-0.8, 0.8))
     k_value = draw(st.floats(0.0, 1.0))
     arm = math.hypot(x0, y0)
-    w2 = (C - A) * (C - B) / (A * B)
-    assume(MIN_DIVISOR < w2 < 1 - MIN_DIVISOR)
     return {
         "A": A, "B": B, "C": C, "x0": x0, "y0": y0, "z0": z0, "gamma3_0": gamma3, "M": 1.0,
         "g": C / arm, "R": 3 * C / (k_value * arm) if k_value > 0 else math.inf,
