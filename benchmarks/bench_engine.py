@@ -48,7 +48,9 @@ def evaluation_rate(name: str, order: int) -> tuple[float, float]:
 
 
 def main() -> None:
-    print(f"{'problem':14s} {'order':>5s} {'derive [s]':>11s} {'eval [points/s]':>16s} {'harmonics':>9s}")
+    print(
+        f"{'problem':14s} {'order':>5s} {'derive [s]':>11s} {'eval [points/s]':>16s} {'harmonics':>9s}"
+    )
     for name in ("duffing", "van-der-pol", "resonant-pair"):
         for order in (1, 2, 3):
             seconds = derive_seconds(name, order)
