@@ -23,12 +23,15 @@ from problems.rigid_body import equations as eq
 from problems.rigid_body.euler_angles import angles_from_state, precession_by_quadrature
 from problems.rigid_body.reduction import INITIAL_VALUES, Reduction, check_gamma3_0
 
-__all__ = ["FastSpinBody", "STATE_NAMES", "geometric_constraint"]
+__all__ = ["FastSpinBody", "INTEGRAL_NAMES", "STATE_NAMES", "geometric_constraint"]
 
 #: Names of the physical state components, in the order of :func:`equations.full_rhs`.
 STATE_NAMES = ("p", "q", "r", "gamma1", "gamma2", "gamma3")
+#: Names of the first integrals, in the order of :func:`equations.integrals_function`.
+INTEGRAL_NAMES = ("energy", "area", "geometric")
 #: Above this value of eps = c/r0 the fast-spin expansion is not even qualitatively right
-#: (reference section (f): at eps = 232 the motion is tumbling).
+#: (reference section (f): at eps = 232 the motion is tumbling). It is also the limit of the
+#: validity condition "eps = c/r0 small" (:meth:`FastSpinBody.validity_conditions`).
 EPSILON_WARN = 0.1
 #: Relative tolerance of the reference integration (the reference's oracle: integral drift <= 1e-11).
 ORACLE_RTOL = 1e-12
@@ -318,9 +321,54 @@ class FastSpinBody(Problem):
         out["integrals"] = float(np.max(drift))
         return out
 
+    # ------------------------------------------------------------------ validation hooks
+    def validity_conditions(self) -> list[tuple[str, float, bool, str]]:
+        """Conditions of the fast-spin expansion, for :func:`perturb.validation.validate`.
+
+        Returns
+        -------
+        list of (name, value, ok, sentence)
+            ``"ε = c/r0 small"`` (:data:`EPSILON_WARN`) and the problem's own conditions
+            (:meth:`_specific_conditions`).
+        """
+        eps = self.epsilon()
+        ok = eps <= EPSILON_WARN
+        sentence = (
+            f"the spin must be fast: eps = c/r0 = {eps:.6g} <= {EPSILON_WARN:g}"
+            if ok
+            else f"eps = c/r0 = {eps:.6g} > {EPSILON_WARN:g}: the spin r0 = "
+            f"{self.values['r0']:.6g} is not fast compared with c = sqrt(Mgl/C) = "
+            f"{self.scale_c():.6g}, so the fast-spin series does not describe the motion (give "
+            f"r0 >= c/{EPSILON_WARN:g} = {self.scale_c() / EPSILON_WARN:.6g})"
+        )
+        return [("ε = c/r0 small", eps, ok, sentence), *self._specific_conditions()]
+
+    def _specific_conditions(self) -> list[tuple[str, float, bool, str]]:
+        """Problem-specific validity conditions (none in the base class)."""
+        return []
+
+    def first_integrals_function(self):
+        """``y -> (energy, area, geometric)`` of physical states ``y`` (shape (6,) or (6, n)).
+
+        The returned callable carries ``.names`` = :data:`INTEGRAL_NAMES`.
+        """
+        return _NamedIntegrals(eq.integrals_function(self.body()))
+
     def integrals(self, y) -> np.ndarray:
         """(energy, area, geometric) of physical states ``y`` (shape (6,) or (6, n))."""
         return eq.integrals_function(self.body())(y)
+
+
+class _NamedIntegrals:
+    """A first-integrals function with the ``names`` attribute :func:`validate` reads."""
+
+    names = INTEGRAL_NAMES
+
+    def __init__(self, function):
+        self._function = function
+
+    def __call__(self, y) -> np.ndarray:
+        return self._function(y)
 
 
 def _user_parameter(solution: PeriodicSolution, eps: float) -> float:

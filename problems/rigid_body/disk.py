@@ -29,11 +29,11 @@ import sympy as sp
 from perturb import PeriodicSolution, Status
 from perturb.errors import InvalidParameterError
 from problems import register
-from problems.rigid_body._body import FastSpinBody, body_parameter_specs
+from problems.rigid_body._body import FastSpinBody, _user_parameter, body_parameter_specs
 from problems.rigid_body.equations import a, b
 from problems.rigid_body.reduction import Reduction, disk_reduction
 
-__all__ = ["DiskInNewtonianField", "DISK_RTOL"]
+__all__ = ["DETUNING_RATIO_LIMIT", "DISK_RTOL", "DiskInNewtonianField"]
 
 #: Relative tolerance of A + B = C (round-off in user input must not reject a disk).
 DISK_RTOL = 1e-9
@@ -44,6 +44,13 @@ _FORCING_DELAY = 2
 MAX_DISK_ORDER = 2
 #: Branch of the amplitude equations: the paper's family M1 = M2 = 0.
 BRANCH_M1_M2_ZERO = {"a_P0": 0, "b_P0": 0}
+#: Largest |beta|**2/(k M3**2) for which the detuning counts as dominant (reference (f): validity needs
+#: |beta|**2 << k M3**2). The true detuning is (k M3**2 - |beta|**2)/2, so the first-order amplitudes
+#: beta = eps v/(k M3**2) are off by the relative amount ~|beta|**2/(k M3**2) (checked against the
+#: true periodic orbits: 4.4e-3 predicted, 5.0e-3 found at k = 0.5, gamma3_0 = 0.3, eps = 5e-3);
+#: 0.1 allows the same 10 % as the verdict's error limit, and keeps well away from the second
+#: family M1**2 + M2**2 = k M3**2.
+DETUNING_RATIO_LIMIT = 0.1
 
 
 @register
@@ -110,6 +117,40 @@ class DiskInNewtonianField(FastSpinBody):
                 ),
             )
         return solution
+
+    # ------------------------------------------------------------------ validity
+    def detuning_ratio(self) -> float:
+        """:math:`|\\beta|^2/(kM_3^2)` with :math:`\\beta = (P(0), \\dot P(0))` of the first-order
+        solution at this ε (inf when the branch does not exist, k = 0)."""
+        solution = self.solve(1)
+        if not solution.success or self.detuning() <= 0:
+            return math.inf
+        z0 = solution.initial_state(_user_parameter(solution, self.epsilon()), self.symbol_values())
+        start = dict(zip(solution.state_names, z0, strict=True))
+        beta_squared = float(start["P"]) ** 2 + float(start["dP"]) ** 2
+        return beta_squared / (2 * self.detuning())
+
+    def _specific_conditions(self) -> list[tuple[str, float, bool, str]]:
+        ratio = self.detuning_ratio()
+        ok = ratio <= DETUNING_RATIO_LIMIT
+        if math.isinf(ratio):
+            sentence = (
+                "the detuning k*M3**2/2 vanishes (k = 0: no Newtonian centre), so the amplitudes "
+                "eps*v/(k*M3**2) of the branch M1 = M2 = 0 do not exist"
+            )
+        elif ok:
+            sentence = (
+                f"the detuning must dominate: |beta|**2/(k*M3**2) = {ratio:.3g} <= "
+                f"{DETUNING_RATIO_LIMIT:g}"
+            )
+        else:
+            sentence = (
+                f"the detuning does not dominate: |beta|**2/(k*M3**2) = {ratio:.3g} > "
+                f"{DETUNING_RATIO_LIMIT:g}, so the amplitude-dependent part -|beta|**2/2 of the "
+                "detuning is not negligible and the amplitudes eps*v/(k*M3**2) are wrong (give a "
+                "larger r0 or a stronger Newtonian field, i.e. a smaller R)"
+            )
+        return [("detuning dominates", ratio, ok, sentence)]
 
     # ------------------------------------------------------------------ reference formulas
     def detuning(self) -> float:

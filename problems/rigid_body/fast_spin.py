@@ -24,7 +24,7 @@ import math
 from perturb._defaults import NEAR_RESONANCE
 from perturb.errors import InvalidParameterError
 from problems import register
-from problems.rigid_body._body import FastSpinBody, body_parameter_specs
+from problems.rigid_body._body import EPSILON_WARN, FastSpinBody, body_parameter_specs
 from problems.rigid_body.reduction import Reduction, general_body_reduction
 
 __all__ = ["FastSpinRigidBody", "MAX_BODY_ORDER", "RESONANCE_TOL"]
@@ -100,6 +100,23 @@ class FastSpinRigidBody(FastSpinBody):
                 f"{MAX_BODY_ORDER}; pass order=1 or 2"
             )
         return general_body_reduction(order + _REDUCTION_EXTRA)
+
+    def _specific_conditions(self) -> list[tuple[str, float, bool, str]]:
+        """The small divisor 1/(1 - omega**2) of the forced response must stay moderate."""
+        eps = self.epsilon()
+        divisor = abs(1 - self.omega() ** 2)
+        ratio = eps / divisor
+        ok = ratio <= EPSILON_WARN
+        sentence = (
+            f"the small divisor must stay moderate: eps/|1 - omega**2| = {eps:.4g}/{divisor:.4g} = "
+            f"{ratio:.3g} <= {EPSILON_WARN:g}"
+            if ok
+            else f"the small divisor 1/(1 - omega**2) = {1 / divisor:.4g} is too large for eps = "
+            f"{eps:.4g}: eps/|1 - omega**2| = {ratio:.3g} > {EPSILON_WARN:g}, so the forced "
+            "response's O(eps/(1 - omega**2)) terms are not small (omega = "
+            f"{self.omega():.6g} is too close to the resonance omega = 1; give a larger r0)"
+        )
+        return [("small divisor 1/(1 - ω²)", ratio, ok, sentence)]
 
     def omega(self) -> float:
         """The nutation frequency :math:`\\omega` (units of the spin :math:`r_0`)."""
