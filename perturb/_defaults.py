@@ -28,3 +28,7 @@ NEAR_RESONANCE = 1e-3
 #: quadrature (FFT of O(1) samples carries errors ~1e-16 times the number of harmonics) and are
 #: set to zero before the periodicity conditions are solved.
 NUMERIC_ZERO = 1e-12
+
+#: Digits of the evaluation at a generic point that confirms a condition vanishes once solved:
+#: far beyond double precision, so cancellation among large terms cannot fake a zero or a non-zero.
+PROBE_DIGITS = 30

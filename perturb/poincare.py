@@ -34,7 +34,7 @@ from collections.abc import Mapping
 import sympy as sp
 from attrs import field, frozen, validators
 
-from perturb._defaults import FFT_POINTS, FFT_TRIM, MAX_ORDER, NUMERIC_ZERO
+from perturb._defaults import FFT_POINTS, FFT_TRIM, MAX_ORDER, NUMERIC_ZERO, PROBE_DIGITS
 from perturb.cache import cached
 from perturb.errors import InvalidSystemError, bad_value
 from perturb.series import NotNumeric, TrigSeries, evaluate_analytic, evaluate_polynomial
@@ -445,33 +445,32 @@ class _Construction:
             return {}, ()
         unknowns = sorted(set().union(*(e.free_symbols for e in eqs)) & self.unknowns, key=str)
         if not unknowns:
-            residual = [e for e in eqs if not _is_zero(e) and sp.simplify(e) != 0]
+            residual = [e for e in eqs if not _vanishes(e)]
             if residual:
                 raise _Failure(
                     Status.INCONSISTENT, f"order {k}: conditions {residual} cannot vanish"
                 )
             self.pending = []
             return {}, ()
-        linear = all(sp.Poly(e, *unknowns).total_degree() <= 1 for e in eqs)
+        unknown_set = set(unknowns)
+        linear = all(not (sp.diff(e, u).free_symbols & unknown_set) for e in eqs for u in unknowns)
         if linear:
             solution = self._solve_linear(eqs, unknowns, k)
             branches = ()
         else:
             solution, branches = self._solve_nonlinear(eqs, unknowns, k, generating)
+        # The solvers return solutions of the whole system (the free unknowns of a family left as
+        # parameters), so every pending condition now holds identically. Proving it symbolically
+        # means cancelling large rational functions; a numerical probe at a generic point (30 digits)
+        # checks it at a fraction of the cost and still catches a solver that returned a bad root.
+        pending = self.pending
         self._substitute(solution)
-        # whatever is left (independent of the remaining unknowns) must vanish; equations still
-        # involving unknowns stay pending for later orders
-        still = []
-        for e in self.pending:
-            e = sp.expand(e)
-            if e == 0:
-                continue
-            if not (e.free_symbols & self.unknowns):
-                if not _is_zero(e) and sp.simplify(e) != 0:
-                    raise _Failure(Status.INCONSISTENT, f"order {k}: condition {e} = 0 cannot hold")
-                continue
-            still.append(e)
-        self.pending = still
+        for before, after in zip(pending, self.pending, strict=True):
+            if not _vanishes(after):
+                raise _Failure(
+                    Status.INCONSISTENT, f"order {k}: condition {before} = 0 cannot hold"
+                )
+        self.pending = []
         return solution, branches
 
     def _solve_linear(self, eqs, unknowns, k) -> dict:
@@ -701,6 +700,26 @@ def _is_zero(expr) -> bool:
     return expr == 0 or sp.expand(expr) == 0 or sp.cancel(expr) == 0
 
 
+def _vanishes(expr) -> bool:
+    """Whether ``expr`` is zero: exactly when cheap, else by evaluation at a generic point.
+
+    The generic point gives every symbol a distinct rational value in (0.5, 1) (where the
+    square roots of first-integral constraints stay real); a non-zero rational function of the
+    symbols that vanishes there to 30 digits would be a coincidence of measure zero.
+    """
+    expr = sp.sympify(expr)
+    if expr == 0:
+        return True
+    if expr.is_number:
+        return _is_zero(expr)
+    value = expr.evalf(PROBE_DIGITS, subs=_probe_values(expr))
+    try:
+        magnitude = abs(complex(value))
+    except TypeError:  # evaluation left symbols behind (a function sympy cannot evaluate)
+        return _is_zero(expr)
+    return magnitude < NUMERIC_ZERO
+
+
 def _chop(poly: TrigPoly) -> TrigPoly:
     """Drop floating-point round-off (|c| < NUMERIC_ZERO) from the coefficients of ``poly``."""
 
@@ -712,10 +731,14 @@ def _chop(poly: TrigPoly) -> TrigPoly:
 
 
 def _probe_values(expr: sp.Expr) -> dict:
-    """Deterministic generic numeric values for the free symbols of ``expr`` (for ordering roots)."""
-    return {
-        s: sp.Rational(7 + 3 * i, 10 + i) for i, s in enumerate(sorted(expr.free_symbols, key=str))
-    }
+    """Deterministic generic values in (0.5, 1) for the free symbols of ``expr``.
+
+    Distinct rationals with unrelated denominators (so no accidental cancellation), below 1 so that
+    the square roots of first-integral constraints such as sqrt(1 - gamma**2) stay real.
+    """
+    symbols = sorted(expr.free_symbols, key=str)
+    return {s: sp.Rational(1, 2) + sp.Rational(i + 1, 2 * (len(symbols) + 1)) - sp.Rational(1, 101 + 7 * i)
+            for i, s in enumerate(symbols)}  # fmt: skip
 
 
 class _Failure(Exception):

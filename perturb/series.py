@@ -6,6 +6,7 @@ series for the state into a polynomial right-hand side gives the forcing of ever
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping, Sequence
 
 import sympy as sp
@@ -64,6 +65,15 @@ class TrigSeries:
         return [c.at_zero() for c in self.coefficients]
 
 
+@functools.lru_cache(maxsize=256)
+def _polynomial_terms(expr: sp.Expr, syms: tuple) -> tuple:
+    """``Poly(expr, *syms).terms()``, cached: a system's right-hand sides are split once, not per order."""
+    poly = sp.Poly(expr, *syms)
+    if any(not c.is_polynomial(*syms) for c in poly.coeffs()):  # pragma: no cover - defensive
+        raise sp.PolynomialError(f"{expr} is not polynomial in {syms}")
+    return tuple(poly.terms())
+
+
 def evaluate_polynomial(
     expr: sp.Expr, variables: Mapping[sp.Symbol, TrigSeries], order: int
 ) -> TrigSeries:
@@ -80,9 +90,7 @@ def evaluate_polynomial(
     syms = [v for v in variables if expr.has(v)]
     if not syms:
         return TrigSeries.constant(sp.expand(expr), order)
-    poly = sp.Poly(expr, *syms)
-    if any(not c.is_polynomial(*syms) for c in poly.coeffs()):  # pragma: no cover - defensive
-        raise sp.PolynomialError(f"{expr} is not polynomial in {syms}")
+    terms = _polynomial_terms(expr, tuple(syms))
     powers: dict[tuple[sp.Symbol, int], TrigSeries] = {}
 
     def power(sym: sp.Symbol, e: int) -> TrigSeries:
@@ -94,7 +102,7 @@ def evaluate_polynomial(
         return powers[key]
 
     total = TrigSeries([TrigPoly() for _ in range(order + 1)])
-    for monom, coeff in poly.terms():
+    for monom, coeff in terms:
         term = TrigSeries.constant(coeff, order)
         for sym, e in zip(syms, monom, strict=True):
             if e:
