@@ -47,6 +47,7 @@ from problems.rigid_body.equations import (
     full_rhs,
     integrals_function,
 )
+from problems.rigid_body.paper_euler import EULER_EPSILONS, euler_angle_study
 from problems.rigid_body.paper_witness import forcing_witnesses
 from problems.rigid_body.reduction import INITIAL_VALUES, REDUCED_STATE, disk_reduction
 
@@ -166,6 +167,9 @@ class ReproductionReport:
         The readings used (units of t, which mu, initial state).
     elapsed : float
         Wall-clock seconds of the reproduction.
+    euler_angles : dict
+        The check of the Euler angles (28)–(29) in the fast-spin regime
+        (:func:`problems.rigid_body.paper_euler.euler_angle_study`).
     """
 
     paper: str
@@ -180,6 +184,7 @@ class ReproductionReport:
     errata: dict
     notes: tuple[str, ...] = field(converter=tuple)
     elapsed: float = 0.0
+    euler_angles: dict = field(factory=dict)
 
     def as_dict(self) -> dict:
         """A JSON-serialisable dict (NaN/inf kept as floats; ``json.dumps(..., allow_nan=True)``)."""
@@ -197,6 +202,7 @@ class ReproductionReport:
                 "errata": self.errata,
                 "notes": list(self.notes),
                 "elapsed_seconds": self.elapsed,
+                "euler_angles": self.euler_angles,
             }
         )
 
@@ -248,6 +254,21 @@ class ReproductionReport:
         w(f"  {self.verdict['summary']}\n")
         for key, value in self.verdict["numbers"].items():
             w(f"    {key}: {value:.6g}\n")
+        if self.euler_angles:
+            w("\n## Euler angles (28)-(29) vs the true motion (fast spin, 3 periods)\n")
+            w("  max |difference| per eps; slope = d log / d log eps\n")
+            for case, block in self.euler_angles.items():
+                w(f"### {case}: k = {block['k']:g}, gamma0'' = {block['gamma3_0']:g}\n")
+                w(f"    eps: {', '.join(f'{e:.3g}' for e in block['eps'])}\n")
+                rows = {"size (true)": block["size"], **block["max_diff"]}
+                slopes = {"size (true)": block["slope"]["size"], **block["slope"]}
+                for name, per_angle in rows.items():
+                    for angle, values in per_angle.items():
+                        w(
+                            f"    {name:<36}{angle:<6}"
+                            + "".join(f"{v:>10.2e}" for v in values)
+                            + f"   slope {slopes[name][angle]:5.2f}\n"
+                        )
         w("\n## Errata (details: docs/paper-errata.md)\n")
         for status in ("wrong", "confirmed", "unverifiable"):
             w(f"### {status}\n")
@@ -595,7 +616,9 @@ def _rk4_experiment(cf: dict, printed: dict, truth_cols: dict) -> dict:
 
 
 # ---------------------------------------------------------------------------- errata
-def _errata(consts: dict, cf: dict, check: dict, truth: dict, verdict: dict, exp: dict) -> dict:
+def _errata(
+    consts: dict, cf: dict, check: dict, truth: dict, verdict: dict, exp: dict, euler: dict
+) -> dict:
     wit = forcing_witnesses()
     d, p = wit["derived"], wit["paper"]
     w = {k: v for k, v in wit["values"].items()}
@@ -782,12 +805,33 @@ def _errata(consts: dict, cf: dict, check: dict, truth: dict, verdict: dict, exp
             "claim": "Table 2 (the paper's RK4 results) is not printed",
             "witness": {},
         },
-        "U2": {
-            "status": "unverifiable",
-            "where": "(28), (29)",
-            "claim": "the Euler angles are unchecked yet (see docs/paper-errata.md)",
-            "witness": {},
+        "E12": {
+            "status": "wrong",
+            "where": "(26), (28), (29)",
+            "claim": "the Euler angles fail at leading order in the fast-spin regime: theta misses "
+            "the amplitude (beta) terms of the nutation, psi is O(eps) where the precession is "
+            "O(eps^2) (a factor c/r0 is missing), phi has spurious O(eps) terms and lacks the "
+            "O(eps^2) rate correction (see docs/paper-errata.md E12)",
+            "witness": _euler_witness(euler),
         },
+    }
+
+
+#: The Euler-angle witness: case and eps (an entry of EULER_EPSILONS) whose figures are quoted.
+EULER_WITNESS_CASE = "k0.5_g0.3"
+EULER_WITNESS_EPS = 0.01
+
+
+def _euler_witness(euler: dict) -> dict:
+    """Key figures of the Euler-angle check for E12 (one case, one eps, and the slopes)."""
+    block = euler[EULER_WITNESS_CASE]
+    i = EULER_EPSILONS.index(EULER_WITNESS_EPS)
+    pairs = ("true_vs_paper", "true_vs_ours", "true_vs_leading_order")
+    return {
+        "case": {"k": block["k"], "gamma3_0": block["gamma3_0"], "eps": block["eps"][i]},
+        "true_size": {a: v[i] for a, v in block["size"].items()},
+        **{pair: {a: v[i] for a, v in block["max_diff"][pair].items()} for pair in pairs},
+        "slopes": {pair: block["slope"][pair] for pair in ("size", *pairs)},
     }
 
 
@@ -975,7 +1019,8 @@ def reproduce(name: str, output=None) -> ReproductionReport:
         },
     }
     experiment = _rk4_experiment(cf, printed, truth)
-    errata = _errata(consts, cf, check, truth_block, verdict, experiment)
+    euler = euler_angle_study()
+    errata = _errata(consts, cf, check, truth_block, verdict, experiment, euler)
     notes = (
         "Table 1 / closed form (30): phase h = T t/300 (T = 18.78775142), x, y = d/dh; "
         "v1, v2, k* from (21), (23) as printed with gamma0'^2 read as y0'^2 and M3 = 1",
@@ -985,6 +1030,9 @@ def reproduce(name: str, output=None) -> ReproductionReport:
         "consistent with p1 = p/c, r1 = r/r0); derivatives d/dh = (300/T) d/dt",
         "experiment (33): RK4 in the phase h from Table 1's first row, with the project's "
         "derived F2, Phi2",
+        "Euler angles (28)-(29): fast-spin disks (paper's A, B, C, x0, y0; c = 1, r0 = 1/eps), "
+        "mu^-1 read as eps = c/r0, t0 = 0, initial angles from the true motion; true psi by "
+        "integrating the kinematic equation along the Euler-Poisson trajectory",
     )
     report = ReproductionReport(
         paper=name,
@@ -999,6 +1047,7 @@ def reproduce(name: str, output=None) -> ReproductionReport:
         errata=errata,
         notes=notes,
         elapsed=time.perf_counter() - start,
+        euler_angles=euler,
     )
     if path is not None:
         _write_outputs(report, path)
