@@ -177,20 +177,44 @@ class FastSpinBody(Problem):
             options["amplitudes"] = {"G": geometric_constraint(self.reduction_for(order))}
         return options
 
+    #: Orders up to which the solution is kept symbolic in the body's parameters (one derivation
+    #: serves every body, and exports LaTeX); above it the parameters are put in first, as exact
+    #: rationals, which keeps the construction to seconds instead of minutes.
+    SYMBOLIC_MAX_ORDER: int = 1
+
     def solve(self, order: int = 1) -> PeriodicSolution:
-        """The symbolic periodic solution of ``order`` (cached; higher orders use a longer reduction)."""
+        """The periodic solution of ``order`` (cached; higher orders use a longer reduction).
+
+        Orders up to :attr:`SYMBOLIC_MAX_ORDER` are symbolic in the parameters; higher orders are
+        derived for this body's parameter values, converted to exact rationals (no rounding enters
+        the construction; the result is exact for the decimal values given).
+        """
         reduction = self.reduction_for(order)
         options = self._options_for(order)
+        system = reduction.system
+        specialise = order > self.SYMBOLIC_MAX_ORDER
+        values = {}
+        if specialise:
+            values = {
+                p: sp.nsimplify(self.symbol_values()[p.name], rational=True)
+                for p in system.parameters
+            }
+            system = system.with_values(values)
+            options["amplitudes"] = {
+                name: sp.sympify(expr).xreplace(values)
+                for name, expr in options["amplitudes"].items()
+            }
         key = (
             type(self).__module__,
             type(self).__qualname__,
             order,
             reduction.order,
             repr(sorted(options.items())),
+            repr(sorted((str(k), v) for k, v in values.items())),
         )
         if key not in _SOLUTION_CACHE:
             method = PoincareMethod(order=order, **options)
-            _SOLUTION_CACHE[key] = method.solve(reduction.system)
+            _SOLUTION_CACHE[key] = method.solve(system)
         return _SOLUTION_CACHE[key]
 
     def _reduction_of(self, solution: PeriodicSolution) -> Reduction:

@@ -39,9 +39,9 @@ __all__ = ["DETUNING_RATIO_LIMIT", "DISK_RTOL", "DiskInNewtonianField"]
 DISK_RTOL = 1e-9
 #: The reduction order needed for a solution of order n is n + 2 (the first forcing is O(eps**2)).
 _FORCING_DELAY = 2
-#: Highest solution order offered: order 2 needs F4 (reduction to eps**4) and takes about a minute
-#: cold (then it is read from the disk cache); order 3 would need F5 and is not offered.
-MAX_DISK_ORDER = 2
+#: Highest solution order offered: order n needs the reduction to eps**(n + 2) (order 3: F5, about
+#: 10 s cold); orders above 1 are derived for the given body's parameter values.
+MAX_DISK_ORDER = 3
 #: Branch of the amplitude equations: the paper's family M1 = M2 = 0.
 BRANCH_M1_M2_ZERO = {"a_P0": 0, "b_P0": 0}
 #: Largest |beta|**2/(k M3**2) for which the detuning counts as dominant (reference (f): validity needs
@@ -97,7 +97,7 @@ class DiskInNewtonianField(FastSpinBody):
         ):
             raise InvalidParameterError(
                 f"`order` = {order!r} is invalid: the disk solution is implemented to order "
-                f"{MAX_DISK_ORDER}; pass order=1 or 2"
+                f"{MAX_DISK_ORDER}; pass order=1, 2 or 3"
             )
         return disk_reduction(order + _FORCING_DELAY)
 
