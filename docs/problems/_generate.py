@@ -168,9 +168,15 @@ strained time $s = \Omega\tau$ (`solution.latex()`):
 $$\begin{aligned}@@solution@@\end{aligned}$$
 
 At the paper's geometry with $\varepsilon = 10^{-4}$ ($k = 2.466\times10^{-5}$, $\gamma_0'' = 7\times10^{-6}$):
-$\beta_1/\varepsilon = @@b1@@$, $\beta_2/\varepsilon = @@b2@@$, $(T-2\pi)/\varepsilon^2 = @@al@@$; the true
-periodic orbit (shooting, reference) has 3.87665, 1.11593, 1.03296. The paper's formulas give
-@@p1@@, @@p2@@, @@pal@@.
+$\beta_1/\varepsilon = @@b1@@$, $\beta_2/\varepsilon = @@b2@@$, $(T-2\pi)/\varepsilon^2 = @@al@@$. The true
+periodic orbit (extended-precision shooting, `tests/rigid_body/test_disk_shooting.py`) has 3.910760,
+1.125556, 1.032953: at this geometry the detuning $\tfrac12kM_3^2$ is tiny, so the first-order amplitudes
+carry a relative error of the size of $|\beta|^2/(kM_3^2) = 0.0066$ (the amplitude-dependent part of
+the detuning, which enters at third order). `problem.solve(3)` gives 3.91699, 1.12735, 1.032953, within
+2e-3 of the truth. (Our reference derivation printed 3.87665, 1.11593 for the true orbit: that was the
+first-order seed, left unresolved by a double-precision shooting whose Newton matrix is nearly
+singular here, the two frequencies differing by $2\pi\varepsilon^2 kM_3^2/2 \approx 8\times10^{-13}$.)
+The paper's formulas give @@p1@@, @@p2@@, @@pal@@.
 
 Physical state: `problem.state(solution, t)` ($t$ physical, $\tau = r_0t$), names
 `p q r gamma1 gamma2 gamma3`; `problem.period(solution)` $= T_\tau/r_0$;
