@@ -38,8 +38,8 @@ class _Parser(argparse.ArgumentParser):
         raise _UsageError(message)
 
 
-def _add_problem_arguments(parser: argparse.ArgumentParser) -> None:
-    """PROBLEM, --set and --order: shared by every command that builds a problem's solution."""
+def _add_problem_arguments(parser: argparse.ArgumentParser, *, order: bool = True) -> None:
+    """PROBLEM, --set (and --order): shared by every command that builds a problem's solution."""
     parser.add_argument("problem", help="problem name (see `perturb list`)")
     parser.add_argument(
         "--set",
@@ -49,11 +49,12 @@ def _add_problem_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="NAME=VALUE",
         help="set a parameter (repeatable); unset parameters take their defaults",
     )
-    parser.add_argument(
-        "--order",
-        default="1",
-        help="highest power of the small parameter kept (integer >= 1; default 1)",
-    )
+    if order:
+        parser.add_argument(
+            "--order",
+            default="1",
+            help="highest power of the small parameter kept (integer >= 1; default 1)",
+        )
 
 
 def _add_format(parser: argparse.ArgumentParser, choices: list[str]) -> None:
@@ -112,15 +113,7 @@ def _build_parser() -> argparse.ArgumentParser:
         "(derivation and evaluation timed apart), RK4 at several steps, the scipy methods at "
         "several tolerances and heyoka.",
     )
-    work.add_argument("problem", help="problem name (see `perturb list`)")
-    work.add_argument(
-        "--set",
-        dest="sets",
-        action="append",
-        default=[],
-        metavar="NAME=VALUE",
-        help="set a parameter (repeatable)",
-    )
+    _add_problem_arguments(work, order=False)
     work.add_argument("--periods", default="10", help="horizon in periods (default 10)")
     work.add_argument("--orders", default="3", help="analytic orders 1..N (default 3)")
     work.add_argument("--repeat", default="3", help="runs per point, median reported (default 3)")

@@ -1096,6 +1096,27 @@ def _preconditions(problem, eps: float) -> list[Condition]:
     return conditions
 
 
+def _not_run(base: dict, *, verdict: str, message: str, period: float, timings: dict):
+    """The report of a validation that could not start (nothing was integrated)."""
+    return ValidationReport(
+        **base,
+        valid=False,
+        verdict=verdict,
+        completed=False,
+        message=message,
+        status=-1,
+        t_reached=0.0,
+        period=period,
+        errors={},
+        slope=None,
+        periodic_orbit=None,
+        invariants={},
+        integrator="",
+        stiffness=None,
+        timings=timings,
+    )
+
+
 def validate(
     problem,
     order: int = 1,
@@ -1210,22 +1231,12 @@ def validate(
     solution = problem.solve(order)
     timings["solve"] = time.perf_counter() - clock
     if not solution.success:
-        return ValidationReport(
-            **base,
-            valid=False,
+        return _not_run(
+            base,
             verdict=f"the analytic construction failed ({solution.status.value}), so there is "
             "nothing to validate.",
-            completed=False,
             message=solution.message or solution.status.value,
-            status=-1,
-            t_reached=0.0,
             period=math.nan,
-            errors={},
-            slope=None,
-            periodic_orbit=None,
-            invariants={},
-            integrator="",
-            stiffness=None,
             timings=timings,
         )
 
@@ -1242,21 +1253,11 @@ def validate(
     if not np.all(np.isfinite(y_analytic0)):
         breakdown = f"the analytic initial state {y_analytic0.tolist()} is not finite"
         if start_override is None:
-            return ValidationReport(
-                **base,
-                valid=False,
+            return _not_run(
+                base,
                 verdict=f"The analytic solution breaks down: {breakdown}.",
-                completed=False,
                 message=breakdown,
-                status=-1,
-                t_reached=0.0,
                 period=period,
-                errors={},
-                slope=None,
-                periodic_orbit=None,
-                invariants={},
-                integrator="",
-                stiffness=None,
                 timings=timings,
             )
     y0 = y_analytic0 if start_override is None else start_override
