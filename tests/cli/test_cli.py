@@ -69,6 +69,11 @@ def test_table_format_has_header_and_rows(capsys):
         (["solve", "duffing", "--set", "eps=nan"], "not finite"),
         (["solve", "duffing", "--euler"], "--euler"),
         (["frobnicate"], "invalid choice"),
+        (["validate", "duffing", "--periods", "0"], "--periods"),
+        (["validate", "duffing", "--integrator", "euler"], "use one of"),
+        (["work-precision", "duffing", "--orders", "x"], "--orders"),
+        (["work-precision", "duffing", "--repeat", "-2"], "--repeat"),
+        (["reproduce", "nope"], "choose from ['paper']"),
     ],
 )
 def test_bad_input_is_one_line_exit_2(capsys, argv, fragment):
