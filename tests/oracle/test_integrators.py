@@ -97,8 +97,11 @@ def duffing_reference():
 
 def test_high_accuracy_reference_matches_elliptic_function_solution(duffing_reference):
     amplitude, t, reference = duffing_reference
-    # ellipj is accurate to a few 1e-15 per unit argument; 1e-12 covers the 10-period run
-    assert np.max(np.abs(reference.y.astype(float) - duffing_exact(amplitude, t))) < 1e-12
+    # ellipj is accurate to a few 1e-15 per unit argument; 1e-12 covers the 10-period run of the
+    # extended-precision heyoka reference. Without heyoka the reference is DOP853 at scipy's rtol
+    # floor (2.2e-14), whose global error grows to ~1e-12 over the run: allow 5e-12 there.
+    tolerance = 1e-12 if heyoka_available() else 5e-12
+    assert np.max(np.abs(reference.y.astype(float) - duffing_exact(amplitude, t))) < tolerance
 
 
 @pytest.mark.parametrize(("name", "options", "tol"), ADAPTIVE_CASES)

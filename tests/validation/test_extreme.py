@@ -102,8 +102,10 @@ def test_disk_fast_spin_valid():
     assert report.slope.consistent and abs(report.slope.slope - 2) < 0.2
     orbit = report.periodic_orbit
     assert orbit.success and orbit.trivial_ok and orbit.n_trivial == 4
-    # energy, area and geometric integrals conserved along the heyoka trajectory
-    assert all(d.relative_drift < 1e-12 for d in report.invariants.values())
+    # energy, area and geometric integrals conserved along the oracle's trajectory: to round-off
+    # with heyoka; with the DOP853 fallback (rtol 1e-12) the drift is a few times rtol
+    limit = 1e-12 if "heyoka" in report.integrator else 1e-10
+    assert all(d.relative_drift < limit for d in report.invariants.values())
 
 
 def test_disk_r0_to_zero_fails_with_reason():

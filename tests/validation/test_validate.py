@@ -69,10 +69,11 @@ def test_duffing_numbers_against_the_elliptic_period():
     m = eps * amplitude**2 / (2 * (1 + eps * amplitude**2))
     exact = 4 * ellipk(m) / math.sqrt(1 + eps * amplitude**2)
     assert report.periodic_orbit.period == pytest.approx(exact, rel=1e-11)
-    # energy x'^2/2 + x^2/2 + eps x^4/4 is derived and conserved to round-off
+    # energy x'^2/2 + x^2/2 + eps x^4/4 is derived and conserved: to round-off with heyoka, to a few
+    # times rtol = 1e-12 with the DOP853 fallback
     energy = report.invariants["energy"]
     assert energy.initial == pytest.approx(0.5 + eps / 4)
-    assert energy.relative_drift < 1e-12
+    assert energy.relative_drift < (1e-12 if "heyoka" in report.integrator else 1e-10)
 
 
 def test_van_der_pol_floquet_multiplier():
