@@ -89,7 +89,9 @@ class PoincareMethod:
         imposing the dependent condition at the highest orders would make the conditions inconsistent.
     branch : mapping or int, optional
         Which root of the amplitude equations to follow: a mapping ``{symbol name: value}`` selects the
-        root that has these values; an integer indexes the admissible roots in the order listed in
+        root that has these values, and on a continuous family of roots fixes the generating
+        amplitudes the family leaves free (``a_P0``: cosine amplitude of ``P`` at order 0, ``b_P0``:
+        its sine amplitude); an integer indexes the admissible roots in the order listed in
         ``solution.steps[k].branches``.  Default: the isolated root with the largest phase amplitude.
     """
 
@@ -147,6 +149,7 @@ class PoincareMethod:
             tuple(sp.srepr(f) for f in fields),
             system.regime.value,
             system.name,
+            system.truncation,
             self.order,
             amplitudes,
             self.phase_coordinate,
@@ -549,12 +552,29 @@ class _Construction:
                 sp.Symbol(k) if isinstance(k, str) else k: sp.sympify(v)
                 for k, v in selector.items()
             }
+            amplitude_syms = {
+                s
+                for s in (*generating.cos_amplitudes, *generating.sin_amplitudes)
+                if isinstance(s, sp.Symbol)
+            }
             for root in roots:
-                # a root that leaves a wanted symbol free is compatible: a later order decides it
+                # A root that fixes no generating amplitude leaves the choice to a later order. A root
+                # that fixes some but leaves a wanted one free is a continuous family: the user's
+                # value picks its member (only the generating amplitude: the corrections stay free
+                # for the later orders to fix).
+                extra = {}
+                if amplitude_syms & set(root):
+                    extra = {
+                        s: v for s, v in wanted.items() if s in self.unknowns and s not in root
+                    }
+                candidate = {s: sp.sympify(v).xreplace(extra) for s, v in root.items()}
+                candidate.update(extra)
                 if all(
-                    _is_zero(root[s] - v) for s, v in wanted.items() if s in unknowns and s in root
+                    _is_zero(candidate[s] - v)
+                    for s, v in wanted.items()
+                    if s in unknowns and s in candidate
                 ):
-                    return root
+                    return candidate
             raise bad_value(
                 "branch", selector, f"no root matches; the roots are {roots}", InvalidSystemError
             )
@@ -588,6 +608,13 @@ class _Construction:
         k_done = 0
         try:
             for k in range(1, max_k + 1):
+                if system.truncation is not None and k >= system.truncation:
+                    raise _Failure(
+                        Status.TRUNCATED,
+                        f"order {method.order} needs the conditions of order {k}, but the system "
+                        f"neglects epsilon^{system.truncation} and beyond "
+                        f"(unknowns still open: {sorted(map(str, self._open_unknowns(method.order)))})",
+                    )
                 forcing = self._forcing(k)
                 quadratures, conditions = self._solve_order(k, forcing)
                 self.pending.extend(c.expression for c in conditions if c.imposed)

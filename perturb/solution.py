@@ -34,6 +34,10 @@ class Status(enum.Enum):
         "with `amplitudes=`"
     )
     SINGULAR = "a divisor of the solution vanishes at these parameter values (a degenerate detuning or a resonance)"
+    TRUNCATED = (
+        "the construction needs a power of epsilon the system's right-hand side does not contain "
+        "(it was truncated): give a longer series"
+    )
     NOT_POLYNOMIAL = (
         "the right-hand side is not polynomial in the state; give numeric parameter values"
     )

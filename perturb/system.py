@@ -83,6 +83,10 @@ class QuasilinearSystem:
         Known first integrals (functions of the state, the parameter and the initial values).
     name : str
         A label used in reports.
+    truncation : int, optional
+        For right-hand sides that are themselves truncated series (reduced systems): the first power
+        of ε that was neglected. The construction then refuses any order that would need it, rather
+        than return coefficients computed from a missing term.
 
     Raises
     ------
@@ -101,6 +105,7 @@ class QuasilinearSystem:
     initial_values: tuple[sp.Symbol, ...] = field(default=(), converter=_as_tuple_of_symbols)
     first_integrals: tuple[sp.Expr, ...] = field(default=(), converter=_as_tuple_of_exprs)
     name: str = "system"
+    truncation: int | None = None
 
     def __attrs_post_init__(self):
         n = len(self.coordinates)
@@ -126,6 +131,15 @@ class QuasilinearSystem:
         if duplicates:
             raise InvalidSystemError(
                 f"symbol names {duplicates} are used twice: give each symbol one role"
+            )
+        if self.truncation is not None and (
+            isinstance(self.truncation, bool)
+            or not isinstance(self.truncation, int)
+            or self.truncation < 2
+        ):
+            raise InvalidSystemError(
+                f"`truncation` = {self.truncation!r} is invalid: give the first neglected power of "
+                "epsilon, an integer >= 2, or None"
             )
         self._check_frequencies()
         self._check_symbols()

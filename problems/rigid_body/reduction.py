@@ -525,6 +525,7 @@ def _build(spec: _Spec, order: int, name: str, frequencies) -> Reduction:
         initial_values=INITIAL_VALUES,
         first_integrals=(geometric_expr,),
         name=name,
+        truncation=order + 1,
     )
     f = spec.equations
     shift_g = spec.shift_g

@@ -7,9 +7,12 @@ y0' = 6/sqrt(37) that condition is 3960 cos(chi) - 13757 sin(chi) = 0: two isola
 chi* = atan(3960/13757) and chi* + pi. The engine reaches them with the P amplitude R cos(chi*) and the
 sign of b_P0 as branch; any other point of the circle is INCONSISTENT at order 3.
 
-Caveat (pinned below): fixing P(0) = R cos(chi*) at every order leaves no room for the O(eps) shift of
-chi, which only order 4 fixes, so the engine's O(eps) terms on this family are not the true ones; only
-the generating amplitudes and Omega2 are. The shooting test checks the orbits against the true motion.
+Two ways to ask the engine for these orbits, both pinned below: fixing P(0) = R cos(chi*) through
+``amplitudes`` holds it at every order, which leaves no room for the O(eps) shift of chi that only
+order 4 fixes (its O(eps) terms are then not the true ones; only the generating amplitudes and Omega2
+are); giving both generating amplitudes through ``branch`` fixes only order 0, and the O(eps) terms
+come out right (checked against the shooting). The shooting test checks the orbits against the true
+motion.
 """
 
 from __future__ import annotations
@@ -139,3 +142,35 @@ def test_true_periodic_orbits_exist_at_the_predicted_angle(sign):
         assert abs(rel_period) < 3 * eps**3  # period right to O(eps**2) (Omega3 ~ 1.45)
     # the radial correction converges to the order-3 value (error of r_1 falls with eps)
     assert abs(errors[0.0025][1] - RADIAL_1 * sign) < abs(errors[0.005][1] - RADIAL_1 * sign)
+
+
+#: Extrapolation to eps -> 0 of the conditioned shooting at eps = 0.01, 0.005, 0.0025 (see the module's
+#: page): the true orbit's O(eps) radial correction and O(eps^3) period term at chi*.
+SHOOTING_RADIAL_1, SHOOTING_PERIOD_TERM = -4.456, 9.119
+#: The extrapolation above is linear in eps from three points: about 1 % uncertain.
+EXTRAPOLATION_TOL = 0.01
+
+
+def test_branch_on_the_family_fixes_only_the_generating_amplitudes():
+    """branch = {a_P0, b_P0} at chi* leaves the corrections to the later orders: order 4 fixes b_P1
+    and Omega3, and they agree with the true orbits found by shooting."""
+    reduction = disk_reduction(4)  # order 1 on this family needs the conditions of order 4
+    system = reduction.system.with_values(VALUES)
+    g0 = geometric_constraint(reduction).xreplace(VALUES)
+    branch = {"a_P0": R * S_SIN / HYP, "b_P0": R * S_COS / HYP}
+    solution = PoincareMethod(
+        order=1, amplitudes={"G": g0}, phase_coordinate="G", branch=branch, cache=False
+    ).solve(system)
+    assert solution.status is Status.SUCCESS, solution.message
+    a_p1 = float(solution.deviations["P"][0])
+    b_p1 = float(solution.terms[0][1].coefficient(1)[1] + 0)  # sine amplitude of P at order 1
+    radial = a_p1 * math.cos(CHI_STAR) + b_p1 * math.sin(CHI_STAR)
+    assert radial == pytest.approx(SHOOTING_RADIAL_1, rel=EXTRAPOLATION_TOL)
+    assert -2 * math.pi * float(solution.frequency[3]) == pytest.approx(
+        SHOOTING_PERIOD_TERM, rel=EXTRAPOLATION_TOL
+    )
+    # order 2 would need epsilon^5, which this reduction does not contain: a clear failed status
+    deeper = PoincareMethod(
+        order=2, amplitudes={"G": g0}, phase_coordinate="G", branch=branch, cache=False
+    ).solve(system)
+    assert deeper.status is Status.TRUNCATED and "epsilon^5" in deeper.message
