@@ -166,3 +166,14 @@ def test_vanishing_small_divisor_is_an_error_not_a_nan():
         sol.evaluate([0.0, 1.0], 0.1, {"w": 3.0})  # harmonic 3 of x^3 resonates with w = 3
     with pytest.warns(AccuracyWarning, match="within"):
         sol.evaluate([0.0, 1.0], 0.1, {"w": 3.0 + 1e-5})
+
+
+def test_truncated_system_refuses_orders_that_need_the_missing_terms():
+    """A series known through eps^2 (truncation 3) gives van der Pol's order 1 (needs order 2) but
+    not order 2 (needs the conditions of order 3)."""
+    vdp2 = QuasilinearSystem([x], [xd], [1], [EPS * (1 - x**2) * xd], truncation=3)
+    assert PoincareMethod(order=1, cache=False).solve(vdp2).success
+    deeper = PoincareMethod(order=2, cache=False).solve(vdp2)
+    assert deeper.status is Status.TRUNCATED and "epsilon^3" in deeper.message
+    with pytest.raises(InvalidSystemError, match="truncation"):
+        QuasilinearSystem([x], [xd], [1], [EPS * x], truncation=1)
