@@ -117,6 +117,16 @@ STIFFNESS_THRESHOLD = 10.0
 #: Distance from 1 below which a trivial Floquet multiplier counts as 1.  A conservative family has a
 #: Jordan block at 1 whose computed eigenvalues split like sqrt(integration error) ~ sqrt(1e-13) ~ 3e-7.
 FLOQUET_TOL = 1e-5
+#: Smallest periodicity defect a double-precision shooting can certify (relative to the amplitudes):
+#: round-off of the state over one period.
+SHOOTING_PRECISION = 1e-13
+#: Distance from 1 below which a Floquet multiplier cannot be told from a trivial one: the monodromy
+#: of a double-precision variational integration (error ~1e-12) splits a double multiplier 1 by
+#: about the square root of that error.
+MULTIPLIER_FLOOR = 1e-6
+#: Largest shooting uncertainty (relative to the amplitudes) at which the orbit is still used to judge
+#: the analytic solution: 1 % of the 10 % error limit of the verdict.
+ORBIT_RESOLUTION_LIMIT = 1e-3
 
 #: Amplitudes below this fraction of the largest one are raised to it for the relative errors
 #: (a component identically zero would otherwise divide by zero).
@@ -311,6 +321,12 @@ class OrbitCheck:
     status : int
         The shooting's status (0 converged).
     integrator : str
+    resolution : float
+        How far (relative to the amplitudes) the shooting's own uncertainty may move the orbit:
+        the Newton residual over the distance of the first non-trivial Floquet multiplier from 1.
+        A nearly neutral direction (two oscillations with almost the same frequency) makes the orbit
+        numerically non-isolated; above ``ORBIT_RESOLUTION_LIMIT`` it is reported as unresolved
+        and not used in the verdict.
     """
 
     success: bool
@@ -326,10 +342,18 @@ class OrbitCheck:
     message: str
     status: int
     integrator: str = ""
+    resolution: float = field(default=0.0, converter=float)
+
+    @property
+    def resolved(self) -> bool:
+        """Whether shooting at this precision determines the orbit well enough to judge against it."""
+        return self.success and self.resolution <= ORBIT_RESOLUTION_LIMIT
 
     def as_dict(self) -> dict:
         return {
             "success": self.success,
+            "resolved": self.resolved,
+            "resolution": self.resolution if math.isfinite(self.resolution) else None,
             "period": self.period,
             "initial_state": dict(self.initial_state),
             "floquet": [[float(z.real), float(z.imag)] for z in self.floquet],
@@ -1035,6 +1059,20 @@ def _orbit_check(
     else:
         orbit_error, amp = nan, _amplitudes(analytic)
     init_error = float(np.max(np.abs(y0 - orbit.initial_state) / amp))
+    multipliers = list(orbit.floquet_multipliers)
+    n_trivial = setup["n_trivial"]
+    gap = abs(complex(multipliers[n_trivial]) - 1) if len(multipliers) > n_trivial else 1.0
+    defect = max(float(orbit.residual), SHOOTING_PRECISION)
+    # below MULTIPLIER_FLOOR the gap itself is round-off: the orbit cannot be certified at all
+    resolution = math.inf if gap < MULTIPLIER_FLOOR else defect / gap
+    message = orbit.message
+    if resolution > ORBIT_RESOLUTION_LIMIT:
+        message += (
+            f" Not resolved: the first non-trivial Floquet multiplier is {gap:.1e} from 1 (floor "
+            f"{MULTIPLIER_FLOOR:g}), so a periodicity defect of {defect:.1e} leaves the orbit "
+            f"uncertain by ~{resolution:.1e} of its amplitude; the orbit error is not used in the "
+            "verdict."
+        )
     return OrbitCheck(
         success=True,
         period=true_period,
@@ -1046,9 +1084,10 @@ def _orbit_check(
         period_error=(period - true_period) / true_period,
         initial_state_error=init_error,
         orbit_error=orbit_error,
-        message=orbit.message,
+        message=message,
         status=orbit.status,
         integrator=orbit.integrator,
+        resolution=resolution,
     )
 
 
@@ -1425,7 +1464,7 @@ def _verdict(conditions, breakdown, traj, errors, max_rel, fit, orbit, periods) 
             f"The analytic solution departs from the true motion by {max_rel:.3g} of the amplitude "
             f"(component {worst}) within {periods:g} periods (limit {MAX_RELATIVE_ERROR:g})."
         )
-    if orbit is not None and orbit.success and not (orbit.orbit_error <= MAX_RELATIVE_ERROR):
+    if orbit is not None and orbit.resolved and not (orbit.orbit_error <= MAX_RELATIVE_ERROR):
         return False, (
             f"The analytic solution is {orbit.orbit_error:.3g} (relative) away from the true "
             f"periodic orbit (limit {MAX_RELATIVE_ERROR:g})."
@@ -1438,8 +1477,13 @@ def _verdict(conditions, breakdown, traj, errors, max_rel, fit, orbit, periods) 
     detail = f"error {max_rel:.2e} of the amplitude over {periods:g} periods"
     if fit is not None and fit.consistent:
         detail += f", slope {fit.slope:.2f} (expected {fit.expected:g})"
-    if orbit is not None and orbit.success:
+    if orbit is not None and orbit.resolved:
         detail += f", {orbit.orbit_error:.2e} from the true periodic orbit"
+    elif orbit is not None and orbit.success:
+        detail += (
+            "; the true periodic orbit is not resolved by shooting at this precision (a Floquet "
+            "multiplier next to the trivial ones)"
+        )
     elif orbit is not None:
         detail += "; the true periodic orbit was not found by shooting"
     return True, f"The analytic solution describes the true motion: {detail}."

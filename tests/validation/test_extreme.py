@@ -191,3 +191,16 @@ def test_rigid_body_c_minus_b_to_zero():
     report = validate(problem, periods=3, slope=False)
     assert report.completed and not report.valid
     assert "departs" in report.verdict
+
+
+def test_disk_orbit_unresolvable_at_double_precision_is_not_used():
+    """Paper geometry at eps = 1e-4: the two frequencies differ by 2 pi eps^2 k M3^2/2 ~ 8e-13, so a
+    double-precision shooting accepts its seed; the report must say the orbit is unresolved rather
+    than claim agreement with it (the true orbit is 0.9 % away: tests/rigid_body/test_disk_shooting.py)."""
+    disk = get_problem("disk")
+    problem = disk.create(r0=disk.create().scale_c() / 1e-4)
+    report = validate(problem, periods=2, slope=False)
+    orbit = report.periodic_orbit
+    assert orbit is not None and orbit.success and not orbit.resolved
+    assert "not resolved" in report.verdict
+    assert report.as_dict()["periodic_orbit"]["resolution"] is None
