@@ -338,4 +338,5 @@ def _evaluate_scalar(omega: float, coeffs: np.ndarray, t: np.ndarray) -> np.ndar
                 dacc += weights[i, j]
             out[i, lo : lo + EVAL_BLOCK] = acc.real
             out[n + i, lo : lo + EVAL_BLOCK] = -omega * dacc.imag  # Re(i Omega dacc)
+    out += 0.0  # turns the -0.0 of vanishing velocities into 0.0 (for printing)
     return out.reshape((2 * n,) + t.shape)
