@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+import warnings
 from collections.abc import Sequence
 
 import numpy as np
@@ -322,8 +323,14 @@ def _print(payload: dict, fmt: str, blocks) -> None:
         print("".join(f"{float(v):20.12g}" for v in row))
 
 
+def _format_warning(message, category, filename, lineno, line=None) -> str:
+    """Warnings on one line, as the CLI's errors are: ``perturb: warning: ...``."""
+    return f"perturb: warning: {message}\n"
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``perturb`` command; returns the exit code."""
+    warnings.formatwarning = _format_warning
     parser = _build_parser()
     try:
         args = parser.parse_args(argv)
