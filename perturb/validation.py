@@ -26,6 +26,9 @@ Problems take part through the :class:`problems.Problem` API plus optional duck-
     ``y -> array`` of first-integral values (``y`` of shape ``(n,)`` or ``(n, m)``).
 ``shooting_setup()``
     ``{"section_index", "fixed_indices", "direction", "n_trivial"}`` for :func:`find_periodic_orbit`.
+``true_periodic_orbit(solution)``
+    The true periodic orbit by a problem-specific method, used only when the generic shooting
+    cannot resolve it (see :func:`_problem_true_orbit`).
 ``with_epsilon(eps)``
     The same problem with the expansion parameter set to ``eps`` (for the slope).
 ``validity_conditions()``
@@ -44,6 +47,7 @@ import time
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
+import attrs
 import numpy as np
 import sympy as sp
 from attrs import field, frozen
@@ -1047,18 +1051,18 @@ def _orbit_check(
             integrator=orbit.integrator,
         )
     true_period = orbit.period
-    phases = np.linspace(0.0, 1.0, SAMPLES_PER_PERIOD + 1)
-    analytic = _analytic(problem, solution, names, phases * period)
-    solver = _resolve_integrator(integrator_choice, rtol, stiff, original.symbolic)
-    traj = solver.integrate(
-        original.rhs, (0.0, true_period), orbit.initial_state, t_eval=phases * true_period
+    init_error, orbit_error = _errors_against_orbit(
+        problem,
+        solution,
+        original,
+        y0,
+        period,
+        orbit.initial_state,
+        true_period,
+        integrator_choice,
+        rtol,
+        stiff,
     )
-    if traj.success:
-        _, _, orbit_error = _component_errors(names, analytic, np.asarray(traj.y, dtype=float))
-        amp = _amplitudes(np.asarray(traj.y, dtype=float))
-    else:
-        orbit_error, amp = nan, _amplitudes(analytic)
-    init_error = float(np.max(np.abs(y0 - orbit.initial_state) / amp))
     multipliers = list(orbit.floquet_multipliers)
     n_trivial = setup["n_trivial"]
     gap = abs(complex(multipliers[n_trivial]) - 1) if len(multipliers) > n_trivial else 1.0
@@ -1088,6 +1092,85 @@ def _orbit_check(
         status=orbit.status,
         integrator=orbit.integrator,
         resolution=resolution,
+    )
+
+
+def _errors_against_orbit(
+    problem, solution, original, y0, period, true_y0, true_period, integrator_choice, rtol, stiff
+) -> tuple[float, float]:
+    """(initial-state error, orbit error) of the analytic solution against a true periodic orbit."""
+    names = original.names
+    true_y0 = np.asarray(true_y0, dtype=float)
+    phases = np.linspace(0.0, 1.0, SAMPLES_PER_PERIOD + 1)
+    analytic = _analytic(problem, solution, names, phases * period)
+    solver = _resolve_integrator(integrator_choice, rtol, stiff, original.symbolic)
+    traj = solver.integrate(original.rhs, (0.0, true_period), true_y0, t_eval=phases * true_period)
+    if traj.success:
+        _, _, orbit_error = _component_errors(names, analytic, np.asarray(traj.y, dtype=float))
+        amp = _amplitudes(np.asarray(traj.y, dtype=float))
+    else:
+        orbit_error, amp = math.nan, _amplitudes(analytic)
+    return float(np.max(np.abs(y0 - true_y0) / amp)), orbit_error
+
+
+def _problem_true_orbit(
+    problem, solution, original, y0, period, unresolved, integrator_choice, rtol, stiff=False
+) -> OrbitCheck:
+    """The problem's own ``true_periodic_orbit(solution)`` in place of an unresolved shooting.
+
+    Called only when the generic double-precision shooting converged but could not resolve the
+    orbit (:attr:`OrbitCheck.resolved` False): the hook (the disk's conditioned extended-precision
+    shooting, ~0.5 s, needs heyoka) is dearer and problem-specific, and where double precision
+    suffices it adds nothing. The hook returns an object with ``success``, ``period`` (physical),
+    ``initial_state`` (the original state on the analytic solution's section), ``status``,
+    ``message`` and optionally ``floquet``, ``n_trivial``, ``trivial_multiplier_error``,
+    ``resolution``, ``integrator``. If it fails (e.g. no heyoka) the unresolved check is kept, with
+    the hook's message appended.
+    """
+    try:
+        true = problem.true_periodic_orbit(solution)
+    except PerturbError as exc:
+        return attrs.evolve(unresolved, message=f"{unresolved.message} {exc}")
+    if not getattr(true, "success", False):
+        return attrs.evolve(
+            unresolved,
+            message=f"{unresolved.message} The problem's own true-orbit finder did not run or "
+            f"failed: {getattr(true, 'message', '')}",
+        )
+    true_y0 = np.asarray(true.initial_state, dtype=float)
+    true_period = float(true.period)
+    init_error, orbit_error = _errors_against_orbit(
+        problem,
+        solution,
+        original,
+        y0,
+        period,
+        true_y0,
+        true_period,
+        integrator_choice,
+        rtol,
+        stiff,
+    )
+    trivial_error = float(getattr(true, "trivial_multiplier_error", math.nan))
+    return OrbitCheck(
+        success=True,
+        period=true_period,
+        initial_state=dict(zip(original.names, map(float, true_y0), strict=True)),
+        floquet=tuple(complex(z) for z in getattr(true, "floquet", ())),
+        n_trivial=int(getattr(true, "n_trivial", unresolved.n_trivial)),
+        trivial_multiplier_error=trivial_error,
+        trivial_ok=trivial_error <= FLOQUET_TOL,
+        period_error=(period - true_period) / true_period,
+        initial_state_error=init_error,
+        orbit_error=orbit_error,
+        message=(
+            f"Double-precision shooting could not resolve the orbit (resolution "
+            f"{unresolved.resolution:.1e}); the problem's own true-orbit finder "
+            f"ran instead: {true.message}"
+        ),
+        status=int(getattr(true, "status", 0)),
+        integrator=str(getattr(true, "integrator", "")),
+        resolution=float(getattr(true, "resolution", 0.0)),
     )
 
 
@@ -1367,6 +1450,18 @@ def validate(
                 rtol,
                 stiff=stiffness.stiff,
             )
+            if orbit.success and not orbit.resolved and hasattr(problem, "true_periodic_orbit"):
+                orbit = _problem_true_orbit(
+                    problem,
+                    solution,
+                    original,
+                    y_analytic0,
+                    period,
+                    orbit,
+                    integrator,
+                    rtol,
+                    stiff=stiffness.stiff,
+                )
         except PerturbError as exc:  # the seed itself was rejected: report, do not abort
             orbit = OrbitCheck(
                 success=False,

@@ -152,6 +152,18 @@ class DiskInNewtonianField(FastSpinBody):
             )
         return [("detuning dominates", ratio, ok, sentence)]
 
+    # ------------------------------------------------------------------ true orbit
+    def true_periodic_orbit(self, solution: PeriodicSolution | None = None):
+        """The true periodic orbit by the conditioned extended-precision shooting (validation hook).
+
+        :func:`perturb.validation.validate` calls it when its double-precision shooting cannot
+        resolve the orbit (the P-multipliers sit ~eps**2 k M3**2 pi from 1). Returns a
+        :class:`problems.rigid_body.true_orbit.TrueOrbit` (failures as a status, e.g. without heyoka).
+        """
+        from problems.rigid_body.true_orbit import conditioned_true_orbit
+
+        return conditioned_true_orbit(self, solution)
+
     # ------------------------------------------------------------------ reference formulas
     def detuning(self) -> float:
         """:math:`D = \\tfrac12 k M_3^2` on the branch :math:`M_1 = M_2 = 0`."""

@@ -13,17 +13,9 @@ in :math:`P(0)` changes the periodicity defect by only :math:`\\varphi\\delta|P|
 geometry (:math:`\\varepsilon = 10^{-4}`, :math:`k = 2.47\\times10^{-5}`) :math:`\\varphi = 7.7\\times10^{-13}`,
 and in float64 that defect is below round-off: a plain shooting accepts any seed within ~1 % as
 "converged" in 0 iterations (:func:`test_plain_shooting_cannot_resolve_the_paper_geometry`). The
-shooting here therefore runs on the same equations in conditioned coordinates:
-
-1. the state relative to the seed, :math:`y = y_{ref} + s\\,u` (no cancellation in
-   :math:`u(T) - u(0)`), with :math:`s_p = s_q = \\varphi|P|\\,` :data:`RESOLUTION` / :data:`TOL`, so
-   that a relative error :data:`RESOLUTION` in :math:`P(0)` shows as a residual :data:`TOL`;
-2. time in units :math:`1/\\lambda`, so that the Newton column :math:`\\partial F/\\partial T` is of
-   the size of the P columns (the shooting's rank cut is 1e-9);
-3. a constant extra component :math:`w` with time rate :math:`1 + \\lambda w`: a float64 period has
-   granularity :math:`10^{-16}T`, which alone moves the P-phase by :math:`10^{-16}\\cdot2\\pi`, i.e.
-   :math:`10^{-3}` of :math:`\\varphi` — :math:`w` takes up that last bit of the period;
-4. heyoka in extended precision (80-bit long double, else quadruple).
+shooting here is therefore the conditioned, extended-precision one of
+:func:`problems.rigid_body.true_orbit.conditioned_true_orbit` (conditioned coordinates, time in
+units of the detuning phase, heyoka in 80-bit or quadruple precision; see its module docstring).
 
 Results (all seeds and conditioning choices agree to ~1e-6): k = 0.5, gamma3_0 = 0.3 reproduces
 all printed digits of the reference (8.6977, 2.4848, 1.19547 at eps = 5e-3; 8.6650, 2.4756, 1.19753
@@ -41,11 +33,14 @@ import math
 
 import numpy as np
 import pytest
-import sympy as sp
-from attrs import frozen
 
-from perturb.oracle import Heyoka, SymbolicRHS, find_periodic_orbit, heyoka_available
+from perturb.oracle import SymbolicRHS, find_periodic_orbit, heyoka_available
 from problems import get_problem
+from problems.rigid_body.true_orbit import (  # noqa: F401  (used by test_disk_second_family)
+    _conditioned_rhs,
+    _move_to_section,
+    conditioned_true_orbit,
+)
 
 pytestmark = pytest.mark.skipif(not heyoka_available(), reason="needs heyoka (extended precision)")
 
@@ -60,9 +55,6 @@ REL_TOL = 1e-4
 #: The true amplitudes at the paper geometry found here (agreement of seeds/settings ~1e-6).
 TRUE_PAPER = (3.910760, 1.125556)
 
-#: Relative error of P(0) that shows as a shooting residual TOL (see the module docstring).
-RESOLUTION = 1e-6
-TOL = 1e-12
 #: eps values of the slope fit of the first-order amplitude error (k = 0.5, gamma3_0 = 0.3).
 SLOPE_EPSILONS = (0.01, 0.005, 0.0025)
 SLOPE_SLACK = 0.3
@@ -80,86 +72,11 @@ def disk(eps: float, k: float | None = None, gamma3_0: float = 7e-6):
     return Disk.create(g=g, r0=1.0, R=R, gamma3_0=gamma3_0)
 
 
-@frozen
-class TrueOrbit:
-    beta1: float  # P(0)/eps on the section dG = 0
-    beta2: float  # dP(0)/eps
-    alpha: float  # (T_tau - 2 pi)/eps**2
-    first_order: tuple  # the same three from the analytic solution
-    iterations: int
-    pin_mismatch: float  # |r1 - 1| + |gamma'' - gamma3_0| at dG = 0
-
-
-def _conditioned_rhs(problem, ref, scales, lam):
-    state, exprs = problem.original_symbolic()
-    u = sp.symbols("u0:7")
-    shift = {state[i]: sp.Float(ref[i], 30) + sp.Float(scales[i], 30) * u[i] for i in range(6)}
-    rate = (1 + sp.Float(lam, 30) * u[6]) * sp.Float(lam, 30)
-    body = [e.xreplace(shift) * rate / sp.Float(scales[i], 30) for i, e in enumerate(exprs)]
-    return SymbolicRHS(u, [*body, sp.Integer(0)])
-
-
-def _move_to_section(problem, y, forward):
-    """Slide along the flow to dG = 0 (the analytic solution's phase): second-order Taylor steps."""
-    state, exprs = problem.original_symbolic()
-    flow = SymbolicRHS(state, exprs)
-    c, r0 = problem.scale_c(), problem.values["r0"]
-    units = np.array([c, c, r0, 1.0, 1.0, 1.0])
-    for _ in range(3):
-        z = forward(y / units)
-        dt = -z[3] / z[5] / r0  # dG/d2G in tau
-        f = flow(y)
-        y = y + dt * f + 0.5 * dt**2 * (flow.jacobian(y) @ f)
-    return y, forward(y / units)
-
-
-def true_orbit(problem, offset: float = 0.0) -> TrueOrbit:
-    """The true periodic orbit of the analytic solution's family member, seeded ``offset`` off."""
-    solution = problem.solve(1)
-    eps, r0 = problem.epsilon(), problem.values["r0"]
-    g3 = problem.values["gamma3_0"]
-    seed = problem.state_vector(solution, 0.0).astype(float)
-    period = problem.period(solution)
-    # the family member: r = r0, gamma'' = gamma3_0, |gamma| = 1 on the section gamma' = seed's
-    ref = seed.copy()
-    ref[2], ref[5] = r0, g3
-    ref[3] = math.sqrt(1 - ref[4] ** 2 - g3**2)
-    phi = 2 * math.pi * eps**2 * problem.detuning()
-    amplitude = math.hypot(ref[0], ref[1])
-    scales = np.ones(6)
-    scales[:2] = phi * amplitude * RESOLUTION / TOL
-    lam = phi / max(1.0, amplitude / scales[0])
-    rhs = _conditioned_rhs(problem, ref, scales, lam)
-    u0 = np.zeros(7)
-    u0[:2] = offset * ref[:2] / scales[:2]
-    orbit = find_periodic_orbit(
-        rhs,
-        u0,
-        period / lam,
-        section_index=4,
-        fixed_indices=(2, 3, 5),
-        direction=-1,
-        n_trivial=5,
-        integrator=Heyoka(high_precision=True),
-        y_scale=1.0,
-        tol=TOL,
-    )
+def true_orbit(problem, offset: float = 0.0):
+    """The library's conditioned shooting; these tests need it to converge."""
+    orbit = conditioned_true_orbit(problem, offset=offset)
     assert orbit.success, orbit.message
-    y = ref + scales * orbit.initial_state[:6]
-    t_true = orbit.period * lam * (1 + lam * orbit.initial_state[6])
-    forward = problem.reduction().forward_function(problem.symbol_values(), eps)
-    y, z = _move_to_section(problem, y, forward)
-    z0 = solution.initial_state(eps, problem.symbol_values())
-    start = dict(zip(solution.state_names, z0, strict=True))
-    first = (start["P"] / eps, start["dP"] / eps, (period * r0 - 2 * math.pi) / eps**2)
-    return TrueOrbit(
-        beta1=float(z[0] / eps),
-        beta2=float(z[1] / eps),
-        alpha=float((t_true * r0 - 2 * math.pi) / eps**2),
-        first_order=first,
-        iterations=orbit.iterations,
-        pin_mismatch=float(abs(y[2] / r0 - 1) + abs(y[5] - g3)),
-    )
+    return orbit
 
 
 @pytest.fixture(scope="module")
