@@ -122,10 +122,17 @@ class PeriodicSolution:
             return expr.subs(EPS, 1 / self.system.parameter)
         return expr.subs(EPS, self.system.parameter)
 
-    def coordinate(self, name: str, *, in_time: bool = False) -> sp.Expr:
-        """:math:`x_i` as a sum over orders, in ``s`` (default) or in physical time ``t``."""
+    def coordinate(self, name: str, *, in_time: bool = False, simplify: bool = False) -> sp.Expr:
+        """:math:`x_i` as a sum over orders, in ``s`` (default) or in physical time ``t``.
+
+        ``simplify=True`` writes every harmonic coefficient as one fraction with its common factors
+        pulled out (for display; the engine keeps them expanded).
+        """
         i = self._index(name)
-        expr = sp.Add(*(EPS**k * term.as_expr(S) for k, term in enumerate(self.terms[i])))
+        terms = self.terms[i]
+        if simplify:
+            terms = [term.map(_display) for term in terms]
+        expr = sp.Add(*(EPS**k * term.as_expr(S) for k, term in enumerate(terms)))
         if in_time:
             expr = expr.subs(S, self.frequency_expr * T_SYM)
         return self._in_user_parameter(expr)
@@ -135,18 +142,24 @@ class PeriodicSolution:
         """:math:`\\Omega(\\varepsilon)` truncated where the conditions stopped."""
         return sp.Add(*(EPS**k * w for k, w in enumerate(self.frequency)))
 
-    def period_series(self) -> sp.Expr:
+    def period_series(self, *, simplify: bool = False) -> sp.Expr:
         """The period :math:`T = 2\\pi/\\Omega` expanded to the order the frequency is known."""
         n = len(self.frequency)
-        series = sp.series(2 * sp.pi / self.frequency_expr, EPS, 0, n).removeO()
-        return self._in_user_parameter(sp.expand(series))
+        series = sp.expand(sp.series(2 * sp.pi / self.frequency_expr, EPS, 0, n).removeO())
+        if simplify:
+            series = sp.Add(*(EPS**k * _display(series.coeff(EPS, k)) for k in range(n)))
+        return self._in_user_parameter(series)
 
-    def latex(self) -> str:
-        """The solution as LaTeX: one line per coordinate and the period."""
+    def latex(self, *, simplify: bool = True) -> str:
+        """The solution as LaTeX: one line per coordinate and the period.
+
+        With ``simplify`` (default) each harmonic coefficient is shown as one fraction.
+        """
         lines = [
-            f"{sp.latex(sp.Symbol(c))} = {sp.latex(self.coordinate(c))}" for c in self.coordinates
+            f"{sp.latex(sp.Symbol(c))} = {sp.latex(self.coordinate(c, simplify=simplify))}"
+            for c in self.coordinates
         ]
-        lines.append(f"T = {sp.latex(self.period_series())}")
+        lines.append(f"T = {sp.latex(self.period_series(simplify=simplify))}")
         return " \\\\\n".join(lines)
 
     def __str__(self) -> str:
@@ -340,3 +353,19 @@ def _evaluate_scalar(omega: float, coeffs: np.ndarray, t: np.ndarray) -> np.ndar
             out[n + i, lo : lo + EVAL_BLOCK] = -omega * dacc.imag  # Re(i Omega dacc)
     out += 0.0  # turns the -0.0 of vanishing velocities into 0.0 (for printing)
     return out.reshape((2 * n,) + t.shape)
+
+
+#: Coefficients with more operations than this are shown as computed: factoring them would take
+#: longer than anyone waits for a printout.
+DISPLAY_SIMPLIFY_MAX_OPS = 4000
+
+
+def _display(expr: sp.Expr) -> sp.Expr:
+    """One fraction with common factors pulled out, for display, unless the expression is huge.
+
+    (``factor`` would also factor the arguments of square roots, sqrt(1 - g**2) -> sqrt(-(g-1)(g+1)).)
+    """
+    expr = sp.sympify(expr)
+    if expr.is_number or sp.count_ops(expr) > DISPLAY_SIMPLIFY_MAX_OPS:
+        return expr
+    return sp.factor_terms(sp.cancel(expr))

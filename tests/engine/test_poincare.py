@@ -177,3 +177,11 @@ def test_truncated_system_refuses_orders_that_need_the_missing_terms():
     assert deeper.status is Status.TRUNCATED and "epsilon^3" in deeper.message
     with pytest.raises(InvalidSystemError, match="truncation"):
         QuasilinearSystem([x], [xd], [1], [EPS * x], truncation=1)
+
+
+def test_simplified_display_is_the_same_expression():
+    sol = get_problem("resonant-pair").create(mode=-1).solve(2)
+    for name in sol.coordinates:
+        assert sp.simplify(sol.coordinate(name, simplify=True) - sol.coordinate(name)) == 0
+    assert sp.simplify(sol.period_series(simplify=True) - sol.period_series()) == 0
+    assert "\\cos" in sol.latex() and "T =" in sol.latex(simplify=False)
