@@ -87,6 +87,16 @@ def _build_parser() -> argparse.ArgumentParser:
     solve.add_argument(
         "--euler", action="store_true", help="add the Euler angles (rigid bodies only)"
     )
+    solve.add_argument(
+        "--latex",
+        action="store_true",
+        help="also print the symbolic solution (coordinates and period) as LaTeX",
+    )
+    solve.add_argument(
+        "--steps",
+        action="store_true",
+        help="also print the construction order by order (forcing, quadratures, conditions, solved)",
+    )
     validate = sub.add_parser(
         "validate",
         help="check a problem's periodic solution against the true motion and give a verdict",
@@ -227,7 +237,16 @@ def _cmd_solve(args) -> int:
             for k, d in extras.items()
         },
     }
+    if args.latex:
+        payload["latex"] = solution.latex()
+    if args.steps:
+        payload["steps"] = [str(solution.generating), *(str(step) for step in solution.steps)]
     _print(payload, args.format, [("state", state), *extras.items()])
+    if args.format == "table":
+        for key in ("steps", "latex"):
+            if key in payload:
+                text = payload[key] if isinstance(payload[key], str) else "\n".join(payload[key])
+                print(f"\n# {key}\n{text}")
     return EXIT_OK
 
 

@@ -113,3 +113,15 @@ def test_module_and_console_script(command):
         and "Traceback" not in bad.stderr
         and len(bad.stderr.strip().splitlines()) == 1
     )
+
+
+def test_latex_and_steps_only_when_asked(capsys):
+    code, out, _ = run(capsys, "solve", "duffing", "--times", "0", "--format", "json")
+    plain = json.loads(out)
+    assert code == 0 and "latex" not in plain and "steps" not in plain
+    code, out, _ = run(
+        capsys, "solve", "duffing", "--times", "0", "--latex", "--steps", "--format", "json"
+    )
+    data = json.loads(out)
+    assert "\\cos" in data["latex"] and data["latex"].count("\\\\") == 1  # x line and T line
+    assert data["steps"][0].startswith("generating solution") and "Omega1" in data["steps"][1]
