@@ -32,3 +32,8 @@ NUMERIC_ZERO = 1e-12
 #: Digits of the evaluation at a generic point that confirms a condition vanishes once solved:
 #: far beyond double precision, so cancellation among large terms cannot fake a zero or a non-zero.
 PROBE_DIGITS = 30
+
+#: Time budget (seconds) of sympy's solve on one order's nonlinear amplitude equations: the textbook
+#: and the disk's equations take well under a second; equations whose roots have no closed form can
+#: keep sympy busy for hours.
+SOLVE_SECONDS = 30.0

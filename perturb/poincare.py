@@ -29,12 +29,20 @@ fixed by the balance of orders).
 
 from __future__ import annotations
 
+import multiprocessing
 from collections.abc import Mapping
 
 import sympy as sp
 from attrs import field, frozen, validators
 
-from perturb._defaults import FFT_POINTS, FFT_TRIM, MAX_ORDER, NUMERIC_ZERO, PROBE_DIGITS
+from perturb._defaults import (
+    FFT_POINTS,
+    FFT_TRIM,
+    MAX_ORDER,
+    NUMERIC_ZERO,
+    PROBE_DIGITS,
+    SOLVE_SECONDS,
+)
 from perturb.cache import cached
 from perturb.errors import InvalidSystemError, bad_value
 from perturb.series import NotNumeric, TrigSeries, evaluate_analytic, evaluate_polynomial
@@ -87,6 +95,11 @@ class PoincareMethod:
         ``auto`` (default) drops it when the system declares first integrals. Dropping it matters for
         reduced systems truncated in ε, where the integral holds only to the truncation order and
         imposing the dependent condition at the highest orders would make the conditions inconsistent.
+    solve_seconds : float
+        Time budget of sympy's solver on the nonlinear amplitude equations (run in a child process
+        where the platform can fork); past it the result has status ``NO_ROOT`` and says how to give
+        the root instead. sympy's ``solve`` can run for hours on systems whose roots have no
+        closed form.
     branch : mapping or int, optional
         Which root of the amplitude equations to follow: a mapping ``{symbol name: value}`` selects the
         root that has these values, and on a continuous family of roots fixes the generating
@@ -105,6 +118,7 @@ class PoincareMethod:
     dependent_condition: str = field(
         default="auto", validator=validators.in_(("auto", "phase-sine", "none"))
     )
+    solve_seconds: float = field(default=SOLVE_SECONDS, eq=False, repr=False)
 
     # ------------------------------------------------------------------ public
     cache: bool = field(default=True, eq=False, repr=False)
@@ -502,11 +516,21 @@ class _Construction:
 
     def _solve_nonlinear(self, eqs, unknowns, k, generating) -> tuple[dict, tuple]:
         try:
-            roots = sp.solve(eqs, unknowns, dict=True, simplify=False)
+            roots = _solve_bounded(eqs, unknowns, self.method.solve_seconds)
         except (NotImplementedError, sp.PolynomialError, ValueError) as exc:
             raise _Failure(
                 Status.NO_ROOT,
                 f"order {k}: sympy could not solve the amplitude equations {eqs}: {exc}",
+            ) from None
+        except TimeoutError:
+            rescued = self._solve_with_branch_values(eqs, unknowns, k)
+            if rescued is not None:
+                return rescued, ()
+            raise _Failure(
+                Status.NO_ROOT,
+                f"order {k}: sympy did not solve the amplitude equations {eqs} for {unknowns} within "
+                f"{self.method.solve_seconds:g} s (PoincareMethod(solve_seconds=...)); if you know the "
+                "root, give its generating amplitudes with `branch={name: value}`",
             ) from None
         if not roots:
             raise _Failure(Status.NO_ROOT, f"order {k}: amplitude equations {eqs} have no root")
@@ -535,6 +559,45 @@ class _Construction:
             )
         chosen = self._choose_branch(admissible, unknowns, generating)
         return chosen, tuple(admissible)
+
+    def _solve_with_branch_values(self, eqs, unknowns, k) -> dict | None:
+        """When sympy cannot enumerate the roots, take the generating amplitudes from ``branch``.
+
+        The amplitudes the user gives are put in, the remaining unknowns (frequency corrections)
+        solved for, and every condition checked at the result; ``None`` if ``branch`` gives no
+        amplitude of these equations.
+        """
+        selector = self.method.branch
+        if not isinstance(selector, Mapping):
+            return None
+        given = {
+            sp.Symbol(name) if isinstance(name, str) else name: sp.sympify(value)
+            for name, value in selector.items()
+        }
+        given = {s: v for s, v in given.items() if s in unknowns}
+        if not given:
+            return None
+        reduced = [e for e in (sp.expand(e.xreplace(given)) for e in eqs) if e != 0]
+        rest = sorted(
+            set().union(set(), *(e.free_symbols for e in reduced)) & set(unknowns), key=str
+        )
+        solution = dict(given)
+        if rest:
+            roots = _solve_bounded(reduced, rest, self.method.solve_seconds)
+            if not roots:
+                raise _Failure(
+                    Status.INCONSISTENT,
+                    f"order {k}: with the amplitudes of `branch` {selector} the conditions "
+                    f"{reduced} have no solution",
+                )
+            solution.update(roots[0])
+        residual = [e for e in eqs if not _vanishes(e.xreplace(solution))]
+        if residual:
+            raise _Failure(
+                Status.INCONSISTENT,
+                f"order {k}: the amplitudes of `branch` {selector} do not satisfy {residual}",
+            )
+        return solution
 
     def _choose_branch(self, roots, unknowns, generating) -> dict:
         selector = self.method.branch
@@ -701,6 +764,49 @@ class _Construction:
                 c.name: sp.expand(c.expression.xreplace(self.solved)) for c in self.dependent
             },
         )
+
+
+def _solve_worker(eqs, unknowns, connection) -> None:
+    try:
+        connection.send(("ok", sp.solve(eqs, unknowns, dict=True, simplify=False)))
+    except Exception as exc:  # noqa: BLE001 - the parent re-raises it as a failed status
+        connection.send(("error", exc))
+    finally:
+        connection.close()
+
+
+def _solve_bounded(eqs, unknowns, seconds: float) -> list[dict]:
+    """``sympy.solve(eqs, unknowns, dict=True)`` with a time budget.
+
+    The solve runs in a forked child process, which is killed when the budget is spent
+    (``TimeoutError``). Where the platform cannot fork, it runs in-process without a budget.
+    """
+    try:
+        context = multiprocessing.get_context("fork")
+    except ValueError:  # pragma: no cover - platforms without fork
+        return sp.solve(eqs, unknowns, dict=True, simplify=False)
+    receiver, sender = context.Pipe(duplex=False)
+    child = context.Process(target=_solve_worker, args=(eqs, unknowns, sender), daemon=True)
+    child.start()
+    sender.close()
+    try:
+        if not receiver.poll(seconds):
+            raise TimeoutError
+        kind, value = receiver.recv()
+    except EOFError:
+        raise NotImplementedError("the solver process died") from None
+    finally:
+        if child.is_alive():
+            child.kill()
+        child.join()
+        receiver.close()
+    if kind == "error":
+        raise (
+            value
+            if isinstance(value, (NotImplementedError, ValueError))
+            else NotImplementedError(str(value))
+        )
+    return value
 
 
 def _taylor_coefficient(expr: sp.Expr, k: int) -> sp.Expr:

@@ -185,3 +185,39 @@ def test_simplified_display_is_the_same_expression():
         assert sp.simplify(sol.coordinate(name, simplify=True) - sol.coordinate(name)) == 0
     assert sp.simplify(sol.period_series(simplify=True) - sol.period_series()) == 0
     assert "\\cos" in sol.latex() and "T =" in sol.latex(simplify=False)
+
+
+COUPLED_VDP = QuasilinearSystem(
+    [x, y],
+    [xd, yd],
+    [1, 1],
+    [
+        EPS * ((1 - x**2) * xd + (y - x) / 2),
+        EPS * ((1 - y**2) * yd + (x - y) / 2),
+    ],
+    name="coupled van der Pol",
+)
+#: Far below the seconds sympy would need to enumerate the coupled pair's amplitude roots.
+SHORT_BUDGET = 1.0
+
+
+def test_amplitude_equations_sympy_cannot_solve_end_in_a_status_not_a_hang():
+    sol = PoincareMethod(order=1, cache=False, solve_seconds=SHORT_BUDGET).solve(COUPLED_VDP)
+    assert sol.status is Status.NO_ROOT and "branch=" in sol.message
+
+
+def test_branch_supplies_the_root_sympy_cannot_enumerate():
+    """The synchronised limit cycle x = y = 2 cos s: the frequency is van der Pol's."""
+    method = PoincareMethod(
+        order=1,
+        cache=False,
+        solve_seconds=SHORT_BUDGET,
+        branch={"a_x0": 2, "a_y0": 2, "b_y0": 0},
+    )
+    sol = method.solve(COUPLED_VDP)
+    assert sol.success, sol.message
+    assert sol.frequency[:3] == (1, 0, -sp.Rational(1, 16))
+    bad = PoincareMethod(
+        order=1, cache=False, solve_seconds=SHORT_BUDGET, branch={"a_x0": 1, "a_y0": 2, "b_y0": 0}
+    ).solve(COUPLED_VDP)
+    assert bad.status is Status.INCONSISTENT
