@@ -37,3 +37,11 @@ PROBE_DIGITS = 30
 #: and the disk's equations take well under a second; equations whose roots have no closed form can
 #: keep sympy busy for hours.
 SOLVE_SECONDS = 30.0
+
+#: Numeric roots of the amplitude equations (Groebner path): a root of the triangular system is
+#: accepted where every polynomial of its variable vanishes to this fraction of its coefficients'
+#: size (companion-matrix roots of well-scaled polynomials are good to ~1e-12).
+ROOT_RESIDUAL = 1e-8
+#: A numeric root this close to a rational with a small denominator is taken exact (2.0000000000001 -> 2).
+ROOT_RATIONAL_TOL = 1e-11
+ROOT_MAX_DENOMINATOR = 10_000

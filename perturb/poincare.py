@@ -41,6 +41,9 @@ from perturb._defaults import (
     MAX_ORDER,
     NUMERIC_ZERO,
     PROBE_DIGITS,
+    ROOT_MAX_DENOMINATOR,
+    ROOT_RATIONAL_TOL,
+    ROOT_RESIDUAL,
     SOLVE_SECONDS,
 )
 from perturb.cache import cached
@@ -515,8 +518,20 @@ class _Construction:
         return {s: sp.expand(v) if v.is_polynomial(*unknowns) else v for s, v in solution.items()}
 
     def _solve_nonlinear(self, eqs, unknowns, k, generating) -> tuple[dict, tuple]:
+        numeric = self._numeric_system_roots(eqs, unknowns, generating)
+        exact = numeric is not None and all(
+            not v.has(sp.Float) for root in numeric for v in root.values()
+        )
         try:
-            roots = _solve_bounded(eqs, unknowns, self.method.solve_seconds)
+            if exact:
+                roots = numeric
+            else:
+                try:
+                    roots = _solve_bounded(eqs, unknowns, self.method.solve_seconds)
+                except TimeoutError:
+                    if not numeric:
+                        raise
+                    roots = numeric  # irrational roots sympy could not write in radicals
         except (NotImplementedError, sp.PolynomialError, ValueError) as exc:
             raise _Failure(
                 Status.NO_ROOT,
@@ -559,6 +574,34 @@ class _Construction:
             )
         chosen = self._choose_branch(admissible, unknowns, generating)
         return chosen, tuple(admissible)
+
+    def _numeric_system_roots(self, eqs, unknowns, generating) -> list[dict] | None:
+        """Roots by a Groebner basis when the coefficients are numbers (None: not applicable).
+
+        Used as they are when every root is rational (exact); irrational roots come back as floats
+        and are used only if sympy cannot write them in radicals within the time budget.
+
+        The trivial equilibrium makes the system positive-dimensional (any frequency correction
+        solves it there), so an unknown amplitude of the phase coordinate is required non-zero
+        (Rabinowitsch: a new unknown w with w * amplitude = 1).
+        """
+        if any(e.free_symbols - set(unknowns) for e in eqs):
+            return None
+        if any(e.has(sp.Float) for e in eqs):
+            return None
+        system, variables = list(eqs), list(unknowns)
+        phase_amplitude = generating.cos_amplitudes[self.phase]
+        if isinstance(phase_amplitude, sp.Symbol) and phase_amplitude in unknowns:
+            inverse = sp.Dummy("w")
+            system.append(inverse * phase_amplitude - 1)
+            variables = [inverse, *variables]
+        try:
+            roots = _solve_bounded(
+                system, variables, self.method.solve_seconds, _groebner_real_roots
+            )
+        except (NotImplementedError, TimeoutError):
+            return None
+        return [{s: v for s, v in root.items() if s in unknowns} for root in roots]
 
     def _solve_with_branch_values(self, eqs, unknowns, k) -> dict | None:
         """When sympy cannot enumerate the roots, take the generating amplitudes from ``branch``.
@@ -766,17 +809,21 @@ class _Construction:
         )
 
 
-def _solve_worker(eqs, unknowns, connection) -> None:
+def _sympy_roots(eqs, unknowns) -> list[dict]:
+    return sp.solve(eqs, unknowns, dict=True, simplify=False)
+
+
+def _solve_worker(solver, eqs, unknowns, connection) -> None:
     try:
-        connection.send(("ok", sp.solve(eqs, unknowns, dict=True, simplify=False)))
+        connection.send(("ok", solver(eqs, unknowns)))
     except Exception as exc:  # noqa: BLE001 - the parent re-raises it as a failed status
         connection.send(("error", exc))
     finally:
         connection.close()
 
 
-def _solve_bounded(eqs, unknowns, seconds: float) -> list[dict]:
-    """``sympy.solve(eqs, unknowns, dict=True)`` with a time budget.
+def _solve_bounded(eqs, unknowns, seconds: float, solver=_sympy_roots) -> list[dict]:
+    """``solver(eqs, unknowns)`` (default ``sympy.solve(..., dict=True)``) with a time budget.
 
     The solve runs in a forked child process, which is killed when the budget is spent
     (``TimeoutError``). Where the platform cannot fork, it runs in-process without a budget.
@@ -784,9 +831,9 @@ def _solve_bounded(eqs, unknowns, seconds: float) -> list[dict]:
     try:
         context = multiprocessing.get_context("fork")
     except ValueError:  # pragma: no cover - platforms without fork
-        return sp.solve(eqs, unknowns, dict=True, simplify=False)
+        return solver(eqs, unknowns)
     receiver, sender = context.Pipe(duplex=False)
-    child = context.Process(target=_solve_worker, args=(eqs, unknowns, sender), daemon=True)
+    child = context.Process(target=_solve_worker, args=(solver, eqs, unknowns, sender), daemon=True)
     child.start()
     sender.close()
     try:
@@ -807,6 +854,66 @@ def _solve_bounded(eqs, unknowns, seconds: float) -> list[dict]:
             else NotImplementedError(str(value))
         )
     return value
+
+
+def _groebner_real_roots(eqs, unknowns) -> list[dict]:
+    """Real roots of a zero-dimensional polynomial system with numeric coefficients.
+
+    A lexicographic Groebner basis makes the system triangular; the last variable's polynomial is
+    solved numerically (companion matrix), each root substituted back, variable by variable, keeping
+    the roots every polynomial of that variable shares. Roots within ``ROOT_RATIONAL_TOL`` of a
+    rational with a small denominator are returned exact. sympy's ``solve`` needs the roots in
+    radicals and can run for hours where this takes a fraction of a second.
+
+    Raises
+    ------
+    NotImplementedError
+        If the system is not zero-dimensional (a family of roots) or a variable is left free.
+    """
+    import numpy as np
+
+    basis = sp.groebner(eqs, *unknowns, order="lex")
+    if list(basis.exprs) == [1]:
+        return []
+    if not basis.is_zero_dimensional:
+        raise NotImplementedError("the amplitude equations have a continuum of roots")
+    polys = list(basis.exprs)
+    found: list[dict] = []
+
+    def descend(index: int, assignment: dict) -> None:
+        if index < 0:
+            found.append(dict(assignment))
+            return
+        var = unknowns[index]
+        candidates = []
+        for poly in polys:
+            expr = sp.expand(poly.xreplace(assignment))
+            if expr.free_symbols == {var}:
+                candidates.append(sp.Poly(expr, var))
+            elif not expr.free_symbols and abs(complex(expr)) > ROOT_RESIDUAL:
+                return
+        if not candidates:
+            raise NotImplementedError(f"{var} is left free by the amplitude equations")
+        lowest = min(candidates, key=lambda q: q.degree())
+        for z in np.roots([complex(c) for c in lowest.all_coeffs()]):
+            if abs(z.imag) > ROOT_RESIDUAL * max(1.0, abs(z)):
+                continue
+            value = _exact_if_close(z.real)
+            scale = lambda q: max(1.0, *(abs(complex(c)) for c in q.all_coeffs()))  # noqa: E731
+            if all(abs(complex(q.eval(value))) <= ROOT_RESIDUAL * scale(q) for q in candidates):
+                assignment[var] = value
+                descend(index - 1, assignment)
+                del assignment[var]
+
+    descend(len(unknowns) - 1, {})
+    return found
+
+
+def _exact_if_close(value: float) -> sp.Expr:
+    rational = sp.nsimplify(value, tolerance=ROOT_RATIONAL_TOL, rational=True)
+    if rational.q <= ROOT_MAX_DENOMINATOR and abs(float(rational) - value) <= ROOT_RATIONAL_TOL:
+        return rational
+    return sp.Float(value, 17)
 
 
 def _taylor_coefficient(expr: sp.Expr, k: int) -> sp.Expr:

@@ -187,18 +187,37 @@ def test_simplified_display_is_the_same_expression():
     assert "\\cos" in sol.latex() and "T =" in sol.latex(simplify=False)
 
 
+kappa = sp.Symbol("kappa", positive=True)
 COUPLED_VDP = QuasilinearSystem(
     [x, y],
     [xd, yd],
     [1, 1],
     [
-        EPS * ((1 - x**2) * xd + (y - x) / 2),
-        EPS * ((1 - y**2) * yd + (x - y) / 2),
+        EPS * ((1 - x**2) * xd + kappa * (y - x)),
+        EPS * ((1 - y**2) * yd + kappa * (x - y)),
     ],
+    parameters=[kappa],
     name="coupled van der Pol",
 )
 #: Far below the seconds sympy would need to enumerate the coupled pair's amplitude roots.
 SHORT_BUDGET = 1.0
+
+
+def test_numeric_amplitude_equations_are_solved_by_a_groebner_basis():
+    """Coupled van der Pol with kappa = 1/2: sympy's solve runs for hours (roots of high degree);
+    the Groebner path finds the synchronised cycles x = +-y = 2 cos s at once."""
+    system = COUPLED_VDP.with_values({"kappa": sp.Rational(1, 2)})
+    sol = PoincareMethod(order=1, cache=False).solve(system)
+    assert sol.success, sol.message
+    amplitudes = {(r[sp.Symbol("a_x0")], r[sp.Symbol("a_y0")]) for r in sol.steps[0].branches}
+    assert {(2, 2), (2, -2)} <= amplitudes  # in phase and in anti-phase, exact
+    assert sol.generating.cos_amplitudes == (2, 2) and sol.frequency[:3] == (
+        1,
+        0,
+        -sp.Rational(1, 16),
+    )
+    anti = PoincareMethod(order=1, cache=False, branch={"a_y0": -2}).solve(system)
+    assert anti.frequency[1] == sp.Rational(1, 2)  # Omega_1 = kappa for the anti-phase cycle
 
 
 def test_amplitude_equations_sympy_cannot_solve_end_in_a_status_not_a_hang():
