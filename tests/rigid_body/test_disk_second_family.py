@@ -92,11 +92,8 @@ def test_other_points_of_the_circle_are_inconsistent_at_order_3(system_and_g0, c
 def test_true_periodic_orbits_exist_at_the_predicted_angle(sign):
     """Conditioned shooting of the full Euler–Poisson system seeded at the generating orbit."""
     from perturb.oracle import Heyoka, find_periodic_orbit
-    from tests.rigid_body.test_disk_shooting import (
-        _conditioned_rhs,
-        _move_to_section,
-        disk,
-    )
+    from problems.rigid_body.true_orbit import _conditioned_rhs, _move_to_section
+    from tests.rigid_body.test_disk_shooting import disk
 
     chi = CHI_STAR + (0.0 if sign > 0 else math.pi)
     r, m3 = float(R), float(M3)

@@ -36,11 +36,7 @@ import pytest
 
 from perturb.oracle import SymbolicRHS, find_periodic_orbit, heyoka_available
 from problems import get_problem
-from problems.rigid_body.true_orbit import (  # noqa: F401  (used by test_disk_second_family)
-    _conditioned_rhs,
-    _move_to_section,
-    conditioned_true_orbit,
-)
+from problems.rigid_body.true_orbit import conditioned_true_orbit
 
 pytestmark = pytest.mark.skipif(not heyoka_available(), reason="needs heyoka (extended precision)")
 
