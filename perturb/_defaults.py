@@ -45,3 +45,7 @@ ROOT_RESIDUAL = 1e-8
 #: A numeric root this close to a rational with a small denominator is taken exact (2.0000000000001 -> 2).
 ROOT_RATIONAL_TOL = 1e-11
 ROOT_MAX_DENOMINATOR = 10_000
+
+#: Most output times a command accepts (``--times``): 10⁷ points of a 6-component state printed as
+#: text are ~1.5 GB, past any use at a terminal; beyond it, call ``evaluate`` from Python.
+MAX_TIMES = 10_000_000

@@ -1,21 +1,28 @@
 """Command-line interface: ``perturb list``, ``perturb solve`` (a leaf: nothing imports it).
 
 Exit codes: 0 success, 1 a valid run whose construction or check failed (the reason is printed),
-2 bad input (one line on stderr, no traceback).
+2 bad input (one line on stderr, no traceback). Only errors about the user's input exit 2: anything
+else that goes wrong inside a run is a failed run (exit 1) with the reason on one line, never a
+traceback. Options are never abbreviated (``--order`` is not ``--orders``).
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
+import math
+import os
 import sys
 import warnings
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from pathlib import Path
 
 import numpy as np
 
-from perturb._defaults import DEFAULT_SAMPLES
+from perturb._defaults import DEFAULT_SAMPLES, MAX_TIMES
 from perturb.errors import PerturbError
+from perturb.progress import listening
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 
@@ -30,11 +37,29 @@ _EPILOG = """examples:
 """
 
 
+#: Errors about the user's input (exit 2); every other exception inside a run is a failure (exit 1).
+_INPUT_ERRORS = (
+    "InvalidParameterError",
+    "InvalidSystemError",
+    "UnknownNameError",
+    "ProblemLoadError",
+    "SceneError",
+)
+
+
 class _UsageError(Exception):
     pass
 
 
+class _RunFailed(Exception):
+    """A valid run that failed: exit 1 with the reason on one line."""
+
+
 class _Parser(argparse.ArgumentParser):
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)  # `--order` must never mean `--orders`
+        super().__init__(*args, **kwargs)
+
     def error(self, message):  # one line, exit 2, no usage dump
         raise _UsageError(message)
 
@@ -81,7 +106,11 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     _add_problem_arguments(solve)
     solve.add_argument(
-        "--times", default=None, metavar="T1,T2,...", help="comma-separated times (physical units)"
+        "--times",
+        default=None,
+        metavar="TIMES",
+        help="times (physical units): T1,T2,... or START:STOP:N (N evenly spaced, both ends "
+        "included) or @FILE (one value a line, or comma-separated; '#' starts a comment)",
     )
     _add_format(solve, ["table", "csv", "json"])
     solve.add_argument(
@@ -146,6 +175,12 @@ def _build_parser() -> argparse.ArgumentParser:
     reproduce.add_argument(
         "--output", default=None, metavar="DIR", help="also write the report files into DIR"
     )
+    for command in sub.choices.values():
+        command.add_argument(
+            "--quiet",
+            action="store_true",
+            help="no progress bar on stderr (it is shown only on a terminal anyway)",
+        )
     return parser
 
 
@@ -174,18 +209,61 @@ def _parse_order(text: str) -> int:
     return order
 
 
-def _parse_times(text: str | None) -> np.ndarray | None:
-    if text is None:
-        return None
+def _read_times_file(text: str) -> str:
+    name = text[1:]
+    if not name:
+        raise _UsageError("--times '@': name a file after @, e.g. --times @times.txt")
     try:
-        values = np.array([float(v) for v in text.split(",") if v.strip()], dtype=float)
+        content = Path(name).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        raise _UsageError(f"--times {text!r}: cannot read {name!r} ({reason})") from None
+    lines = (line.split("#", 1)[0] for line in content.splitlines())
+    return ",".join(item for line in lines for item in line.split(","))
+
+
+def _parse_number(flag: str, text: str, item: str) -> float:
+    try:
+        value = float(item)
     except ValueError:
         raise _UsageError(
-            f"--times {text!r}: give comma-separated numbers, e.g. --times 0,0.5,1"
+            f"{flag} {text!r}: {item.strip()!r} is not a number; give T1,T2,..., START:STOP:N "
+            "or @FILE"
         ) from None
-    if values.size == 0 or not np.all(np.isfinite(values)):
-        raise _UsageError(f"--times {text!r}: give at least one finite time")
-    return values
+    if not math.isfinite(value):
+        raise _UsageError(f"{flag} {text!r}: {item.strip()!r} is not finite; give finite times")
+    return value
+
+
+def _parse_times(text: str | None) -> np.ndarray | None:
+    """``--times``: ``T1,T2,...``, ``START:STOP:N`` or ``@FILE``."""
+    if text is None:
+        return None
+    spec = _read_times_file(text) if text.startswith("@") else text
+    if ":" in spec and not text.startswith("@"):
+        parts = spec.split(":")
+        if len(parts) != 3:
+            raise _UsageError(f"--times {text!r}: write START:STOP:N, e.g. --times 0:10:1001")
+        start, stop = (_parse_number("--times", text, p) for p in parts[:2])
+        try:
+            count = int(parts[2])
+        except ValueError:
+            raise _UsageError(
+                f"--times {text!r}: N = {parts[2].strip()!r} must be a whole number >= 1"
+            ) from None
+        if not 1 <= count <= MAX_TIMES:
+            raise _UsageError(f"--times {text!r}: N must be between 1 and {MAX_TIMES}")
+        with np.errstate(all="ignore"):  # an overflowing range is reported just below
+            values = np.linspace(start, stop, count)
+        if not np.all(np.isfinite(values)):
+            raise _UsageError(f"--times {text!r}: the times overflow; give a smaller range")
+        return values
+    items = [v for v in spec.split(",") if v.strip()]
+    if not items:
+        raise _UsageError(f"--times {text!r}: give at least one time")
+    if len(items) > MAX_TIMES:
+        raise _UsageError(f"--times {text!r}: at most {MAX_TIMES} times")
+    return np.array([_parse_number("--times", text, v) for v in items], dtype=float)
 
 
 def _cmd_list() -> int:
@@ -320,7 +398,26 @@ def _cmd_reproduce(args) -> int:
     return EXIT_OK
 
 
+def _non_finite(value) -> bool:
+    """Whether a number anywhere in a (nested) payload is NaN or infinite."""
+    if isinstance(value, dict):
+        return any(_non_finite(v) for v in value.values())
+    if isinstance(value, list | tuple):
+        return any(_non_finite(v) for v in value)
+    if isinstance(value, float | np.floating):
+        return not math.isfinite(value)
+    if isinstance(value, np.ndarray) and value.dtype.kind in "fc":
+        return not bool(np.all(np.isfinite(value)))
+    return False
+
+
 def _print(payload: dict, fmt: str, blocks) -> None:
+    numbers = {"period": payload.get("period"), "blocks": [dict(b) for _, b in blocks]}
+    if _non_finite(numbers):
+        raise _RunFailed(
+            "the solution is not finite at these parameters or times (NaN or inf); it is "
+            "outside the domain where the series holds"
+        )
     if fmt == "json":
         print(json.dumps(payload, allow_nan=True))
         return
@@ -347,32 +444,119 @@ def _format_warning(message, category, filename, lineno, line=None) -> str:
     return f"perturb: warning: {message}\n"
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``perturb`` command; returns the exit code."""
-    warnings.formatwarning = _format_warning
+class _ProgressBar:
+    """A one-line bar on stderr, redrawn in place: ``perturb: work-precision [#####.....] 12/24``."""
+
+    WIDTH = 30
+
+    def __init__(self, stream):
+        self.stream = stream
+        self.drawn = False
+
+    def __call__(self, label: str, done: int, total: int | None) -> None:
+        if total:
+            filled = self.WIDTH * done // total
+            bar = f"[{'#' * filled}{'.' * (self.WIDTH - filled)}] {done}/{total}"
+        else:
+            bar = f"{done} done"
+        self.stream.write(f"\rperturb: {label} {bar}")
+        self.stream.flush()
+        self.drawn = True
+        if total and done >= total:
+            self.close()
+
+    def close(self) -> None:
+        if self.drawn:
+            self.stream.write("\n")
+            self.stream.flush()
+            self.drawn = False
+
+
+@contextlib.contextmanager
+def _progress(args) -> Iterator[None]:
+    """Show progress on stderr when it is a terminal and ``--quiet`` was not given."""
+    show = not getattr(args, "quiet", False) and sys.stderr.isatty()
+    bar = _ProgressBar(sys.stderr) if show else None
+    with listening(bar):
+        try:
+            yield
+        finally:
+            if bar is not None:
+                bar.close()
+
+
+_COMMANDS = {
+    "list": lambda args: _cmd_list(),
+    "solve": lambda args: _cmd_solve(args),
+    "validate": lambda args: _cmd_validate(args),
+    "reproduce": lambda args: _cmd_reproduce(args),
+    "work-precision": lambda args: _cmd_work_precision(args),
+}
+
+
+def _is_input_error(exc: BaseException) -> bool:
+    return isinstance(exc, PerturbError) and any(
+        cls.__name__ in _INPUT_ERRORS for cls in type(exc).__mro__
+    )
+
+
+def _one_line(exc: BaseException) -> str:
+    text = " ".join(str(exc).split())
+    return text or type(exc).__name__
+
+
+def _run(argv: Sequence[str] | None) -> int:
     parser = _build_parser()
     try:
         args = parser.parse_args(argv)
         if args.command is None:
             parser.print_help()
             return EXIT_USAGE
-        if args.command == "list":
-            return _cmd_list()
-        if args.command == "solve":
-            return _cmd_solve(args)
-        if args.command == "validate":
-            return _cmd_validate(args)
-        if args.command == "reproduce":
-            return _cmd_reproduce(args)
-        if args.command == "work-precision":
-            return _cmd_work_precision(args)
-        raise _UsageError(f"unknown command {args.command!r}")  # pragma: no cover
+        with _progress(args):
+            return _COMMANDS[args.command](args)
     except _UsageError as exc:
-        print(f"perturb: error: {exc}", file=sys.stderr)
+        print(f"perturb: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_USAGE
-    except (PerturbError, ValueError) as exc:
-        print(f"perturb: error: {exc}", file=sys.stderr)
-        return EXIT_USAGE
+    except _RunFailed as exc:
+        print(f"perturb: failed: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_FAILED
+    except BrokenPipeError:
+        raise
+    except (OverflowError, FloatingPointError, ZeroDivisionError) as exc:
+        print(
+            f"perturb: failed: the computation overflowed or divided by zero at these parameters "
+            f"({_one_line(exc)}); try values closer to the problem's defaults",
+            file=sys.stderr,
+        )
+        return EXIT_FAILED
+    except Exception as exc:  # noqa: BLE001 - a run never ends in a traceback
+        if _is_input_error(exc):
+            print(f"perturb: error: {_one_line(exc)}", file=sys.stderr)
+            return EXIT_USAGE
+        print(
+            f"perturb: failed: internal error ({type(exc).__name__}: {_one_line(exc)}); please "
+            "report it with the command line",
+            file=sys.stderr,
+        )
+        return EXIT_FAILED
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``perturb`` command; returns the exit code.
+
+    A closed output pipe (``perturb solve ... | head``) ends the run quietly, as other Unix tools do.
+    """
+    warnings.formatwarning = _format_warning
+    try:
+        code = _run(argv)
+        sys.stdout.flush()
+        return code
+    except BrokenPipeError:
+        # Python's advice: point stdout at devnull so the interpreter's final flush cannot fail again.
+        with contextlib.suppress(OSError, ValueError):
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, sys.stdout.fileno())
+        return EXIT_FAILED
     except KeyboardInterrupt:  # pragma: no cover
         return 130
 
