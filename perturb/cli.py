@@ -173,6 +173,11 @@ def _build_parser() -> argparse.ArgumentParser:
     reproduce.add_argument("paper", help="paper name (`paper`: the seed paper on the disk)")
     _add_format(reproduce, ["table", "json"])
     reproduce.add_argument(
+        "--full",
+        action="store_true",
+        help="print the full tables after the summary (json output is always complete)",
+    )
+    reproduce.add_argument(
         "--output", default=None, metavar="DIR", help="also write the report files into DIR"
     )
     for command in sub.choices.values():
@@ -388,13 +393,17 @@ def _cmd_work_precision(args) -> int:
 
 
 def _cmd_reproduce(args) -> int:
-    from problems.rigid_body.paper import reproduce
+    from problems.reproductions import get_reproduction
 
-    report = reproduce(args.paper, output=args.output)
+    reproduction = get_reproduction(args.paper)
+    report = reproduction.run(output=args.output)
     if args.format == "json":
-        print(json.dumps(report.as_dict(), allow_nan=True))
-    else:
-        print(report.as_table())
+        print(json.dumps(reproduction.as_dict(report), allow_nan=True))
+        return EXIT_OK
+    print(reproduction.summary(report))
+    if args.full:
+        print()
+        print(reproduction.full(report))
     return EXIT_OK
 
 

@@ -3,7 +3,7 @@
 Fast-spin disks (the paper's body with c = 1, r0 = 1/eps), three periods, eps = 0.04 ... 0.004.
 "True" is the full Euler–Poisson motion from the corrected solution's initial state, with psi
 integrated along it; "ours" is the ``disk`` problem's ``euler_angles``; "paper" is
-:func:`problems.rigid_body.paper_euler.paper_euler_angles` (the printed formulas, mu^-1 = eps).
+:func:`problems.rigid_body.paper.euler.paper_euler_angles` (the printed formulas, mu^-1 = eps).
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ import pytest
 
 from perturb.errors import InvalidParameterError
 from problems.rigid_body.paper import reproduce
-from problems.rigid_body.paper_euler import (
+from problems.rigid_body.paper.euler import (
     ANGLES,
     EULER_EPSILONS,
     PaperEulerInputs,

@@ -15,14 +15,14 @@ import pytest
 
 from perturb.cli import main
 from perturb.errors import InvalidParameterError, UnknownNameError
-from problems.rigid_body import paper
 from problems.rigid_body.paper import (
     KNOWN_PAPERS,
     TABLE1_COLUMNS,
-    _table1_tolerance,
     paper_table1,
     reproduce,
 )
+from problems.rigid_body.paper import reproduction as paper_reproduction
+from problems.rigid_body.paper.data import table1_tolerance
 
 pytestmark = pytest.mark.paper
 
@@ -41,13 +41,13 @@ def report():
 def test_table1_entry(report, column, row):
     """Each printed entry is the closed form (30) at h = T t/300 within its printed precision."""
     text = PRINTED[column + "_text"][row]
-    assert abs(report.table1[column][row] - float(text)) <= _table1_tolerance(text)
+    assert abs(report.table1[column][row] - float(text)) <= table1_tolerance(text)
 
 
 def test_table1_tolerance_rule():
-    assert _table1_tolerance("2.79E-01") == pytest.approx(0.0005)  # 0.279: last digit 1e-3
-    assert _table1_tolerance("7.048539") == pytest.approx(1e-5)  # floor
-    assert _table1_tolerance("1") == pytest.approx(1e-5)  # %.7g dropped the zeros
+    assert table1_tolerance("2.79E-01") == pytest.approx(0.0005)  # 0.279: last digit 1e-3
+    assert table1_tolerance("7.048539") == pytest.approx(1e-5)  # floor
+    assert table1_tolerance("1") == pytest.approx(1e-5)  # %.7g dropped the zeros
 
 
 def test_table1_shipped_copy_is_complete():
@@ -237,7 +237,9 @@ def test_cli_unwritable_output_exit_2(tmp_path, capsys):
 def test_unwritable_output_raises_before_work(tmp_path, monkeypatch):
     blocker = tmp_path / "file"
     blocker.write_text("x")
-    monkeypatch.setattr(paper, "_constants", lambda: pytest.fail("work started"))
+    monkeypatch.setattr(
+        paper_reproduction, "derived_constants", lambda: pytest.fail("work started")
+    )
     with pytest.raises(InvalidParameterError, match="writable"):
         reproduce("paper", output=blocker)
 

@@ -12,7 +12,7 @@ and returns its first-harmonic Fourier coefficients
 :math:`(a_1, b_1) = \\frac1\\pi\\int_0^{2\\pi} f\\,(\\cos s, \\sin s)\\,ds`.  The forcings are
 polynomials of low degree in :math:`\\cos s, \\sin s`, so a short uniform grid gives them exactly (up
 to round-off).  The paper's printed forms (12)–(14), (20), (21), (23) are encoded *only* here and in
-:mod:`problems.rigid_body.paper`, as the claims being checked.
+:mod:`problems.rigid_body.paper.closed_form`, as the claims being checked.
 
 References
 ----------
