@@ -198,8 +198,9 @@ def test_errata_statuses(report):
 
 
 # ---------------------------------------------------------------------------- API and CLI
-def test_report_is_fast_and_serialisable(report):
-    assert report.elapsed < 20
+def test_report_is_serialisable(report):
+    # its run time is measured in benchmarks/bench_disk.py, never asserted here (machine load varies)
+    assert report.elapsed > 0
     data = json.loads(json.dumps(report.as_dict(), allow_nan=True))
     assert "Verdict" in report.as_table()
     assert data["table2"]["true_motion"]["t"][-1] == 300
