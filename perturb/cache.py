@@ -201,6 +201,13 @@ def _create_secret(path: Path) -> None:
             os.link(tmp, path)  # fails if another process made the key meanwhile: use theirs
         except FileExistsError:
             pass
+        except OSError:  # no hard links here: exclusive creation (a racing reader may see it short)
+            try:
+                fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+            except FileExistsError:
+                return
+            with os.fdopen(fd, "wb") as dst:
+                dst.write(Path(tmp).read_bytes())
     finally:
         os.unlink(tmp)
 
