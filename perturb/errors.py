@@ -9,6 +9,7 @@ from __future__ import annotations
 
 __all__ = [
     "AccuracyWarning",
+    "CacheWarning",
     "IntegrationError",
     "InvalidParameterError",
     "InvalidSystemError",
@@ -60,3 +61,8 @@ def bad_value(
     perturb.errors.InvalidParameterError: `order` = 0 is invalid: pass an integer >= 1
     """
     return cls(f"`{argument}` = {value!r} is invalid: {fix}")
+
+
+class CacheWarning(UserWarning):
+    """The disk cache was bypassed or repaired (unsafe folder, unusable key, invalid entry); the
+    result is still computed afresh and correct."""

@@ -20,3 +20,7 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 # Tests never read a user's cache: each session derives everything afresh into its own folder.
 os.environ["PERTURB_CACHE_DIR"] = tempfile.mkdtemp(prefix="perturb-test-cache-")
+# ... signed with a key of its own, outside that folder: tests never create or read the user's key.
+os.environ["PERTURB_CACHE_KEY_FILE"] = os.path.join(
+    tempfile.mkdtemp(prefix="perturb-test-key-"), "cache.key"
+)

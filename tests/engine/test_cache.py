@@ -1,9 +1,12 @@
 """The disk cache returns what was computed, survives corrupt entries and can be switched off."""
 
+import pytest
 import sympy as sp
 
+import perturb.cache
 from perturb import EPS, PoincareMethod, QuasilinearSystem
 from perturb.cache import cache_dir
+from perturb.errors import CacheWarning
 
 x, xd, A = sp.symbols("x xdot A")
 SYSTEM = QuasilinearSystem([x], [xd], [1], [-EPS * x**3], parameters=[A])
@@ -25,10 +28,12 @@ def test_second_solve_reads_the_same_solution(tmp_path, monkeypatch):
 
 def test_corrupt_entry_is_recomputed(tmp_path, monkeypatch):
     monkeypatch.setenv("PERTURB_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(perturb.cache, "_WARNED", set())
     PoincareMethod(order=1, amplitudes={"x": A}).solve(SYSTEM)
     (entry,) = tmp_path.glob("solution-*.pkl")
     entry.write_bytes(b"not a pickle")
-    sol = PoincareMethod(order=1, amplitudes={"x": A}).solve(SYSTEM)
+    with pytest.warns(CacheWarning, match="recomputed"):
+        sol = PoincareMethod(order=1, amplitudes={"x": A}).solve(SYSTEM)
     assert sol.success and sol.frequency[1] == sp.Rational(3, 8) * A**2
 
 
