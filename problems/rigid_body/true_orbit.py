@@ -16,12 +16,15 @@ below float64 round-off: a plain shooting accepts any seed within ~1 % as "conve
 3. a constant extra component :math:`w` with time rate :math:`1 + \\lambda w`: a float64 period has
    granularity :math:`10^{-16}T`, which alone moves the P-phase by :math:`10^{-16}\\cdot2\\pi`, i.e.
    :math:`10^{-3}` of :math:`\\varphi` — :math:`w` takes up that last bit of the period;
-4. heyoka in extended precision (80-bit long double, else quadruple).
+4. heyoka in quadruple precision (real128; else 80-bit long double), from the parameters as exact
+   rationals (:mod:`problems.rigid_body.exact_inputs`), each coefficient rounded once;
+5. the origin re-centred on the orbit found and the shooting repeated, since the defect
+   u(T) - u(0) is formed in float64 (see :data:`CENTRED`).
 
 The orbit is the family member of the analytic solution (:math:`r = r_0`, :math:`\\gamma'' =
 \\gamma_0''`, :math:`|\\boldsymbol\\gamma| = 1` pinned), moved along the flow onto the analytic
-solution's section :math:`\\dot G = 0`. About 0.5 s at the paper geometry (heyoka compiles the
-conditioned system once per call). Tests: ``tests/rigid_body/test_disk_shooting.py``.
+solution's section :math:`\\dot G = 0`. About 7 s at the paper geometry (heyoka compiles the
+conditioned system once per pass). An independent check: :mod:`problems.rigid_body.true_orbit_mp`. Tests: ``tests/rigid_body/test_disk_shooting.py``.
 """
 
 from __future__ import annotations
