@@ -169,11 +169,18 @@ $$\begin{aligned}@@solution@@\end{aligned}$$
 
 At the paper's geometry with $\varepsilon = 10^{-4}$ ($k = 2.466\times10^{-5}$, $\gamma_0'' = 7\times10^{-6}$):
 $\beta_1/\varepsilon = @@b1@@$, $\beta_2/\varepsilon = @@b2@@$, $(T-2\pi)/\varepsilon^2 = @@al@@$. The true
-periodic orbit (extended-precision shooting, `tests/rigid_body/test_disk_shooting.py`) has 3.910760,
-1.125556, 1.032953: at this geometry the detuning $\tfrac12kM_3^2$ is tiny, so the first-order amplitudes
-carry a relative error of the size of $|\beta|^2/(kM_3^2) = 0.0066$ (the amplitude-dependent part of
+periodic orbit has 3.9179736, 1.1276318, 1.0329529858, found by two independent routes that agree to
+2e-9: a conditioned shooting with heyoka in quadruple precision and a 40-digit mpmath Taylor
+integration with its own Newton shooting (`problems/rigid_body/true_orbit.py`, `true_orbit_mp.py`,
+`tests/rigid_body/test_disk_shooting.py`, `python benchmarks/bench_true_orbit.py`), both from the
+parameters as exact rationals ($C = A + B$ exactly, each coefficient rounded once). The figures
+3.910760, 1.125556 quoted before came from coefficients rounded to doubles: here the two frequencies
+differ by only $\varepsilon^2kM_3^2/2 \approx 1.2\times10^{-13}$, so a 1e-16 error that breaks
+$A + B = C$ moves the amplitudes in the third digit. At this geometry the detuning is tiny, so the
+first-order amplitudes
+carry a relative error of the size of $|\beta|^2/(kM_3^2) = 0.0066$ (1.06 %: the amplitude-dependent part of
 the detuning, which enters at third order). `problem.solve(3)` gives 3.91699, 1.12735, 1.032953, within
-2e-3 of the truth. (Our reference derivation printed 3.87665, 1.11593 for the true orbit: that was the
+3e-4 of the truth. (Our reference derivation printed 3.87665, 1.11593 for the true orbit: that was the
 first-order seed, left unresolved by a double-precision shooting whose Newton matrix is nearly
 singular here, the two frequencies differing by $2\pi\varepsilon^2 kM_3^2/2 \approx 8\times10^{-13}$.)
 The paper's formulas give @@p1@@, @@p2@@, @@pal@@.

@@ -159,6 +159,9 @@ class DiskInNewtonianField(FastSpinBody):
         :func:`perturb.validation.validate` calls it when its double-precision shooting cannot
         resolve the orbit (the P-multipliers sit ~eps**2 k M3**2 pi from 1). Returns a
         :class:`problems.rigid_body.true_orbit.TrueOrbit` (failures as a status, e.g. without heyoka).
+        The parameters are used exactly: each float value as the rational of its shortest decimal,
+        ``sympy.Rational(repr(value))`` (what the user typed, for up to 15 significant digits), and
+        C = A + B exactly (:func:`problems.rigid_body.exact_inputs.exact_values`).
         """
         from problems.rigid_body.true_orbit import conditioned_true_orbit
 

@@ -16,24 +16,35 @@ below float64 round-off: a plain shooting accepts any seed within ~1 % as "conve
 3. a constant extra component :math:`w` with time rate :math:`1 + \\lambda w`: a float64 period has
    granularity :math:`10^{-16}T`, which alone moves the P-phase by :math:`10^{-16}\\cdot2\\pi`, i.e.
    :math:`10^{-3}` of :math:`\\varphi` — :math:`w` takes up that last bit of the period;
-4. heyoka in extended precision (80-bit long double, else quadruple).
+4. heyoka in quadruple precision (real128; else 80-bit long double), from the parameters as exact
+   rationals (:mod:`problems.rigid_body.exact_inputs`), each coefficient rounded once;
+5. the origin re-centred on the orbit found and the shooting repeated, since the defect
+   u(T) - u(0) is formed in float64 (see :data:`CENTRED`).
 
 The orbit is the family member of the analytic solution (:math:`r = r_0`, :math:`\\gamma'' =
 \\gamma_0''`, :math:`|\\boldsymbol\\gamma| = 1` pinned), moved along the flow onto the analytic
-solution's section :math:`\\dot G = 0`. About 0.5 s at the paper geometry (heyoka compiles the
-conditioned system once per call). Tests: ``tests/rigid_body/test_disk_shooting.py``.
+solution's section :math:`\\dot G = 0`. About 7 s at the paper geometry (heyoka compiles the
+conditioned system once per pass). An independent check: :mod:`problems.rigid_body.true_orbit_mp`. Tests: ``tests/rigid_body/test_disk_shooting.py``.
 """
 
 from __future__ import annotations
 
 import math
 
+import mpmath
 import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
 from perturb.errors import PerturbError
 from perturb.oracle import Heyoka, SymbolicRHS, find_periodic_orbit, heyoka_available
+from problems.rigid_body.exact_inputs import (
+    FamilyMember,
+    exact_epsilon,
+    exact_equations,
+    exact_values,
+    round_coefficients,
+)
 
 __all__ = ["RESOLUTION", "TOL", "TrueOrbit", "conditioned_true_orbit"]
 
@@ -46,6 +57,21 @@ N_TRIVIAL = 5
 #: Status when the conditioned shooting cannot run (heyoka missing) or was refused.
 STATUS_UNAVAILABLE = -10
 STATUS_REFUSED = -11
+#: Significant bits of heyoka's extended types: each coefficient is rounded once to these.
+FP_BITS = {"real128": 113, "long double": 64}
+#: Decimal digits of the final arithmetic (state from the conditioned coordinates, period term):
+#: beyond quadruple precision, so that nothing is lost after the shooting.
+WORK_DIGITS = 40
+#: The P-defect u(T) - u(0) is formed in float64: with the origin ``ref`` a relative 1 % off the
+#: orbit, |u| ~ 1e4 and its spacing 2e-12 exceeds TOL. The origin is therefore moved onto the orbit
+#: found and the shooting repeated until |u_p|, |u_q| <= CENTRED (spacing <= 1.5e-14, a hundredth of
+#: TOL), at most MAX_CENTRINGS times (two suffice: the second start is within ~1e-6 of the orbit).
+CENTRED = 64.0
+MAX_CENTRINGS = 4
+#: Tolerance of the re-centred passes: with |u| <= CENTRED the P-defect is resolved far below TOL;
+#: 1e-14 puts the amplitudes' resolution at 1e-8 and stays above the float64 spacing (4.4e-16) of
+#: the O(1) components, which limits the residual when r0 = 1 (the time scale s_r = r0).
+FINE_TOL = 1e-14
 
 
 @frozen
@@ -127,15 +153,58 @@ def _failed(status: int, message: str, first_order=(math.nan,) * 3, **extra) -> 
     return TrueOrbit(**values)
 
 
-def _conditioned_rhs(problem, ref, scales, lam):
-    """d u / d(lambda tau): the original equations in tau = r0 t, relative to ``ref``, scaled."""
-    state, exprs = problem.original_symbolic()
+def _exact(value) -> sp.Rational:
+    """A conditioning number as an exact rational: sympy numbers kept, a float's binary value."""
+    return value if isinstance(value, sp.Basic) else sp.Rational(float(value))
+
+
+def _conditioned_rhs(problem, ref, scales, lam, bits: int | None = None) -> SymbolicRHS:
+    """d u / d(lambda tau): the original equations in tau = r0 t, relative to ``ref``, scaled.
+
+    The equations are :func:`~problems.rigid_body.exact_inputs.exact_equations` of the problem's
+    exact parameters; ``ref``, ``scales`` and ``lam`` (conditioning choices, any numbers) are taken
+    at their exact values (a float's binary value), so every coefficient of the conditioned
+    polynomial is an exact rational. With ``bits`` each is then rounded once to that precision
+    (:func:`~problems.rigid_body.exact_inputs.round_coefficients`; heyoka then converts it
+    exactly), else :func:`perturb.oracle.symbolic.to_heyoka` rounds ``p/q`` in the working type.
+    """
+    values = exact_values(problem)
+    state, exprs = exact_equations(values)
     u = sp.symbols("u0:7")
-    r0 = problem.values["r0"]
-    shift = {state[i]: sp.Float(ref[i], 30) + sp.Float(scales[i], 30) * u[i] for i in range(6)}
-    rate = (1 + sp.Float(lam, 30) * u[6]) * sp.Float(lam, 30) / sp.Float(r0, 30)
-    body = [e.xreplace(shift) * rate / sp.Float(scales[i], 30) for i, e in enumerate(exprs)]
+    ref = [_exact(x) for x in ref]
+    scales = [_exact(x) for x in scales]
+    lam = _exact(lam)
+    shift = {state[i]: ref[i] + scales[i] * u[i] for i in range(6)}
+    rate = (1 + lam * u[6]) * lam / values["r0"]
+    body = [sp.expand(e.xreplace(shift) * rate / scales[i]) for i, e in enumerate(exprs)]
+    if bits is not None:
+        body = [round_coefficients(e, bits) for e in body]
     return SymbolicRHS(u, [*body, sp.Integer(0)])
+
+
+def _mp(value) -> mpmath.mpf:
+    """An exact number (sympy Rational or float) in the current mpmath precision."""
+    if isinstance(value, sp.Basic):
+        value = sp.Rational(value)
+        return mpmath.mpf(int(value.p)) / int(value.q)
+    return mpmath.mpf(float(value))
+
+
+def shot_period(orbit) -> mpmath.mpf:
+    """The time the shooting integrated to: heyoka's adapter hands a double over to real128 as its
+    shortest decimal (``str``), so that decimal, not the double's binary value, is the period."""
+    return mpmath.mpf(str(np.float64(orbit.period)))
+
+
+def extended_type() -> str:
+    """The heyoka floating point type of the shooting: quadruple (real128) where heyoka has it.
+
+    Quadruple precision (113 bits) leaves the resonance intact to 1e-34; the x86 80-bit long double
+    (64 bits, 1e-19) would leave a mismatch ~1e-6 of the detuning at the paper geometry.
+    """
+    import heyoka
+
+    return "real128" if hasattr(heyoka, "real128") else "long double"
 
 
 def _move_to_section(problem, y, forward):
@@ -158,6 +227,8 @@ def conditioned_true_orbit(problem, solution=None, offset: float = 0.0) -> TrueO
     Parameters
     ----------
     problem : the ``disk`` problem (:class:`problems.rigid_body.disk.DiskInNewtonianField`).
+        Its parameters are used exactly (:func:`~problems.rigid_body.exact_inputs.exact_values`:
+        each float as its shortest decimal, ``C = A + B``).
     solution : PeriodicSolution, optional
         The analytic solution giving the seed, the period guess and the section (default: order 1).
     offset : float
@@ -190,9 +261,9 @@ def conditioned_true_orbit(problem, solution=None, offset: float = 0.0) -> TrueO
         )
     seed = np.asarray(problem.state_vector(solution, 0.0), dtype=float)
     # the family member: r = r0, gamma'' = gamma3_0, |gamma| = 1 on the section gamma' = seed's
-    ref = seed.copy()
-    ref[2], ref[5] = r0, g3
-    ref[3] = math.sqrt(max(0.0, 1 - ref[4] ** 2 - g3**2))
+    member = FamilyMember.of(problem, seed)
+    ref_exact = member.reference_state()
+    ref = np.array([float(x) for x in ref_exact])
     phi = 2 * math.pi * eps**2 * problem.detuning()
     amplitude = math.hypot(ref[0], ref[1])
     if not (phi > 0 and amplitude > 0 and math.isfinite(phi * amplitude)):
@@ -205,24 +276,43 @@ def conditioned_true_orbit(problem, solution=None, offset: float = 0.0) -> TrueO
     scales[:2] = phi * amplitude * RESOLUTION / TOL
     scales[2] = r0
     lam = phi / max(1.0, amplitude / scales[0])
-    rhs = _conditioned_rhs(problem, ref, scales, lam)
+    fp_name = extended_type()
     u0 = np.zeros(7)
     u0[:2] = offset * ref[:2] / scales[:2]
-    try:
-        orbit = find_periodic_orbit(
-            rhs,
-            u0,
-            period * r0 / lam,
-            section_index=4,
-            fixed_indices=(2, 3, 5),
-            direction=-1,
-            n_trivial=N_TRIVIAL,
-            integrator=Heyoka(high_precision=True),
-            y_scale=1.0,
-            tol=TOL,
-        )
-    except PerturbError as exc:
-        return _failed(STATUS_REFUSED, f"conditioned shooting refused: {exc}", first)
+    guess = period * r0 / lam
+    for centring in range(MAX_CENTRINGS):
+        try:
+            orbit = find_periodic_orbit(
+                _conditioned_rhs(problem, ref_exact, scales, lam, bits=FP_BITS[fp_name]),
+                u0,
+                guess,
+                section_index=4,
+                fixed_indices=(2, 3, 5),
+                direction=-1,
+                n_trivial=N_TRIVIAL,
+                integrator=Heyoka(fp_type=fp_name),
+                y_scale=1.0,
+                tol=TOL if centring == 0 else FINE_TOL,
+            )
+        except PerturbError as exc:
+            return _failed(STATUS_REFUSED, f"conditioned shooting refused: {exc}", first)
+        if not orbit.success:
+            break
+        # heyoka received the doubles as their shortest decimals (the oracle's real128 hand-over):
+        # read them back the same way, then move the origin onto the orbit found
+        shot = [mpmath.mpf(str(np.float64(x))) for x in orbit.initial_state]
+        offset_size = float(max(abs(shot[0]), abs(shot[1])))
+        with mpmath.workdps(WORK_DIGITS):
+            moved = [
+                sp.Rational(mpmath.nstr(_mp(ref_exact[i]) + _mp(scales[i]) * shot[i], WORK_DIGITS))
+                for i in range(2)
+            ]
+        if offset_size <= CENTRED and centring > 0:
+            break
+        ref_exact = (*moved, *ref_exact[2:])
+        u0 = np.zeros(7)
+        u0[6] = orbit.initial_state[6]
+        guess = orbit.period
     floquet = tuple(complex(m) for m in orbit.floquet_multipliers)
     common = dict(
         floquet=floquet,
@@ -233,28 +323,45 @@ def conditioned_true_orbit(problem, solution=None, offset: float = 0.0) -> TrueO
     )
     if not orbit.success:
         return _failed(orbit.status, f"conditioned shooting: {orbit.message}", first, **common)
-    y = ref + scales * np.asarray(orbit.initial_state[:6], dtype=float)
-    t_true = orbit.period * lam * (1 + lam * float(orbit.initial_state[6])) / r0
+    if offset_size > CENTRED:
+        return _failed(
+            STATUS_REFUSED,
+            f"conditioned shooting: the orbit moved by {offset_size:.3g} conditioned units after "
+            f"{MAX_CENTRINGS} re-centrings (> {CENTRED:g}): the P-defect is not resolved",
+            first,
+            **common,
+        )
+    with mpmath.workdps(WORK_DIGITS):
+        y = np.array([float(_mp(ref_exact[i]) + _mp(scales[i]) * shot[i]) for i in range(6)])
+        # the shooting's time is tau / (lam (1 + lam w)), tau = r0 t: the period term in full
+        mp_lam = _mp(lam)
+        tau_period = shot_period(orbit) * mp_lam * (1 + mp_lam * shot[6])
+        eps_exact = mpmath.mpf(sp.N(exact_epsilon(exact_values(problem)), WORK_DIGITS))
+        alpha = float((tau_period - 2 * mpmath.pi) / eps_exact**2)
+        t_true = float(tau_period / _mp(member.r0))
     forward = problem.reduction().forward_function(values, eps)
     y, z = _move_to_section(problem, y, forward)
-    resolution = max(orbit.residual, 0.0) / TOL * RESOLUTION
+    # the P-defect is resolved to the residual, and no better than the spacing of the doubles
+    # u(T), u(0) (of size offset_size) the shooting subtracts
+    resolution = max(orbit.residual, float(np.spacing(offset_size))) / TOL * RESOLUTION
     return TrueOrbit(
         success=True,
         initial_state=np.asarray(y, dtype=float),
         period=t_true,
         beta1=float(z[0] / eps),
         beta2=float(z[1] / eps),
-        alpha=(t_true * r0 - 2 * math.pi) / eps**2,
+        alpha=alpha,
         first_order=first,
         n_trivial=N_TRIVIAL,
         resolution=resolution,
         pin_mismatch=float(abs(y[2] / r0 - 1) + abs(y[5] - g3)),
         status=orbit.status,
         message=(
-            f"conditioned extended-precision shooting ({orbit.integrator}) converged in "
-            f"{orbit.iterations} iterations: conditioned residual {orbit.residual:.2e}, amplitudes "
-            f"resolved to ~{resolution:.1e} (P-detuning phase {phi:.3g} per period); true period "
-            f"{t_true:.12g}, beta1/eps = {z[0] / eps:.7g}, beta2/eps = {z[1] / eps:.7g}"
+            f"conditioned extended-precision shooting ({orbit.integrator}, exact rational "
+            f"parameters) converged in {orbit.iterations} iterations: conditioned residual "
+            f"{orbit.residual:.2e}, amplitudes resolved to ~{resolution:.1e} (P-detuning phase "
+            f"{phi:.3g} per period); true period {t_true:.12g}, beta1/eps = {z[0] / eps:.7g}, "
+            f"beta2/eps = {z[1] / eps:.7g}"
         ),
         **common,
     )

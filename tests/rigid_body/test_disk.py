@@ -21,16 +21,18 @@ Disk = get_problem("disk")
 
 #: The reference's values at the paper geometry, eps = 1e-4 (section (f), "true orbit by shooting").
 #: Its amplitudes are the first-order seed left unresolved by an unconditioned shooting: the true
-#: orbit has beta1/eps = 3.910760, beta2/eps = 1.125556 (tests/rigid_body/test_disk_shooting.py,
-#: extended-precision shooting; confirmed by our third-order solution, below). Its period is right.
+#: orbit has beta1/eps = 3.9179736, beta2/eps = 1.1276318 (tests/rigid_body/test_disk_shooting.py:
+#: quadruple-precision shooting and an independent 40-digit mpmath route, both from exact rational
+#: parameters; confirmed by our third-order solution, below). Its period is right.
 REFERENCE_BETA1, REFERENCE_BETA2, TRUE_ALPHA = 3.87665, 1.11593, 1.03296
-TRUE_BETA1, TRUE_BETA2 = 3.910760, 1.125556
+TRUE_BETA1, TRUE_BETA2 = 3.9179736, 1.1276318
 PAPER_EPS = 1e-4
 REL_TOL = 1e-3
 #: At the paper geometry the detuning k*M3**2/2 is tiny (k = 2.5e-5), so the first-order amplitudes
 #: carry a relative error of the size of |beta|^2/(k M3^2) = 0.0066 (the amplitude-dependent part of
-#: the detuning, left out at first order): allow 1.5 times that.
-FIRST_ORDER_AMPLITUDE_TOL = 0.01
+#: the detuning, left out at first order). The true orbit shows 1.6 times that (1.06 %; the figure
+#: 1.33 times once quoted came from double-rounded inputs): allow 2 times.
+FIRST_ORDER_AMPLITUDE_TOL = 0.013
 
 
 def paper_geometry(eps: float = PAPER_EPS, **overrides):
@@ -153,7 +155,7 @@ def test_paper_geometry_against_the_true_periodic_orbit(solution):
 
 def test_third_order_resolves_the_paper_geometry_orbit():
     """Order 3 brings the amplitude-dependent detuning in: the amplitudes move from the seed
-    3.8767 to within 2e-3 of the true 3.91076 (the remainder is the next term, ~0.0066**2 * 40)."""
+    3.8767 to within 2e-3 of the true 3.91797 (the remainder is the next term, ~0.0066**2 * 40)."""
     problem = paper_geometry()
     solution = problem.solve(3)
     assert solution.success
