@@ -40,7 +40,7 @@ def cache_dir() -> Path | None:
 def _code_fingerprint() -> str:
     """Hash of the engine's source: an edited engine never reads results of an older one."""
     digest = hashlib.sha256()
-    for path in sorted(Path(__file__).parent.glob("*.py")):
+    for path in sorted(Path(__file__).parent.rglob("*.py")):
         digest.update(path.read_bytes())
     return digest.hexdigest()[:16]
 

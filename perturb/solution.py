@@ -13,7 +13,7 @@ from attrs import field, frozen
 
 from perturb._defaults import NEAR_RESONANCE
 from perturb.errors import AccuracyWarning, InvalidParameterError, PerturbError
-from perturb.steps import GeneratingSolution, OrderStep, S
+from perturb.method.steps import GeneratingSolution, OrderStep, S
 from perturb.system import EPS, QuasilinearSystem, Regime
 
 __all__ = ["PeriodicSolution", "SolutionFailed", "Status"]
