@@ -11,7 +11,7 @@ from perturb.errors import (
     PerturbError,
     UnknownNameError,
 )
-from perturb.poincare import PoincareMethod, solve
+from perturb.method import PoincareMethod, solve
 from perturb.solution import PeriodicSolution, SolutionFailed, Status
 from perturb.system import EPS, QuasilinearSystem, Regime
 

@@ -13,7 +13,7 @@ from attrs import field, frozen
 
 from perturb._defaults import NEAR_RESONANCE
 from perturb.errors import AccuracyWarning, InvalidParameterError, PerturbError
-from perturb.steps import GeneratingSolution, OrderStep, S
+from perturb.method.steps import GeneratingSolution, OrderStep, S
 from perturb.system import EPS, QuasilinearSystem, Regime
 
 __all__ = ["PeriodicSolution", "SolutionFailed", "Status"]
@@ -142,6 +142,16 @@ class PeriodicSolution:
         """:math:`\\Omega(\\varepsilon)` truncated where the conditions stopped."""
         return sp.Add(*(EPS**k * w for k, w in enumerate(self.frequency)))
 
+    def frequency_series(self, *, simplify: bool = False) -> sp.Expr:
+        """:math:`\\Omega` in the system's own parameter: powers of ε, or of 1/μ when ``LARGE``.
+
+        (:attr:`frequency_expr` is the same series in the engine's ε.)
+        """
+        expr = self.frequency_expr
+        if simplify:
+            expr = sp.Add(*(EPS**k * _display(w) for k, w in enumerate(self.frequency)))
+        return self._in_user_parameter(expr)
+
     def period_series(self, *, simplify: bool = False) -> sp.Expr:
         """The period :math:`T = 2\\pi/\\Omega` expanded to the order the frequency is known."""
         n = len(self.frequency)
@@ -160,6 +170,11 @@ class PeriodicSolution:
             for c in self.coordinates
         ]
         lines.append(f"T = {sp.latex(self.period_series(simplify=simplify))}")
+        if self.system.regime is Regime.LARGE:  # the series are in 1/mu: say so
+            lines.append(
+                f"\\Omega = {sp.latex(self.frequency_series(simplify=simplify))}, \\quad "
+                f"{sp.latex(EPS)} = {sp.latex(1 / self.parameter)}"
+            )
         return " \\\\\n".join(lines)
 
     def __str__(self) -> str:
@@ -168,7 +183,11 @@ class PeriodicSolution:
             out.append(f"  {self.message}")
         for c in self.coordinates:
             out.append(f"  {c} = {self.coordinate(c)}")
-        out.append(f"  Omega = {self._in_user_parameter(self.frequency_expr)}")
+        out.append(f"  Omega = {self.frequency_series()}")
+        if self.system.regime is Regime.LARGE:
+            out.append(
+                f"  ({EPS} = 1/{self.parameter}: the series are in powers of 1/{self.parameter})"
+            )
         return "\n".join(out)
 
     def _index(self, name: str) -> int:

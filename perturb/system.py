@@ -18,6 +18,8 @@ import attrs
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._defaults import MAX_ORDER
+from perturb.analytic import maclaurin_coefficients
 from perturb.errors import InvalidSystemError
 
 __all__ = ["QuasilinearSystem", "Regime"]
@@ -179,7 +181,11 @@ class QuasilinearSystem:
 
     def _check_vanishing(self):
         for i, f in enumerate(self.rhs_in_epsilon):
-            at_zero = sp.simplify(f.subs(EPS, 0)) if f.has(EPS) else sp.simplify(f)
+            if i in self._analytic_rhs:  # not polynomial in ε: its Maclaurin series (or a refusal)
+                lowest = self._analytic_leading_order(i)
+                at_zero = sp.simplify(self._maclaurin(i, 0)[0]) if lowest == 0 else sp.S.Zero
+            else:
+                at_zero = sp.simplify(f.subs(EPS, 0)) if f.has(EPS) else sp.simplify(f)
             if at_zero != 0:
                 raise InvalidSystemError(
                     f"`rhs[{i}]` does not vanish as the expansion parameter tends to its limit "
@@ -212,35 +218,83 @@ class QuasilinearSystem:
     def expansion(self, order: int) -> tuple[tuple[sp.Expr, ...], ...]:
         """Coefficients :math:`f_{i,k}` for ``k = 0..order``: ``result[i][k]``.
 
-        Works for right-hand sides that are polynomial in ε, and through a series expansion for any
-        other analytic dependence.
+        Right-hand sides polynomial in ε have their coefficients read off; any other dependence
+        analytic at ε = 0 (rational, elementary functions, removable singularities; in the
+        large-parameter regime the same in 1/μ) is expanded by ``sympy.series`` to ``order``, once per
+        expression and order (:mod:`perturb.analytic`).
+
+        Raises
+        ------
+        InvalidSystemError
+            When a right-hand side has no Maclaurin series in ε (a pole at ε = 0, a branch point).
         """
         out = []
-        for f in self.rhs_in_epsilon:
-            f = sp.expand(f)
-            try:
-                poly = sp.Poly(f, EPS)
-                coeffs = [sp.expand(poly.coeff_monomial(EPS**k)) for k in range(order + 1)]
-            except sp.PolificationFailed:
-                ser = sp.series(f, EPS, 0, order + 1).removeO()
-                coeffs = [sp.expand(ser.coeff(EPS, k)) for k in range(order + 1)]
-            out.append(tuple(coeffs))
+        for i, f in enumerate(self.rhs_in_epsilon):
+            if i in self._analytic_rhs:
+                out.append(self._maclaurin(i, order))
+                continue
+            poly = sp.Poly(sp.expand(f), EPS)
+            out.append(tuple(sp.expand(poly.coeff_monomial(EPS**k)) for k in range(order + 1)))
         return tuple(out)
+
+    @cached_property
+    def _analytic_rhs(self) -> dict[int, sp.Expr]:
+        """The right-hand sides not polynomial in ε, by index, in the form handed to ``series``.
+
+        Polynomial ones keep the fast path (coefficients read off a ``Poly``); these are expanded
+        by :func:`perturb.analytic.maclaurin_coefficients` (memoised per expression and order).
+        """
+        out = {}
+        for i, f in enumerate(self.rhs_in_epsilon):
+            try:
+                sp.Poly(sp.expand(f), EPS)
+            except sp.PolynomialError:
+                out[i] = sp.together(f) if self.regime is Regime.LARGE else f
+        return out
+
+    def _maclaurin(self, i: int, order: int) -> tuple[sp.Expr, ...]:
+        label = (
+            f"rhs[{i}]"
+            if self.regime is Regime.SMALL
+            else f"rhs[{i}] (in epsilon = 1/{self.parameter})"
+        )
+        return maclaurin_coefficients(self._analytic_rhs[i], EPS, order, label)
 
     @property
     def leading_order(self) -> int:
         """The lowest power of ε present in any right-hand side (the first non-zero forcing)."""
         best = None
-        for f in self.rhs_in_epsilon:
-            f = sp.expand(f)
-            if f == 0:
-                continue
-            try:
+        for i, f in enumerate(self.rhs_in_epsilon):
+            if i in self._analytic_rhs:
+                k = self._analytic_leading_order(i)
+                if k is None:
+                    continue
+            else:
+                f = sp.expand(f)
+                if f == 0:
+                    continue
                 k = min(m[0] for m in sp.Poly(f, EPS).monoms())
-            except sp.PolificationFailed:
-                k = sp.series(f, EPS, 0, 8).removeO().as_poly(EPS).monoms()[-1][0]
             best = k if best is None else min(best, k)
         return best if best is not None else 0
+
+    def _analytic_leading_order(self, i: int) -> int | None:
+        """Lowest power of ε in the Maclaurin series of a non-polynomial right-hand side.
+
+        Searched through ``MAX_ORDER`` (no construction can use a higher one); a non-zero
+        expression whose series vanishes that far is flat at ε = 0 (``exp(-1/eps)``), not analytic.
+        """
+        for order in sorted({min(2**j, MAX_ORDER) for j in range(1, MAX_ORDER.bit_length() + 1)}):
+            coefficients = self._maclaurin(i, order)  # short series first: they are the common case
+            for k, c in enumerate(coefficients):
+                if c != 0:
+                    return k
+        if sp.simplify(self._analytic_rhs[i]) == 0:
+            return None
+        raise InvalidSystemError(
+            f"`rhs[{i}]` = {self.rhs[i]} is invalid: its Maclaurin series in epsilon vanishes through "
+            f"epsilon**{MAX_ORDER} although it is not zero (an essential singularity at epsilon = 0, "
+            "e.g. exp(-1/epsilon)); the right-hand side must be analytic in the expansion parameter"
+        )
 
     def with_values(self, values: Mapping) -> QuasilinearSystem:
         """A copy with some declared parameters replaced by numbers (or expressions)."""

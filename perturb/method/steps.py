@@ -14,7 +14,7 @@ from attrs import field, frozen
 
 from perturb.trig import TrigPoly
 
-__all__ = ["Condition", "GeneratingSolution", "OrderStep"]
+__all__ = ["Condition", "GeneratingSolution", "OrderStep", "PeriodicityCondition", "S", "as_trig"]
 
 S = sp.Symbol("s", real=True)  #: strained time s = Omega t
 
@@ -61,8 +61,18 @@ class GeneratingSolution:
 
 
 @frozen
-class Condition:
-    """One periodicity condition: ``name`` must vanish (e.g. ``g_2(2π)`` or ``dg_2/dτ(2π)``)."""
+class PeriodicityCondition:
+    """One periodicity condition: ``name`` must vanish (e.g. ``g_x,2(2pi)`` or ``dg_x,2/ds(2pi)``).
+
+    Attributes
+    ----------
+    name : str
+        ``g_<coordinate>,<k>(2pi)`` (position) or ``dg_<coordinate>,<k>/ds(2pi)`` (slope).
+    expression : sympy expression
+        What must vanish, in the unknowns of the construction.
+    imposed : bool
+        ``False`` for a condition a first integral makes dependent (kept as a check, not solved).
+    """
 
     name: str
     expression: sp.Expr
@@ -92,7 +102,7 @@ class OrderStep:
         ``g_{i,k}(s)``, the periodic part of :math:`\\int_0^s R_{i,k}(u)\\sin m(s-u)\\,du/m` (the particular
         solution with zero initial data for resonant coordinates, the periodic forced response for
         non-resonant ones).
-    conditions : tuple of Condition
+    conditions : tuple of PeriodicityCondition
         The periodicity conditions of this order, before any unknown was solved for.
     solved : dict
         The unknowns this order determined (symbol -> value).
@@ -103,7 +113,7 @@ class OrderStep:
     order: int
     forcing: dict = field(eq=False)
     quadratures: dict = field(eq=False)
-    conditions: tuple[Condition, ...] = ()
+    conditions: tuple[PeriodicityCondition, ...] = ()
     solved: dict = field(factory=dict, eq=False)
     branches: tuple = ()
 
@@ -132,6 +142,10 @@ class OrderStep:
         parts += [c.latex() for c in self.conditions]
         parts += [f"{sp.latex(k)} = {sp.latex(v)}" for k, v in self.solved.items()]
         return r" \\ ".join(parts)
+
+
+#: The name the periodicity condition had before ``perturb.method`` (kept importable).
+Condition = PeriodicityCondition
 
 
 def as_trig(poly: TrigPoly) -> sp.Expr:

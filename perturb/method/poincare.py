@@ -1,0 +1,500 @@
+"""Poincaré's method for periodic solutions of quasilinear systems, order by order.
+
+The construction works in the strained time :math:`s = \\Omega t` with
+:math:`\\Omega = \\omega_{ref} + \\sum_{k\\ge1}\\varepsilon^k\\Omega_k`, so that the sought solution is
+:math:`2\\pi`-periodic in ``s`` and the period correction of the classical write-up,
+:math:`\\alpha = T - 2\\pi/\\omega_{ref}`, becomes the frequency correction. With
+:math:`x_i = \\sum_k \\varepsilon^k x_{i,k}(s)` the equations
+
+.. math:: \\Omega^2 x_i'' + \\omega_i^2 x_i = f_i(x, \\Omega x', \\varepsilon)
+
+give at order ``k``:  :math:`\\omega_{ref}^2 x_{i,k}'' + \\omega_i^2 x_{i,k} = R_{i,k}(s)`.
+
+* For a resonant coordinate (:math:`\\omega_i = m_i\\omega_{ref}`) the solution is
+  :math:`x_{i,k} = \\beta_{i,k}^c\\cos m_i s + \\beta_{i,k}^s\\sin m_i s + g_{i,k}(s)` where
+  :math:`g_{i,k}` is the quadrature :math:`\\frac{1}{m_i\\omega_{ref}^2}\\int_0^s R_{i,k}(u)\\sin m_i(s-u)\\,du`
+  (zero initial data) and :math:`\\beta_{i,k}` are the Maclaurin coefficients of the initial-value
+  deviations.  :math:`g_{i,k}` is :math:`2\\pi`-periodic iff the periodicity conditions
+  :math:`g_{i,k}(2\\pi) = 0`, :math:`\\dot g_{i,k}(2\\pi) = 0` hold, i.e. iff the harmonic
+  :math:`m_i` of :math:`R_{i,k}` vanishes.
+* For a non-resonant coordinate the forced response is the unique periodic solution.
+
+The conditions are polynomial in the unknowns (generating amplitudes, their corrections, the
+:math:`\\Omega_k`).  Nonlinear ones — the amplitude equations of the first non-zero order — are solved
+for all roots and a branch is chosen; after that every correction enters linearly.  Unknowns left free
+by an order are carried symbolically and fixed by a later one (this covers isolated roots, continuous
+families with a user-chosen amplitude, and degenerate branches whose deviations scale as a power of ε
+fixed by the balance of orders).
+
+The concerns live in sibling modules: :mod:`perturb.method.expansion` (the forcing of each order),
+:mod:`perturb.method.conditions` (solving the conditions, choosing a branch),
+:mod:`perturb.method.steps` (the printable steps) and :mod:`perturb.method.exact` (zero tests).
+This module holds the options (:class:`PoincareMethod`) and the order-by-order template.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import sympy as sp
+from attrs import field, frozen, validators
+
+from perturb._defaults import MAX_ORDER, SOLVE_SECONDS
+from perturb.cache import cached
+from perturb.errors import InvalidSystemError, bad_value
+from perturb.method.conditions import ConditionSolver, OrderFailed
+from perturb.method.exact import vanishes
+from perturb.method.expansion import GivenInitialValues, NotPolynomial, forcing
+from perturb.method.steps import GeneratingSolution, OrderStep, PeriodicityCondition
+from perturb.solution import PeriodicSolution, Status
+from perturb.system import EPS, QuasilinearSystem
+from perturb.trig import TrigPoly
+
+__all__ = ["PoincareMethod", "solve"]
+
+
+def _check_order(instance, attribute, value):
+    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        raise bad_value("order", value, "pass an integer >= 1", InvalidSystemError)
+    if value > MAX_ORDER:
+        raise bad_value("order", value, f"pass an integer <= {MAX_ORDER}", InvalidSystemError)
+
+
+def _as_mapping(value) -> dict:
+    return dict(value or {})
+
+
+@frozen
+class PoincareMethod:
+    r"""Poincaré's method (small or large parameter) for a :class:`QuasilinearSystem`.
+
+    Parameters
+    ----------
+    order : int
+        Highest power of ε kept in the solution (>= 1).
+    amplitudes : mapping, optional
+        Fixed initial values ``{coordinate name: x_i(0)}``.  Values may be numbers or expressions in the
+        system's parameters, ε (``perturb.system.EPS``) and its ``initial_values`` symbols (a
+        constraint such as a first integral).  A coordinate listed here has exactly this initial value
+        at every order (a member of a continuous family chosen by the user); the generating amplitudes
+        of the others are unknowns found from the periodicity conditions.
+    phase_coordinate : str, optional
+        The coordinate whose velocity vanishes at ``t = 0`` (fixes the phase of an autonomous system).
+        Default: the only coordinate in ``amplitudes`` if there is one, else the first coordinate.
+    quadrature : {"auto", "exact", "numeric"}
+        How the forcing of each order is expanded in harmonics: ``exact`` linearises products of
+        trigonometric polynomials (polynomial right-hand sides only); ``numeric`` computes Fourier
+        coefficients by FFT quadrature (any analytic right-hand side, numeric parameters and fixed
+        generating amplitudes needed); ``auto`` (default) uses exact where it can.
+    dependent_condition : {"auto", "phase-sine", "none"}
+        A first integral makes one periodicity condition a consequence of the others: the one for the
+        position of the phase coordinate, :math:`g_{ref,k}(2\pi) = 0` (the integral fixes
+        :math:`x_{ref}(T)` once the other components have returned). ``phase-sine`` does not impose it
+        (its residual is kept in ``solution.dependent_residuals``); ``none`` imposes every condition;
+        ``auto`` (default) drops it when the system declares first integrals. Dropping it matters for
+        reduced systems truncated in ε, where the integral holds only to the truncation order and
+        imposing the dependent condition at the highest orders would make the conditions inconsistent.
+    solve_seconds : float
+        Time budget of sympy's solver on the nonlinear amplitude equations (run in a child process
+        where the platform can fork); past it the result has status ``NO_ROOT`` and says how to give
+        the root instead. sympy's ``solve`` can run for hours on systems whose roots have no
+        closed form.
+    branch : mapping or int, optional
+        Which root of the amplitude equations to follow: a mapping ``{symbol name: value}`` selects the
+        root that has these values, and on a continuous family of roots fixes the generating
+        amplitudes the family leaves free (``a_P0``: cosine amplitude of ``P`` at order 0, ``b_P0``:
+        its sine amplitude); an integer indexes the admissible roots in the order listed in
+        ``solution.steps[k].branches``.  Default: the isolated root with the largest phase amplitude.
+    """
+
+    order: int = field(default=1, validator=_check_order)
+    amplitudes: dict = field(factory=dict, converter=_as_mapping)
+    phase_coordinate: str | None = field(
+        default=None, validator=validators.optional(validators.instance_of(str))
+    )
+    branch: object = None
+    quadrature: str = field(default="auto", validator=validators.in_(("auto", "exact", "numeric")))
+    dependent_condition: str = field(
+        default="auto", validator=validators.in_(("auto", "phase-sine", "none"))
+    )
+    solve_seconds: float = field(default=SOLVE_SECONDS, eq=False, repr=False)
+
+    # ------------------------------------------------------------------ public
+    cache: bool = field(default=True, eq=False, repr=False)
+
+    def solve(self, system: QuasilinearSystem) -> PeriodicSolution:
+        """Construct the periodic solution of ``system``; see the module docstring.
+
+        The result is read from / written to the disk cache (:mod:`perturb.cache`) unless
+        ``cache=False``.
+        """
+        if not self.cache:
+            return _OrderByOrder(self, system).run()
+        return cached(
+            "solution", self._cache_key(system), lambda: _OrderByOrder(self, system).run()
+        )
+
+    def _cache_key(self, system: QuasilinearSystem) -> tuple:
+        def text(value):
+            return (
+                sp.srepr(sp.sympify(value))
+                if isinstance(value, (sp.Basic, int, float))
+                else repr(value)
+            )
+
+        fields = (
+            system.coordinates,
+            system.velocities,
+            system.frequencies,
+            system.rhs,
+            system.parameter,
+            system.parameters,
+            system.initial_values,
+            system.first_integrals,
+        )
+        amplitudes = sorted((k, text(v)) for k, v in self.amplitudes.items())
+        branch = (
+            sorted((str(k), text(v)) for k, v in self.branch.items())
+            if isinstance(self.branch, Mapping)
+            else repr(self.branch)
+        )
+        return (
+            tuple(sp.srepr(f) for f in fields),
+            system.regime.value,
+            system.name,
+            system.truncation,
+            self.order,
+            amplitudes,
+            self.phase_coordinate,
+            branch,
+            self.quadrature,
+            self.dependent_condition,
+        )
+
+
+def solve(system: QuasilinearSystem, order: int = 1, **options) -> PeriodicSolution:
+    """Shortcut for ``PoincareMethod(order=order, **options).solve(system)``."""
+    return PoincareMethod(order=order, **options).solve(system)
+
+
+class _OrderByOrder:
+    """The working state of one run: the template of :meth:`PoincareMethod.solve`.
+
+    Private and short-lived (the result is a frozen :class:`PeriodicSolution`; its ``steps`` record
+    the construction). The steps of :meth:`run`:
+
+    1. the generating solution (order 0), its unknown amplitudes;
+    2. for ``k = 1, 2, ...``: the forcing :math:`R_{i,k}` (:func:`~perturb.method.expansion.forcing`),
+       the quadratures and periodicity conditions (:meth:`_quadratures`), the conditions solved
+       (:class:`~perturb.method.conditions.ConditionSolver`) and substituted everywhere;
+    3. stop once order ``method.order`` is reached and no unknown of it is open; pack the result.
+    """
+
+    def __init__(self, method: PoincareMethod, system: QuasilinearSystem):
+        self.method = method
+        self.system = system
+        self.n = system.n
+        self.names = [c.name for c in system.coordinates]
+        self._setup_phase_and_harmonics()
+        self._setup_unknowns()
+        self.solver = ConditionSolver(method.branch, method.solve_seconds, self.phase)
+
+    # ------------------------------------------------------------------ setup
+    def _setup_phase_and_harmonics(self):
+        method, names = self.method, self.names
+        for key in method.amplitudes:
+            if key not in names:
+                raise bad_value(
+                    "amplitudes",
+                    {key: method.amplitudes[key]},
+                    f"name a coordinate, one of {names}",
+                    InvalidSystemError,
+                )
+        phase = method.phase_coordinate
+        if phase is None:
+            phase = next(iter(method.amplitudes)) if len(method.amplitudes) == 1 else names[0]
+        if phase not in names:
+            raise bad_value(
+                "phase_coordinate", phase, f"name a coordinate, one of {names}", InvalidSystemError
+            )
+        self.phase = names.index(phase)
+        dependent = self.method.dependent_condition
+        if dependent == "auto":
+            dependent = "phase-sine" if self.system.first_integrals else "none"
+        self.drop_phase_sine = dependent == "phase-sine"
+        self.w_ref = self.system.frequencies[self.phase]
+        self.harmonics: list[int | None] = []
+        for i, w in enumerate(self.system.frequencies):
+            ratio = sp.nsimplify(sp.simplify(w / self.w_ref))
+            m = int(ratio) if ratio.is_Integer and ratio > 0 else None
+            self.harmonics.append(m)
+            if m is None and names[i] in method.amplitudes:
+                raise bad_value(
+                    "amplitudes",
+                    {names[i]: method.amplitudes[names[i]]},
+                    f"{names[i]} is not resonant with the phase coordinate {phase} "
+                    f"(omega ratio {ratio}); its generating amplitude vanishes, drop it",
+                    InvalidSystemError,
+                )
+
+    def _setup_unknowns(self):
+        self.unknowns: set[sp.Symbol] = set()
+        given: dict[int, sp.Expr] = {}
+        for name, value in self.method.amplitudes.items():
+            i = self.names.index(name)
+            expr = sp.sympify(value)
+            allowed = set(self.system.parameters) | set(self.system.initial_values) | {EPS}
+            stray = expr.free_symbols - allowed
+            if stray:
+                raise bad_value(
+                    "amplitudes",
+                    {name: value},
+                    f"it depends on {sorted(map(str, stray))}; use only declared parameters, "
+                    "initial-value symbols and epsilon",
+                    InvalidSystemError,
+                )
+            given[i] = expr
+        self.given = GivenInitialValues(self.system, given)
+        self.omega = [self.w_ref]
+        # x_{i,k}(s) for each coordinate, order by order
+        self.x: list[list[TrigPoly]] = [[] for _ in range(self.n)]
+        self.init_cos: list[list[sp.Expr]] = [[] for _ in range(self.n)]
+        self.solved: dict[sp.Symbol, sp.Expr] = {}
+        self.steps: list[OrderStep] = []
+        self.pending: list[sp.Expr] = []
+        self.dependent: list[PeriodicityCondition] = []
+
+    def _new(self, label: str) -> sp.Symbol:
+        sym = sp.Symbol(label)
+        self.unknowns.add(sym)
+        return sym
+
+    # ------------------------------------------------------------------ order 0
+    def _generating(self) -> GeneratingSolution:
+        cos_amp, sin_amp = [], []
+        for i, name in enumerate(self.names):
+            m = self.harmonics[i]
+            if m is None:
+                a = b = sp.S.Zero
+            else:
+                a = self._initial_cos(i, 0)
+                b = sp.S.Zero if i == self.phase else self._new(f"b_{name}0")
+            cos_amp.append(a)
+            sin_amp.append(b)
+            self.x[i].append(TrigPoly.harmonic(m, a, b) if m else TrigPoly())
+        return GeneratingSolution(
+            coordinates=tuple(self.names),
+            harmonics=tuple(self.harmonics),
+            cos_amplitudes=tuple(cos_amp),
+            sin_amplitudes=tuple(sin_amp),
+            phase_coordinate=self.names[self.phase],
+            reference_frequency=self.w_ref,
+        )
+
+    def _initial_cos(self, i: int, k: int) -> sp.Expr:
+        """x_{i,k}(0): given by ``amplitudes`` (expanded in ε) or a new unknown."""
+        if i not in self.given:
+            value = self._new(f"a_{self.names[i]}{k}")
+        else:
+            value = self.given.coefficient(i, k, self._initial_value_series)
+        self.init_cos[i].append(value)
+        return value
+
+    def _initial_value_series(self, j: int, k: int) -> sp.Expr:
+        """x_i(0) or xdot_i(0) as a polynomial in ε through order ``k`` (using what is known)."""
+        coord, is_velocity = j % self.n, j >= self.n
+        total = sp.S.Zero
+        for order, term in enumerate(self.x[coord][: k + 1]):
+            value = term.derivative().at_zero() if is_velocity else term.at_zero()
+            total += EPS**order * value
+        if is_velocity:
+            total = sp.expand(total * sp.Add(*(EPS**q * w for q, w in enumerate(self.omega))))
+        return total
+
+    # ------------------------------------------------------------------ order k
+    def _forcing(self, k: int) -> list[TrigPoly]:
+        omega_new = self._new(f"Omega{k}")
+        result = forcing(
+            k, self.system, self.expansion, self.x, [*self.omega, omega_new], self.method.quadrature
+        )
+        self.omega.append(omega_new)
+        return result
+
+    def _quadratures(
+        self, k: int, forcing: list[TrigPoly]
+    ) -> tuple[dict, list[PeriodicityCondition]]:
+        """Quadratures and periodicity conditions of order k (conditions returned unsolved)."""
+        w2 = self.w_ref**2
+        quadratures, conditions = {}, []
+        for i, name in enumerate(self.names):
+            r = forcing[i]
+            m = self.harmonics[i]
+            wi2 = self.system.frequencies[i] ** 2
+            periodic = {}
+            for j, (c, s) in r.terms.items():
+                if m is not None and j == m:
+                    continue
+                den = wi2 - j**2 * w2
+                periodic[j] = (sp.expand(c / den), sp.expand(s / den))
+            part = TrigPoly(periodic)
+            if m is None:
+                quadratures[name] = part
+                self.x[i].append(part)
+                continue
+            rc, rs = r.coefficient(m)
+            # g(2 pi) and dg/ds(2 pi) of the quadrature with zero initial data (paper's (16) form)
+            conditions.append(
+                PeriodicityCondition(
+                    f"g_{name},{k}(2pi)",
+                    sp.expand(-sp.pi * rs / (m * w2)),
+                    imposed=not (i == self.phase and self.drop_phase_sine),
+                )
+            )
+            conditions.append(
+                PeriodicityCondition(f"dg_{name},{k}/ds(2pi)", sp.expand(sp.pi * rc / w2))
+            )
+            # zero initial data: subtract the periodic part's initial value and slope
+            p0, dp0 = part.at_zero(), part.derivative().at_zero()
+            g = part + TrigPoly.harmonic(m, -p0, -dp0 / m)
+            quadratures[name] = g
+            a = self._initial_cos(i, k)
+            b = sp.S.Zero if i == self.phase else self._new(f"b_{name}{k}")
+            self.x[i].append((g + TrigPoly.harmonic(m, a, b)).expand())
+        return quadratures, conditions
+
+    # ------------------------------------------------------------------ solving
+    def _substitute(self, mapping: dict):
+        if not mapping:
+            return
+        self.x = [[t.subs(mapping) for t in row] for row in self.x]
+        self.omega = [sp.expand(w.xreplace(mapping)) for w in self.omega]
+        self.init_cos = [[sp.expand(v.xreplace(mapping)) for v in row] for row in self.init_cos]
+        self.solved = {s: sp.expand(v.xreplace(mapping)) for s, v in self.solved.items()}
+        self.solved.update(mapping)
+        self.pending = [sp.expand(e.xreplace(mapping)) for e in self.pending]
+        self.unknowns -= set(mapping)
+
+    def _solve_conditions(self, k: int, generating: GeneratingSolution) -> tuple[dict, tuple]:
+        eqs = [e for e in (sp.expand(e) for e in self.pending) if e != 0]
+        if not eqs:
+            self.pending = []
+            return {}, ()
+        solution, branches = self.solver.solve(k, eqs, self.unknowns, generating, self.solved)
+        # The solvers return solutions of the whole system (the free unknowns of a family left as
+        # parameters), so every pending condition now holds identically. Proving it symbolically
+        # means cancelling large rational functions; a numerical probe at a generic point (30 digits)
+        # checks it at a fraction of the cost and still catches a solver that returned a bad root.
+        pending = self.pending
+        self._substitute(solution)
+        for before, after in zip(pending, self.pending, strict=True):
+            if not vanishes(after):
+                raise OrderFailed(
+                    Status.INCONSISTENT, f"order {k}: condition {before} = 0 cannot hold"
+                )
+        self.pending = []
+        return solution, branches
+
+    # ------------------------------------------------------------------ driver
+    def run(self) -> PeriodicSolution:
+        method, system = self.method, self.system
+        lead = system.leading_order
+        max_k = method.order + max(lead, 1) + 1
+        self.expansion = system.expansion(max_k)
+        generating = self._generating()
+        status, message = Status.SUCCESS, ""
+        k_done = 0
+        try:
+            for k in range(1, max_k + 1):
+                if system.truncation is not None and k >= system.truncation:
+                    raise OrderFailed(
+                        Status.TRUNCATED,
+                        f"order {method.order} needs the conditions of order {k}, but the system "
+                        f"neglects epsilon^{system.truncation} and beyond "
+                        f"(unknowns still open: {sorted(map(str, self._open_unknowns(method.order)))})",
+                    )
+                forcing_k = self._forcing(k)
+                quadratures, conditions = self._quadratures(k, forcing_k)
+                self.pending.extend(c.expression for c in conditions if c.imposed)
+                self.dependent.extend(c for c in conditions if not c.imposed)
+                solved, branches = self._solve_conditions(k, generating)
+                self.steps.append(
+                    OrderStep(
+                        k,
+                        {n: f for n, f in zip(self.names, forcing_k, strict=True)},
+                        quadratures,
+                        tuple(conditions),
+                        dict(solved),
+                        branches,
+                    )
+                )
+                k_done = k
+                if k >= method.order and not self._open_unknowns(method.order):
+                    break
+        except NotPolynomial as exc:
+            status, message = Status.NOT_POLYNOMIAL, str(exc)
+        except OrderFailed as exc:
+            status, message = exc.status, exc.message
+        if status is Status.SUCCESS and self._open_unknowns(method.order):
+            status = Status.UNDETERMINED
+            message = f"unknowns {sorted(map(str, self._open_unknowns(method.order)))} are not fixed by orders up to {k_done}"
+        return self._result(generating, status, message)
+
+    def _open_unknowns(self, order: int) -> set:
+        syms = set()
+        for row in self.x:
+            for term in row[: order + 1]:
+                syms |= term.free_symbols()
+        for w in self.omega[: order + 1]:
+            syms |= w.free_symbols
+        return syms & self.unknowns
+
+    def _result(
+        self, generating: GeneratingSolution, status: Status, message: str
+    ) -> PeriodicSolution:
+        order = self.method.order
+        gen = GeneratingSolution(
+            coordinates=generating.coordinates,
+            harmonics=generating.harmonics,
+            cos_amplitudes=tuple(
+                sp.sympify(a).xreplace(self.solved) for a in generating.cos_amplitudes
+            ),
+            sin_amplitudes=tuple(
+                sp.sympify(b).xreplace(self.solved) for b in generating.sin_amplitudes
+            ),
+            phase_coordinate=generating.phase_coordinate,
+            reference_frequency=generating.reference_frequency,
+        )
+        terms = tuple(tuple(row[: order + 1]) for row in self.x)
+        # keep every frequency coefficient that is fully determined
+        frequency = []
+        for w in self.omega:
+            if w.free_symbols & self.unknowns:
+                break
+            frequency.append(w)
+        deviations = {}
+        for i, name in enumerate(self.names):
+            if self.harmonics[i] is None:
+                continue
+            values = [t.at_zero() for t in terms[i]]
+            deviations[name] = tuple(values[1:])
+            slopes = [t.derivative().at_zero() for t in terms[i]]
+            omega = self.omega[: len(frequency)]
+            velocity = [
+                sp.expand(sum(omega[a] * slopes[q - a] for a in range(q + 1) if a < len(omega)))
+                for q in range(len(slopes))
+            ]
+            deviations[self.system.velocities[i].name] = tuple(velocity[1:])
+        return PeriodicSolution(
+            system=self.system,
+            order=order,
+            terms=terms,
+            frequency=tuple(frequency),
+            generating=gen,
+            steps=tuple(self.steps),
+            deviations=deviations,
+            status=status,
+            message=message,
+            dependent_residuals={
+                c.name: sp.expand(c.expression.xreplace(self.solved)) for c in self.dependent
+            },
+        )
