@@ -41,7 +41,10 @@ class _Parser(argparse.ArgumentParser):
 
 def _add_problem_arguments(parser: argparse.ArgumentParser, *, order: bool = True) -> None:
     """PROBLEM, --set (and --order): shared by every command that builds a problem's solution."""
-    parser.add_argument("problem", help="problem name (see `perturb list`)")
+    parser.add_argument(
+        "problem",
+        help="problem name (see `perturb list`), path/to/file.py:Class or package.module:Class",
+    )
     parser.add_argument(
         "--set",
         dest="sets",
@@ -200,9 +203,9 @@ def _cmd_list() -> int:
 
 
 def _cmd_solve(args) -> int:
-    from problems import get_problem
+    from problems import load_problem
 
-    cls = get_problem(args.problem)
+    cls = load_problem(args.problem)
     overrides = _parse_sets(args.sets)
     order = _parse_order(args.order)
     times = _parse_times(args.times)
@@ -252,9 +255,9 @@ def _cmd_solve(args) -> int:
 
 def _cmd_validate(args) -> int:
     from perturb.validation import validate
-    from problems import get_problem
+    from problems import load_problem
 
-    cls = get_problem(args.problem)
+    cls = load_problem(args.problem)
     problem = cls.create(**_parse_sets(args.sets))
     report = validate(
         problem,
@@ -283,9 +286,9 @@ def _parse_positive(flag: str, text: str, kind=float):
 
 def _cmd_work_precision(args) -> int:
     from perturb.workprecision import work_precision
-    from problems import get_problem
+    from problems import load_problem
 
-    cls = get_problem(args.problem)
+    cls = load_problem(args.problem)
     problem = cls.create(**_parse_sets(args.sets))
     periods = _parse_positive("--periods", args.periods, float)
     orders = _parse_positive("--orders", args.orders, int)

@@ -13,6 +13,7 @@ __all__ = [
     "InvalidParameterError",
     "InvalidSystemError",
     "PerturbError",
+    "ProblemLoadError",
     "UnknownNameError",
 ]
 
@@ -60,3 +61,8 @@ def bad_value(
     perturb.errors.InvalidParameterError: `order` = 0 is invalid: pass an integer >= 1
     """
     return cls(f"`{argument}` = {value!r} is invalid: {fix}")
+
+
+class ProblemLoadError(PerturbError, ValueError):
+    """A problem named by file or module (``path/to/file.py:Class``), or installed through an entry
+    point, that cannot be loaded: missing file, syntax or import error, missing or incomplete class."""
