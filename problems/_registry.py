@@ -84,22 +84,26 @@ def check_problem_class(cls: type, label: str | None = None) -> None:
         )
     missing = [a for a in _REQUIRED_ATTRIBUTES if not hasattr(cls, a)]
     missing += sorted(getattr(cls, "__abstractmethods__", ()))
-    names = {getattr(s, "name", None) for s in getattr(cls, "parameter_specs", ())}
-    if cls.epsilon is Problem.epsilon and "parameter_specs" not in missing and "eps" not in names:
-        missing.append("epsilon (or a parameter named eps)")
+    if not missing:
+        if not isinstance(cls.name, str) or not cls.name.strip():
+            raise ProblemLoadError(
+                f"`{label}.name` = {cls.name!r} is invalid: give a non-empty str"
+            )
+        if not isinstance(cls.summary, str):
+            raise ProblemLoadError(f"`{label}.summary` = {cls.summary!r} is invalid: give a str")
+        specs = cls.parameter_specs
+        if not isinstance(specs, tuple | list) or not all(
+            isinstance(s, ParameterSpec) for s in specs
+        ):
+            raise ProblemLoadError(
+                f"`{label}.parameter_specs` = {specs!r} is invalid: give a tuple of ParameterSpec"
+            )
+        if cls.epsilon is Problem.epsilon and "eps" not in {s.name for s in specs}:
+            missing.append("epsilon (or a parameter named eps)")
     if missing:
         raise ProblemLoadError(
             f"`{label}` is incomplete: it does not define {', '.join(missing)}: add them "
             "(the subclass contract is in the docstring of problems.base)"
-        )
-    if not isinstance(cls.name, str) or not cls.name.strip():
-        raise ProblemLoadError(f"`{label}.name` = {cls.name!r} is invalid: give a non-empty str")
-    if not isinstance(cls.summary, str):
-        raise ProblemLoadError(f"`{label}.summary` = {cls.summary!r} is invalid: give a str")
-    specs = cls.parameter_specs
-    if not isinstance(specs, tuple | list) or not all(isinstance(s, ParameterSpec) for s in specs):
-        raise ProblemLoadError(
-            f"`{label}.parameter_specs` = {specs!r} is invalid: give a tuple of ParameterSpec"
         )
 
 

@@ -8,9 +8,11 @@ from __future__ import annotations
 
 import importlib.metadata
 import json
+import re
 import subprocess
 import sys
 import textwrap
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -390,3 +392,24 @@ def test_broken_entry_point_is_one_line_exit_2(capsys, installed):
     code, _, err = run(capsys, "solve", "broken-osc")
     assert code == 2 and len(err.strip().splitlines()) == 1 and "Traceback" not in err
     assert "entry point 'broken-osc'" in err and "fake_oscillators:Nope" in err
+
+
+# ---------------------------------------------------------------------------------- the README
+def test_readme_example(capsys, files, tmp_path_factory):
+    """The README's "Your own problem" file runs as shown and is the quadratic oscillator above."""
+    readme = (Path(__file__).parents[2] / "README.md").read_text(encoding="utf-8")
+    section = readme[readme.index("## Your own problem") :].split("\n## ", 1)[0]
+    (code,) = re.findall(r"```python\n(.*?)```", section, re.S)
+    (commands,) = re.findall(r"```bash\n(.*?)```", section, re.S)
+    folder = tmp_path_factory.mktemp("readme")
+    (folder / "quadratic.py").write_text(code)
+    argv = ("--set", "eps=0.05", "--order", "2", "--times", "0,1")
+    readme_run = solve_json(capsys, f"{folder / 'quadratic.py'}:Quadratic", *argv)
+    tested = solve_json(capsys, f"{files / 'quadratic.py'}:Quadratic", *argv)
+    assert readme_run["period"] == pytest.approx(tested["period"], rel=1e-14)
+    assert readme_run["state"] == tested["state"]
+    for line in commands.strip().splitlines():
+        program, *args = line.split()
+        assert program == "perturb"
+        args = [str(folder / a) if a.startswith("quadratic.py") else a for a in args]
+        assert main(args) == 0, capsys.readouterr().err
