@@ -24,6 +24,7 @@ _EPILOG = """examples:
   perturb solve duffing --set eps=0.05 --set amplitude=1.2 --order 2
   perturb solve van-der-pol --order 3 --times 0,1,2,3 --format json
   perturb solve disk --euler --format json
+  perturb solve my_oscillator.py:MyOscillator --set eps=0.05   (your own Problem subclass)
   perturb validate duffing --set eps=0.05
   perturb reproduce paper
   perturb work-precision duffing --periods 10 --orders 3 --format csv

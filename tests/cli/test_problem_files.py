@@ -223,10 +223,29 @@ def test_validate_file(capsys, files):
     assert report["completed"] and report["valid"], report["verdict"]
 
 
-def test_validate_rayleigh_file(capsys, files):
+@pytest.mark.parametrize(
+    "integrator",
+    [
+        "dop853",
+        pytest.param(
+            None,
+            marks=pytest.mark.xfail(
+                reason="oracle bug, not the loader's: heyoka's pow(x', 3) (what "
+                "perturb/oracle/symbolic.py makes of x'**3) has NaN Taylor coefficients at x' = 0, "
+                "where Rayleigh's cycle starts: heyoka stops at t = 0 with err_nf_state; expanding "
+                "integer powers into products would fix it",
+                strict=True,
+            ),
+        ),
+    ],
+)
+def test_validate_rayleigh_file(capsys, files, integrator):
+    if integrator is None:
+        pytest.importorskip("heyoka")  # the default integrator when installed
     spec = f"{files / 'rayleigh.py'}:Rayleigh"
+    options = ["--integrator", integrator] if integrator else []
     code, out, err = run(
-        capsys, "validate", spec, "--set", "eps=0.05", "--integrator", "dop853", "--format", "json"
+        capsys, "validate", spec, "--set", "eps=0.05", *options, "--format", "json"
     )
     report = json.loads(out)
     assert code == 0, err

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import importlib
 import pkgutil
+import subprocess
 import sys
 import textwrap
 
@@ -40,11 +41,8 @@ def test_listing_names_imports_no_problem_module():
         "import sys, problems; names = problems.problem_names(); "
         "print(len(names), [m for m in sys.modules if m.startswith('problems.')])"
     )
-    out = (
-        __import__("subprocess")
-        .run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-        .stdout
-    )
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    out = run.stdout
     count, modules = out.split(" ", 1)
     assert int(count) >= 6
     assert "problems.duffing" not in modules and "problems.rigid_body.disk" not in modules
