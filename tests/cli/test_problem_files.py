@@ -432,3 +432,24 @@ def test_readme_example(capsys, files, tmp_path_factory):
         assert program == "perturb"
         args = [str(folder / a) if a.startswith("quadratic.py") else a for a in args]
         assert main(args) == 0, capsys.readouterr().err
+
+
+def test_entry_points_of_an_installed_distribution(capsys, tmp_path, monkeypatch):
+    """No monkeypatched lookup: a real ``.dist-info`` folder on sys.path declares the problems."""
+    (tmp_path / "fakeosc_problems.py").write_text(conservative("Quadratic", "quad", "-X**2"))
+    info = tmp_path / "fakeosc-1.0.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: fakeosc\nVersion: 1.0\n")
+    (info / "entry_points.txt").write_text(
+        "[perturb.problems]\n"
+        "fake-quadratic = fakeosc_problems:Quadratic\n"
+        "fake-broken = fakeosc_problems:Missing\n"
+    )
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setattr(ALL_PROBLEMS, "_loaded", dict(ALL_PROBLEMS._loaded))
+    assert {"fake-quadratic", "fake-broken"} <= set(ALL_PROBLEMS)
+    data = solve_json(capsys, "fake-quadratic", "--times", "0")
+    assert data["state"]["x"] == [pytest.approx(1.0, abs=1e-14)]
+    code, _, err = run(capsys, "solve", "fake-broken")
+    assert code == 2 and len(err.strip().splitlines()) == 1
+    assert "fakeosc_problems:Missing" in err and "uninstall fakeosc" in err
