@@ -193,10 +193,15 @@ def _parse_times(text: str | None) -> np.ndarray | None:
 
 
 def _cmd_list() -> int:
+    from perturb.errors import ProblemLoadError
     from problems import get_problem, problem_names
 
     for name in problem_names():
-        cls = get_problem(name)
+        try:
+            cls = get_problem(name)
+        except ProblemLoadError as exc:  # a broken installed package: say so, list the others
+            print(f"perturb: warning: {exc}", file=sys.stderr)
+            continue
         print(f"{name:16s} {cls.summary}")
         for spec in cls.parameter_specs:
             print(f"    {spec.name:10s} default {spec.default:<12g} {spec.doc}")
