@@ -146,8 +146,12 @@ def _import_failure(exc: Exception, where: str) -> ProblemLoadError:
         return ProblemLoadError(f"{location}: syntax error: {exc.msg}: fix the file")
     if isinstance(exc, ProblemLoadError):  # e.g. @register of a name already taken
         return ProblemLoadError(f"{where}: {exc}")
-    frames = [f for f in traceback.extract_tb(exc.__traceback__) if f.filename == where]
-    location = f"{where}:{frames[-1].lineno}" if frames else where
+    frames = traceback.extract_tb(exc.__traceback__)
+    # the user's file when named by path; for a module, the deepest frame outside the import system
+    mine = [f for f in frames if f.filename == where] or [
+        f for f in frames[1:] if not f.filename.startswith("<") and "importlib" not in f.filename
+    ]
+    location = f"{mine[-1].filename}:{mine[-1].lineno}" if mine else where
     if isinstance(exc, ModuleNotFoundError) and exc.name:
         return ProblemLoadError(
             f"{location}: importing it failed: no module named {exc.name!r}: install "

@@ -346,6 +346,14 @@ def test_bad_spec_is_one_line_exit_2(capsys, files, spec, fragments):
         assert "did you mean" not in err
 
 
+def test_module_that_fails_to_import_is_named_with_its_line(capsys, tmp_path, monkeypatch):
+    (tmp_path / "failing_osc.py").write_text("import math\n\nmath.sqrt(-1)\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    code, _, err = run(capsys, "solve", "failing_osc:Thing")
+    assert code == 2 and len(err.strip().splitlines()) == 1 and "Traceback" not in err
+    assert f"{tmp_path / 'failing_osc.py'}:3" in err and "ValueError: math domain error" in err
+
+
 def test_two_problems_in_a_file_need_a_class_name(capsys, tmp_path):
     text = conservative("One", "one", "-X**3") + _CONSERVATIVE.format(
         cls="Two", name="two", force="-X**2", summary="s"
