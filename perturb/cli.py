@@ -31,6 +31,7 @@ _EPILOG = """examples:
   perturb solve duffing --set eps=0.05 --set amplitude=1.2 --order 2
   perturb solve van-der-pol --order 3 --times 0,1,2,3 --format json
   perturb solve disk --euler --format json
+  perturb solve my_oscillator.py:MyOscillator --set eps=0.05   (your own Problem subclass)
   perturb validate duffing --set eps=0.05
   perturb reproduce paper
   perturb work-precision duffing --periods 10 --orders 3 --format csv
@@ -66,7 +67,10 @@ class _Parser(argparse.ArgumentParser):
 
 def _add_problem_arguments(parser: argparse.ArgumentParser, *, order: bool = True) -> None:
     """PROBLEM, --set (and --order): shared by every command that builds a problem's solution."""
-    parser.add_argument("problem", help="problem name (see `perturb list`)")
+    parser.add_argument(
+        "problem",
+        help="problem name (see `perturb list`), path/to/file.py:Class or package.module:Class",
+    )
     parser.add_argument(
         "--set",
         dest="sets",
@@ -272,10 +276,15 @@ def _parse_times(text: str | None) -> np.ndarray | None:
 
 
 def _cmd_list() -> int:
+    from perturb.errors import ProblemLoadError
     from problems import get_problem, problem_names
 
     for name in problem_names():
-        cls = get_problem(name)
+        try:
+            cls = get_problem(name)
+        except ProblemLoadError as exc:  # a broken installed package: say so, list the others
+            print(f"perturb: warning: {exc}", file=sys.stderr)
+            continue
         print(f"{name:16s} {cls.summary}")
         for spec in cls.parameter_specs:
             print(f"    {spec.name:10s} default {spec.default:<12g} {spec.doc}")
@@ -283,9 +292,9 @@ def _cmd_list() -> int:
 
 
 def _cmd_solve(args) -> int:
-    from problems import get_problem
+    from problems import load_problem
 
-    cls = get_problem(args.problem)
+    cls = load_problem(args.problem)
     overrides = _parse_sets(args.sets)
     order = _parse_order(args.order)
     times = _parse_times(args.times)
@@ -335,9 +344,9 @@ def _cmd_solve(args) -> int:
 
 def _cmd_validate(args) -> int:
     from perturb.validation import validate
-    from problems import get_problem
+    from problems import load_problem
 
-    cls = get_problem(args.problem)
+    cls = load_problem(args.problem)
     problem = cls.create(**_parse_sets(args.sets))
     report = validate(
         problem,
@@ -366,9 +375,9 @@ def _parse_positive(flag: str, text: str, kind=float):
 
 def _cmd_work_precision(args) -> int:
     from perturb.workprecision import work_precision
-    from problems import get_problem
+    from problems import load_problem
 
-    cls = get_problem(args.problem)
+    cls = load_problem(args.problem)
     problem = cls.create(**_parse_sets(args.sets))
     periods = _parse_positive("--periods", args.periods, float)
     orders = _parse_positive("--orders", args.orders, int)

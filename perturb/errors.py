@@ -14,6 +14,7 @@ __all__ = [
     "InvalidParameterError",
     "InvalidSystemError",
     "PerturbError",
+    "ProblemLoadError",
     "UnknownNameError",
 ]
 
@@ -66,3 +67,8 @@ def bad_value(
 class CacheWarning(UserWarning):
     """The disk cache was bypassed or repaired (unsafe folder, unusable key, invalid entry); the
     result is still computed afresh and correct."""
+
+
+class ProblemLoadError(PerturbError, ValueError):
+    """A problem named by file or module (``path/to/file.py:Class``), or installed through an entry
+    point, that cannot be loaded: missing file, syntax or import error, missing or incomplete class."""

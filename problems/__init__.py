@@ -1,45 +1,32 @@
 """Problem classes for perturb, registered by name (``perturb list`` shows them).
 
+A class in a module of this package is registered by its ``@register`` decorator alone: the
+modules are found by a static scan, and imported only when one of their problems is used.
+Problems also come from other installed distributions (entry-point group ``perturb.problems``) and,
+named explicitly, from any file or module (:func:`load_problem`: ``path/to/file.py:ClassName``).
+
 ``problems`` depends on ``perturb``, never the reverse.
 """
 
 from __future__ import annotations
 
-from importlib import import_module
-
-from perturb.errors import UnknownNameError
+from problems._registry import (
+    ALL_PROBLEMS,
+    ENTRY_POINT_GROUP,
+    get_problem,
+    problem_names,
+    register,
+)
 from problems.base import ParameterSpec, Problem
+from problems.loading import load_problem
 
-__all__ = ["ALL_PROBLEMS", "ParameterSpec", "Problem", "get_problem", "register"]
-
-#: name -> "module:Class", imported on first use so that listing problems stays cheap.
-_LAZY = {
-    "duffing": "problems.duffing:Duffing",
-    "van-der-pol": "problems.van_der_pol:VanDerPol",
-    "linear-pair": "problems.linear_pair:LinearPair",
-    "resonant-pair": "problems.resonant_pair:ResonantPair",
-    "disk": "problems.rigid_body.disk:DiskInNewtonianField",
-    "rigid-body": "problems.rigid_body.fast_spin:FastSpinRigidBody",
-}
-
-ALL_PROBLEMS: dict[str, type[Problem]] = {}
-
-
-def register(cls: type[Problem]) -> type[Problem]:
-    """Class decorator adding a problem to the registry under ``cls.name``."""
-    ALL_PROBLEMS[cls.name] = cls
-    return cls
-
-
-def problem_names() -> list[str]:
-    return sorted(set(_LAZY) | set(ALL_PROBLEMS))
-
-
-def get_problem(name: str) -> type[Problem]:
-    """The problem class registered as ``name``."""
-    if name not in ALL_PROBLEMS and name in _LAZY:
-        module, _, attr = _LAZY[name].partition(":")
-        getattr(import_module(module), attr)
-    if name not in ALL_PROBLEMS:
-        raise UnknownNameError(f"`problem` = {name!r} is unknown: choose from {problem_names()}")
-    return ALL_PROBLEMS[name]
+__all__ = [
+    "ALL_PROBLEMS",
+    "ENTRY_POINT_GROUP",
+    "ParameterSpec",
+    "Problem",
+    "get_problem",
+    "load_problem",
+    "problem_names",
+    "register",
+]

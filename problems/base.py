@@ -13,7 +13,9 @@ Subclass contract (as scipy's ``OdeSolver`` states its own):
 3. optionally override :meth:`Problem.method_options`, :meth:`Problem.symbol_values`,
    :meth:`Problem.state` (to map the quasilinear state back to physical variables) and
    :meth:`Problem.original_rhs` (the unreduced equations for validation);
-4. register the class with :func:`problems.register`.
+4. in the ``problems`` package, decorate the class with :func:`problems.register` (that alone lists
+   it); elsewhere, name it as ``path/to/file.py:Class`` or declare it in the entry-point group
+   ``perturb.problems`` (see :mod:`problems.loading`).
 """
 
 from __future__ import annotations
