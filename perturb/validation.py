@@ -52,6 +52,7 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._defaults import SHOOTING_TOL
 from perturb.errors import PerturbError, UnknownNameError, bad_value
 from perturb.oracle import (
     INTEGRATORS,
@@ -64,7 +65,6 @@ from perturb.oracle import (
     find_periodic_orbit,
     finite_difference_jacobian,
 )
-from perturb.oracle._settings import SHOOTING_TOL
 
 __all__ = [
     "Condition",
