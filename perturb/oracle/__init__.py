@@ -18,7 +18,8 @@ from perturb.oracle.registry import INTEGRATORS, choose, default_integrator, get
 from perturb.oracle.rk4 import RK4
 from perturb.oracle.scipy import Scipy, scaled_atol
 from perturb.oracle.shooting import find_periodic_orbit, finite_difference_jacobian
-from perturb.oracle.symbolic import SymbolicRHS, to_heyoka
+from perturb.oracle.symbolic import SymbolicRHS
+from perturb.oracle.translate import to_heyoka
 
 __all__ = [
     "INTEGRATORS",

@@ -2,7 +2,7 @@
 
 heyoka builds the Taylor series of the solution from the *expressions* of the rhs, so it needs the
 rhs as a :class:`~perturb.oracle.symbolic.SymbolicRHS`; the translation is
-:func:`perturb.oracle.symbolic.to_heyoka`.  heyoka is imported lazily, inside the functions.
+:func:`perturb.oracle.translate.to_heyoka`.  heyoka is imported lazily, inside the functions.
 """
 
 from __future__ import annotations
@@ -19,7 +19,8 @@ from attrs import frozen
 from perturb._defaults import DEFAULT_HEYOKA_TOL, HEYOKA_COMPACT_MODE_MIN_DIM, MAX_STEPS
 from perturb.errors import bad_value
 from perturb.oracle.base import IntegratorBase, Run, TrajectoryStatus, check_positive
-from perturb.oracle.symbolic import SymbolicRHS, to_heyoka
+from perturb.oracle.symbolic import SymbolicRHS
+from perturb.oracle.translate import to_heyoka
 
 __all__ = ["Heyoka", "heyoka_available"]
 
