@@ -35,6 +35,7 @@ def heyoka_available() -> bool:
     return True
 
 
+@functools.cache  # the platform and the heyoka build do not change during a run
 def _fp_types() -> dict[str, type]:
     import heyoka as hy
 

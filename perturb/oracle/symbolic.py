@@ -29,7 +29,7 @@ def _as_exprs(values) -> tuple[sp.Expr, ...]:
     return tuple(sp.sympify(v) for v in values)
 
 
-@frozen
+@frozen(cache_hash=True)  # hashed on every heyoka call (the compiled-integrator cache key)
 class SymbolicRHS:
     """An autonomous vector field :math:`\\dot y = f(y)` given by sympy expressions.
 
