@@ -111,3 +111,9 @@ EQUILIBRIUM_MOTION = 1e-8
 #: Relative tolerance of Radau on stiff systems: its Newton iterations stop converging much
 #: below 1e-10, and a stiff relaxation cycle is not reproducible to better than that anyway.
 STIFF_RTOL = 1e-10
+
+#: A Floquet multiplier within this distance of 1 counts as trivial in
+#: :attr:`perturb.oracle.PeriodicOrbit.n_trivial_found`.  A trivial multiplier in a Jordan block of
+#: size 2 (a family whose period varies along it) splits by ~sqrt(delta) under a perturbation delta
+#: of the monodromy: delta ~ 1e-13 from the integration gives ~3e-7; 1e-5 leaves a margin of 30.
+TRIVIAL_MULTIPLIER_TOL = 1e-5

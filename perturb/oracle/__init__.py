@@ -12,6 +12,7 @@ the oracle imports from this package only.
 """
 
 from perturb.oracle.base import Integrator, IntegratorBase, Trajectory, TrajectoryStatus
+from perturb.oracle.floquet import expected_trivial_multipliers
 from perturb.oracle.heyoka import Heyoka, heyoka_available
 from perturb.oracle.orbit import OrbitStatus, PeriodicOrbit
 from perturb.oracle.registry import INTEGRATORS, choose, default_integrator, get_integrator
@@ -35,6 +36,7 @@ __all__ = [
     "TrajectoryStatus",
     "choose",
     "default_integrator",
+    "expected_trivial_multipliers",
     "find_periodic_orbit",
     "finite_difference_jacobian",
     "get_integrator",

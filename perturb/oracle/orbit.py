@@ -92,6 +92,13 @@ class PeriodicOrbit:
         integration error, so expect ~1e-7 there rather than ~1e-13.
     integrator : str
         The integrator that ran.
+    n_trivial_expected : int
+        Multipliers that must equal 1: the ``n_trivial`` given, or the count derived from the
+        integrals and ``hamiltonian`` by :func:`~perturb.oracle.floquet.expected_trivial_multipliers`.
+    n_trivial_found : int
+        Multipliers found within ``TRIVIAL_MULTIPLIER_TOL`` of 1 (0 when the monodromy is not
+        finite).  More than expected: a nearly neutral direction or an unlisted integral; fewer: an
+        integral that is not one, or an inaccurate monodromy.
     """
 
     period: float = field(converter=float)
@@ -104,6 +111,8 @@ class PeriodicOrbit:
     message: str
     trivial_multiplier_error: float = math.nan
     integrator: str = ""
+    n_trivial_expected: int = 0
+    n_trivial_found: int = 0
 
     @property
     def success(self) -> bool:
