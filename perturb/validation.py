@@ -52,21 +52,19 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._defaults import SHOOTING_TOL
 from perturb.errors import PerturbError, UnknownNameError, bad_value
 from perturb.oracle import (
     INTEGRATORS,
-    Heyoka,
     Integrator,
     Scipy,
     SymbolicRHS,
     Trajectory,
+    TrajectoryStatus,
+    choose,
     find_periodic_orbit,
     finite_difference_jacobian,
-    get_integrator,
-    heyoka_available,
 )
-from perturb.oracle._settings import SHOOTING_TOL
-from perturb.oracle.integrators import STATUS_MAX_STEPS
 
 __all__ = [
     "Condition",
@@ -854,45 +852,8 @@ def _check_positive(name: str, value, fix: str) -> float:
 def _resolve_integrator(
     integrator, rtol: float, stiff: bool, symbolic: bool, max_steps: int | None = None
 ) -> Integrator:
-    """The integrator to run: the user's (name or object) or the choice from stiffness.
-
-    ``max_steps`` (a step budget) switches the default to the cheapest explicit method: a budgeted
-    run only has to show how the motion departs, and heyoka's steps cost microseconds where
-    Radau's cost a millisecond.
-    """
-    budget = {} if max_steps is None else {"max_steps": max_steps}
-    if integrator is None:
-        if stiff and max_steps is None:
-            return Scipy("Radau", rtol=max(rtol, STIFF_RTOL))
-        if symbolic and heyoka_available():
-            return Heyoka(**budget)
-        return Scipy("DOP853", rtol=rtol, **budget)
-    if isinstance(integrator, str):
-        key = integrator.lower()
-        if key not in INTEGRATORS:
-            raise UnknownNameError(
-                f"`integrator` = {integrator!r} is not a known integrator: use one of "
-                f"{sorted(INTEGRATORS)}"
-            )
-        if key in ("dop853", "rk45", "radau", "lsoda"):
-            return get_integrator(key, rtol=rtol, **budget)
-        if key == "heyoka":
-            if not symbolic:
-                raise bad_value(
-                    "integrator",
-                    integrator,
-                    "this problem gives no symbolic equations (original_symbolic), which heyoka "
-                    "needs; use 'dop853'",
-                )
-            return get_integrator(key, **budget)
-        return get_integrator(key)
-    if not isinstance(integrator, Integrator):
-        raise bad_value(
-            "integrator",
-            integrator,
-            f"pass None, a name in {sorted(INTEGRATORS)} or an integrator object",
-        )
-    return integrator
+    """Thin alias of :func:`perturb.oracle.choose`, the one rule for "which integrator"."""
+    return choose(integrator, rtol=rtol, stiff=stiff, symbolic=symbolic, max_steps=max_steps)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -1047,7 +1008,7 @@ def _orbit_check(
             initial_state_error=nan,
             orbit_error=nan,
             message=orbit.message,
-            status=orbit.status,
+            status=orbit.status.code,
             integrator=orbit.integrator,
         )
     true_period = orbit.period
@@ -1089,7 +1050,7 @@ def _orbit_check(
         initial_state_error=init_error,
         orbit_error=orbit_error,
         message=message,
-        status=orbit.status,
+        status=orbit.status.code,
         integrator=orbit.integrator,
         resolution=resolution,
     )
@@ -1515,7 +1476,9 @@ def validate(
     valid, verdict = _verdict(conditions, breakdown, traj, errors, max_rel, fit, orbit, periods)
     timings["total"] = sum(timings.values())
     completed, message = traj.success, traj.message
-    if hopeless and traj.status == STATUS_MAX_STEPS:  # a deliberate cut, not a numerical failure
+    if (
+        hopeless and traj.status is TrajectoryStatus.MAX_STEPS
+    ):  # a deliberate cut, not a numerical failure
         completed = True
         message = (
             f"stopped at t = {traj.t_reached:.6g} by the step budget {INVALID_MAX_STEPS} of a run "
@@ -1528,7 +1491,7 @@ def validate(
         verdict=verdict,
         completed=completed,
         message=message,
-        status=traj.status,
+        status=traj.status.code,
         t_reached=traj.t_reached,
         period=period,
         errors=errors,

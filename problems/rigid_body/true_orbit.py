@@ -322,7 +322,7 @@ def conditioned_true_orbit(problem, solution=None, offset: float = 0.0) -> TrueO
         integrator=orbit.integrator,
     )
     if not orbit.success:
-        return _failed(orbit.status, f"conditioned shooting: {orbit.message}", first, **common)
+        return _failed(orbit.status.code, f"conditioned shooting: {orbit.message}", first, **common)
     if offset_size > CENTRED:
         return _failed(
             STATUS_REFUSED,
@@ -355,7 +355,7 @@ def conditioned_true_orbit(problem, solution=None, offset: float = 0.0) -> TrueO
         n_trivial=N_TRIVIAL,
         resolution=resolution,
         pin_mismatch=float(abs(y[2] / r0 - 1) + abs(y[5] - g3)),
-        status=orbit.status,
+        status=orbit.status.code,
         message=(
             f"conditioned extended-precision shooting ({orbit.integrator}, exact rational "
             f"parameters) converged in {orbit.iterations} iterations: conditioned residual "
