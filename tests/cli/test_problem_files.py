@@ -227,16 +227,7 @@ def test_validate_file(capsys, files):
     "integrator",
     [
         "dop853",
-        pytest.param(
-            None,
-            marks=pytest.mark.xfail(
-                reason="oracle bug, not the loader's: heyoka's pow(x', 3) (what "
-                "perturb/oracle/symbolic.py makes of x'**3) has NaN Taylor coefficients at x' = 0, "
-                "where Rayleigh's cycle starts: heyoka stops at t = 0 with err_nf_state; expanding "
-                "integer powers into products would fix it",
-                strict=True,
-            ),
-        ),
+        None,  # the default (heyoka): integer powers are exact products since the oracle fix
     ],
 )
 def test_validate_rayleigh_file(capsys, files, integrator):
