@@ -113,7 +113,13 @@ def _build_parser() -> argparse.ArgumentParser:
     validate.add_argument(
         "--periods",
         default="10",
-        help="horizon of the trajectory comparison, in periods (default 10)",
+        help="horizon of the trajectory comparison, in periods (default 10; information only)",
+    )
+    validate.add_argument(
+        "--tol",
+        default=None,
+        help="accuracy tolerance: largest relative distance of the analytic orbit and period from "
+        "the true ones (default 0.1)",
     )
     _add_format(validate, ["table", "json"])
     work = sub.add_parser(
@@ -251,21 +257,24 @@ def _cmd_solve(args) -> int:
 
 
 def _cmd_validate(args) -> int:
-    from perturb.validation import validate
+    from perturb.report import validation_as_dict, validation_as_table
+    from perturb.validation import DEFAULT_TOL, validate
     from problems import get_problem
 
     cls = get_problem(args.problem)
     problem = cls.create(**_parse_sets(args.sets))
+    tol = DEFAULT_TOL if args.tol is None else _parse_positive("--tol", args.tol, float)
     report = validate(
         problem,
         order=_parse_order(args.order),
         integrator=args.integrator,
         periods=_parse_positive("--periods", args.periods, float),
+        tol=tol,
     )
     if args.format == "json":
-        print(json.dumps(report.as_dict(), allow_nan=True))
+        print(json.dumps(validation_as_dict(report), allow_nan=True))
     else:
-        print(report.as_table())
+        print(validation_as_table(report))
     return EXIT_OK if report.completed else EXIT_FAILED
 
 
