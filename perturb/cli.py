@@ -15,6 +15,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from perturb._defaults import DEFAULT_SAMPLES
+from perturb.domain import series_domain
 from perturb.errors import PerturbError
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
@@ -217,17 +218,32 @@ def _cmd_solve(args) -> int:
         raise _UsageError(
             f"--euler: problem {args.problem!r} has no Euler angles (rigid bodies only)"
         )
-    solution = problem.solve(order)
-    if not solution.success:
-        print(
-            f"perturb: {args.problem}: {solution.status.value}: {solution.message}", file=sys.stderr
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        solution = problem.solve(order)
+        domain = None
+        if solution.success:
+            domain = series_domain(solution, problem.parameter_value(), problem.symbol_values())
+    notes = [str(w.message) for w in caught]
+    if not solution.success or not domain.ok:
+        reason = (
+            f"{solution.status.value}: {solution.message}"
+            if not solution.success
+            else "the series is outside its domain: " + "; ".join(domain.reasons)
         )
+        if args.format == "json":
+            failed = {"problem": args.problem, "status": "failed", "reason": reason}
+            print(json.dumps({**failed, "warnings": notes}, allow_nan=True))
+        print(f"perturb: {args.problem}: {reason}", file=sys.stderr)
         return EXIT_FAILED
     period = problem.period(solution)
     if times is None:
         times = np.linspace(0.0, period, DEFAULT_SAMPLES)
-    state = problem.state(solution, times)
-    extras = {"euler": problem.euler_angles(solution, times)} if args.euler else {}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        state = problem.state(solution, times)
+        extras = {"euler": problem.euler_angles(solution, times)} if args.euler else {}
+    notes += [str(w.message) for w in caught if str(w.message) not in notes]
     report = problem.report_extras() if hasattr(problem, "report_extras") else {}
     payload = {
         "problem": args.problem,
@@ -242,7 +258,11 @@ def _cmd_solve(args) -> int:
             k: {n: np.asarray(v, dtype=float).tolist() for n, v in d.items()}
             for k, d in extras.items()
         },
+        "warnings": notes,
     }
+    if args.format != "json":
+        for note in notes:
+            print(f"perturb: warning: {note}", file=sys.stderr)
     if args.latex:
         payload["latex"] = solution.latex()
     if args.steps:

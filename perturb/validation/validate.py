@@ -320,7 +320,8 @@ def validate(
         )
     invariants = invariant_drift(integrals, numeric)
     cut = hopeless and cut_by_budget(traj)
-    measurable = traj.success or cut
+    # a broken-down series is INVALID as it stands: no orbit or scan can change that
+    measurable = (traj.success or cut) and breakdown is None
 
     # existence and accuracy: the true orbit
     orbit = None
