@@ -141,7 +141,7 @@ def main(argv=None) -> int:
             err["oracle"] <= TARGET_ERROR and ratio <= TARGET_RATIO,
         ),
         (
-            f"shooting ({orbit.iterations} Newton it., status {orbit.status})",
+            f"shooting ({orbit.iterations} Newton it., status {orbit.status.name})",
             orbit.residual,
             shoot,
             jit_shoot,

@@ -11,12 +11,19 @@ from perturb.oracle.integrators import (
     Integrator,
     Scipy,
     Trajectory,
+    TrajectoryStatus,
     default_integrator,
     get_integrator,
     heyoka_available,
     scaled_atol,
 )
-from perturb.oracle.shooting import PeriodicOrbit, find_periodic_orbit, finite_difference_jacobian
+from perturb.oracle.registry import choose
+from perturb.oracle.shooting import (
+    OrbitStatus,
+    PeriodicOrbit,
+    find_periodic_orbit,
+    finite_difference_jacobian,
+)
 from perturb.oracle.symbolic import SymbolicRHS, to_heyoka
 
 __all__ = [
@@ -24,10 +31,13 @@ __all__ = [
     "RK4",
     "Heyoka",
     "Integrator",
+    "OrbitStatus",
     "PeriodicOrbit",
     "Scipy",
     "SymbolicRHS",
     "Trajectory",
+    "TrajectoryStatus",
+    "choose",
     "default_integrator",
     "find_periodic_orbit",
     "finite_difference_jacobian",

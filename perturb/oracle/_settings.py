@@ -62,3 +62,7 @@ SHOOTING_INTEGRATOR_RTOL = 1e-13
 #: state scale is an equilibrium: the residual vanishes there for any period.  1e-8 is far above the
 #: round-off motion of a true fixed point and far below any physical oscillation we look for.
 EQUILIBRIUM_MOTION = 1e-8
+
+#: Relative tolerance of Radau on stiff systems: its Newton iterations stop converging much
+#: below 1e-10, and a stiff relaxation cycle is not reproducible to better than that anyway.
+STIFF_RTOL = 1e-10

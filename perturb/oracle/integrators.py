@@ -14,14 +14,15 @@ Contract of :meth:`Integrator.integrate` (all implementations):
 
 1. Invalid input (``t_span`` not increasing, non-finite ``y0``, ``t_eval`` outside ``t_span``)
    raises :class:`perturb.errors.InvalidParameterError` naming the argument, the value and the fix.
-2. A valid run that fails numerically *returns* a :class:`Trajectory` with a negative ``status``, the
-   solver's message and the time reached, holding the output points computed before the failure.
+2. A valid run that fails numerically *returns* a :class:`Trajectory` whose ``status`` is a failed
+   :class:`TrajectoryStatus`, with the solver's message and the time reached, holding the output points computed before the failure.
 3. Without ``t_eval`` the trajectory holds the initial and the final state only.
 """
 
 from __future__ import annotations
 
 import copy
+import enum
 import functools
 import math
 import threading
@@ -51,6 +52,7 @@ __all__ = [
     "Integrator",
     "Scipy",
     "Trajectory",
+    "TrajectoryStatus",
     "default_integrator",
     "get_integrator",
     "heyoka_available",
@@ -60,13 +62,40 @@ __all__ = [
 RHS = Callable[[np.ndarray], np.ndarray]
 JAC = Callable[[np.ndarray], np.ndarray]
 
-#: Status codes shared by all integrators (negative = failed, as in scipy's OdeResult).
-STATUS_OK = 0
-STATUS_MAX_STEPS = -1
-STATUS_NON_FINITE = -2
-STATUS_SOLVER_FAILED = -3
 
-_OK_MESSAGE = "The integration reached the end of the interval."
+class TrajectoryStatus(enum.Enum):
+    """How an integration ended; the values are the user-facing messages (as diffrax ``RESULTS``).
+
+    :attr:`Trajectory.message` starts from the value and may append the solver's own detail.
+    """
+
+    SUCCESS = "The integration reached the end of the interval."
+    MAX_STEPS = "The step budget `max_steps` was exhausted before the end of the interval."
+    NON_FINITE = "The state became non-finite (NaN or infinity) during the integration."
+    SOLVER_FAILED = "The solver failed (step size too small, singularity or no progress)."
+
+    @property
+    def success(self) -> bool:
+        """True only for :attr:`SUCCESS`."""
+        return self is TrajectoryStatus.SUCCESS
+
+    @property
+    def code(self) -> int:
+        """The legacy integer code (0 success, negative failure, as scipy's ``OdeResult.status``).
+
+        Kept for the JSON reports whose ``status`` key is an integer; new code compares members.
+        """
+        return _TRAJECTORY_CODES[self]
+
+
+_TRAJECTORY_CODES = {
+    TrajectoryStatus.SUCCESS: 0,
+    TrajectoryStatus.MAX_STEPS: -1,
+    TrajectoryStatus.NON_FINITE: -2,
+    TrajectoryStatus.SOLVER_FAILED: -3,
+}
+
+_OK_MESSAGE = TrajectoryStatus.SUCCESS.value
 
 
 def _readonly(value: Any) -> np.ndarray:
@@ -86,8 +115,8 @@ class Trajectory:
     y : ndarray, shape (n_state, n_t)
         States at ``t`` (the same layout as ``scipy.integrate.solve_ivp``).  The dtype is float64,
         or the extended type of an extended-precision heyoka run.
-    status : int
-        0 if the end of the interval was reached; negative if the integration failed.
+    status : TrajectoryStatus
+        :attr:`TrajectoryStatus.SUCCESS` if the end of the interval was reached, else the failure.
     message : str
         Human-readable outcome, including the solver's own message on failure.
     t_reached : float
@@ -101,7 +130,9 @@ class Trajectory:
 
     t: np.ndarray = field(converter=_readonly, eq=attrs.cmp_using(eq=np.array_equal))
     y: np.ndarray = field(converter=_readonly, eq=attrs.cmp_using(eq=np.array_equal))
-    status: int = STATUS_OK
+    status: TrajectoryStatus = field(
+        default=TrajectoryStatus.SUCCESS, validator=attrs.validators.instance_of(TrajectoryStatus)
+    )
     message: str = _OK_MESSAGE
     t_reached: float = math.nan
     nfev: int = 0
@@ -110,7 +141,7 @@ class Trajectory:
     @property
     def success(self) -> bool:
         """True if the integration reached the end of the interval."""
-        return self.status >= 0
+        return self.status.success
 
     @property
     def y_final(self) -> np.ndarray:
@@ -121,7 +152,7 @@ class Trajectory:
         """Return ``self`` if successful, else raise :class:`perturb.errors.IntegrationError`."""
         if not self.success:
             raise IntegrationError(
-                f"{self.integrator}: {self.message}", self.status, self.t_reached
+                f"{self.integrator}: {self.message}", self.status.code, self.t_reached
             )
         return self
 
@@ -294,7 +325,7 @@ class RK4:
                     return Trajectory(
                         t=np.array(ts),
                         y=np.array(ys).T.reshape(y.size, len(ts)),
-                        status=STATUS_NON_FINITE,
+                        status=TrajectoryStatus.NON_FINITE,
                         message=f"The state became non-finite (step size {hk:.3g}); reduce the step "
                         "or check the rhs for a singularity.",
                         t_reached=a + k * hk,
@@ -454,10 +485,10 @@ class Scipy:
             ts.append(t0)
             ys.append(y0.copy())
             i += 1
-        status, message, n_steps = STATUS_OK, _OK_MESSAGE, 0
+        status, message, n_steps = TrajectoryStatus.SUCCESS, _OK_MESSAGE, 0
         while solver.status == "running":
             if n_steps >= self.max_steps:
-                status = STATUS_MAX_STEPS
+                status = TrajectoryStatus.MAX_STEPS
                 message = (
                     f"The step budget max_steps = {self.max_steps} was exhausted; raise "
                     "`max_steps` or loosen the tolerances (the problem may be stiff)."
@@ -467,11 +498,11 @@ class Scipy:
             solver_message = solver.step()
             n_steps += 1
             if solver.status == "failed":
-                status = STATUS_SOLVER_FAILED
+                status = TrajectoryStatus.SOLVER_FAILED
                 message = f"scipy {self.method} failed: {solver_message}"
                 break
             if solver.t <= t_before:  # LSODA keeps "stepping" with h = 0 at a singularity
-                status = STATUS_SOLVER_FAILED
+                status = TrajectoryStatus.SOLVER_FAILED
                 message = (
                     f"scipy {self.method} made no progress at t = {solver.t} (step size "
                     f"{solver.step_size}): singularity or blow-up of the solution."
@@ -488,7 +519,7 @@ class Scipy:
                 ys.append(y)
                 i += 1
             if not np.all(np.isfinite(solver.y)):
-                status = STATUS_NON_FINITE
+                status = TrajectoryStatus.NON_FINITE
                 message = f"The state became non-finite at t = {solver.t}."
                 break
         y_out = np.array(ys).T if ys else np.empty((y0.size, 0))
@@ -688,15 +719,19 @@ class Heyoka:
         else:
             reached = float(ta.time)
             ts, ys = grid[:0], np.empty((y0.size, 0))
-        status, message = STATUS_OK, _OK_MESSAGE
+        status, message = TrajectoryStatus.SUCCESS, _OK_MESSAGE
         if outcome == hy.taylor_outcome.step_limit:
-            status = STATUS_MAX_STEPS
+            status = TrajectoryStatus.MAX_STEPS
             message = (
                 f"heyoka stopped at the step budget max_steps = {self.max_steps} "
                 f"({outcome}); raise `max_steps` or check the motion for blow-up."
             )
         elif outcome != hy.taylor_outcome.time_limit:
-            status = STATUS_NON_FINITE if outcome == hy.taylor_outcome.err_nf_state else -3
+            status = (
+                TrajectoryStatus.NON_FINITE
+                if outcome == hy.taylor_outcome.err_nf_state
+                else TrajectoryStatus.SOLVER_FAILED
+            )
             message = f"heyoka stopped with outcome {outcome} (non-finite state or step size)."
         return Trajectory(
             t=ts,

@@ -24,6 +24,7 @@ their distance from 1 is an accuracy check of the whole computation (as in AUTO)
 
 from __future__ import annotations
 
+import enum
 import math
 from collections.abc import Sequence
 from typing import Any
@@ -52,15 +53,43 @@ from perturb.oracle.integrators import (
 )
 from perturb.oracle.symbolic import SymbolicRHS
 
-__all__ = ["PeriodicOrbit", "find_periodic_orbit", "finite_difference_jacobian"]
+__all__ = ["OrbitStatus", "PeriodicOrbit", "find_periodic_orbit", "finite_difference_jacobian"]
 
-#: Status codes of :class:`PeriodicOrbit` (0 = converged, negative = failed).
-STATUS_CONVERGED = 0
-STATUS_MAX_ITER = -1
-STATUS_INTEGRATION_FAILED = -2
-STATUS_STALLED = -3
-STATUS_WRONG_DIRECTION = -4
-STATUS_EQUILIBRIUM = -5
+
+class OrbitStatus(enum.Enum):
+    """How a shooting search ended; the values are the user-facing messages.
+
+    :attr:`PeriodicOrbit.message` gives the numbers of the particular run.
+    """
+
+    CONVERGED = "The shooting converged to a periodic orbit."
+    MAX_ITER = "The Newton iteration did not converge within `max_iter` iterations."
+    INTEGRATION_FAILED = "An integration of the state and variational equations failed."
+    STALLED = "The Newton iteration stalled: no step reduces the residual (integrator accuracy limits it)."
+    WRONG_DIRECTION = "Converged, but the orbit crosses the section in the wrong direction."
+    EQUILIBRIUM = (
+        "Converged onto an equilibrium, not a periodic orbit (a family parameter was not pinned)."
+    )
+
+    @property
+    def success(self) -> bool:
+        """True only for :attr:`CONVERGED`."""
+        return self is OrbitStatus.CONVERGED
+
+    @property
+    def code(self) -> int:
+        """The legacy integer code (0 converged, negative failure), for integer JSON fields."""
+        return _ORBIT_CODES[self]
+
+
+_ORBIT_CODES = {
+    OrbitStatus.CONVERGED: 0,
+    OrbitStatus.MAX_ITER: -1,
+    OrbitStatus.INTEGRATION_FAILED: -2,
+    OrbitStatus.STALLED: -3,
+    OrbitStatus.WRONG_DIRECTION: -4,
+    OrbitStatus.EQUILIBRIUM: -5,
+}
 
 #: Singular values below this fraction of the largest count as zero in the rank of the Newton matrix.
 _RANK_RTOL = 1e-9
@@ -93,11 +122,12 @@ class PeriodicOrbit:
         Relative periodicity defect :math:`\\|y(T) - y(0)\\|_\\infty / s`, ``s`` the state scale.
     iterations : int
         Newton iterations performed.
-    status : int
-        0 converged; -1 ``max_iter`` reached; -2 an integration failed; -3 stalled (no step reduces
-        the residual: integrator accuracy limits it); -4 converged but crossing the section in the
-        wrong direction; -5 converged onto an equilibrium (a fixed point is "periodic" with any
-        period), typically because a family parameter was not pinned.
+    status : OrbitStatus
+        :attr:`OrbitStatus.CONVERGED`, or why the search failed: ``MAX_ITER``,
+        ``INTEGRATION_FAILED``, ``STALLED`` (no step reduces the residual: integrator accuracy limits
+        it), ``WRONG_DIRECTION`` (converged but crossing the section in the wrong direction) or
+        ``EQUILIBRIUM`` (a fixed point is "periodic" with any period, typically because a family
+        parameter was not pinned).
     message : str
         What happened, with the numbers.
     trivial_multiplier_error : float
@@ -114,7 +144,7 @@ class PeriodicOrbit:
     monodromy: np.ndarray = field(converter=_readonly, eq=_array_eq)
     residual: float = field(converter=float)
     iterations: int
-    status: int
+    status: OrbitStatus = field(validator=attrs.validators.instance_of(OrbitStatus))
     message: str
     trivial_multiplier_error: float = math.nan
     integrator: str = ""
@@ -122,12 +152,12 @@ class PeriodicOrbit:
     @property
     def success(self) -> bool:
         """True if the iteration converged to an orbit crossing the section as requested."""
-        return self.status == STATUS_CONVERGED
+        return self.status.success
 
     def raise_for_status(self) -> PeriodicOrbit:
         """Return ``self`` if successful, else raise :class:`perturb.errors.PerturbError`."""
         if not self.success:
-            raise PerturbError(f"shooting failed (status {self.status}): {self.message}")
+            raise PerturbError(f"shooting failed ({self.status.name}): {self.message}")
         return self
 
 
@@ -246,7 +276,7 @@ def find_periodic_orbit(
         Value of the section (0 by default).
     direction : {0, 1, -1}, optional
         Required sign of ``dy[section_index]/dt`` at the crossing; 0 accepts either.  Checked at
-        convergence (status -4 if violated).
+        convergence (``OrbitStatus.WRONG_DIRECTION`` if violated).
     fixed_indices : int or sequence of int, optional
         Further components held at their guessed values, one per neutral direction (e.g. the energy
         of a conservative family: pin the amplitude).
@@ -347,7 +377,7 @@ def find_periodic_orbit(
     traj, defect, phi, f_end = shoot(y, period)
     if defect is None:
         return failed(
-            STATUS_INTEGRATION_FAILED,
+            OrbitStatus.INTEGRATION_FAILED,
             f"integration of the initial guess failed: {traj.message} (t = {traj.t_reached})",
             0,
             y,
@@ -360,7 +390,7 @@ def find_periodic_orbit(
     while residual > tol:
         if iterations >= max_iter:
             return failed(
-                STATUS_MAX_ITER,
+                OrbitStatus.MAX_ITER,
                 f"no convergence in max_iter = {max_iter} Newton iterations: residual "
                 f"{residual:.3e} > tol = {tol:.1e}; improve the guess or raise `max_iter`",
                 iterations,
@@ -395,7 +425,7 @@ def find_periodic_orbit(
         step_size = max(step_size, abs(step[-1]) / period)
         if not accepted:
             return failed(
-                STATUS_STALLED,
+                OrbitStatus.STALLED,
                 f"stalled after {iterations} iterations at residual {residual:.3e} > tol = "
                 f"{tol:.1e}: no damped Newton step reduces it (relative step {step_size:.1e}); "
                 "the integrator error probably dominates: tighten its tolerance or loosen `tol`."
@@ -411,7 +441,7 @@ def find_periodic_orbit(
         residual = residual_try
         if step_size < SHOOTING_STALL_STEP and residual > tol:
             return failed(
-                STATUS_STALLED,
+                OrbitStatus.STALLED,
                 f"stalled after {iterations} iterations at residual {residual:.3e} > tol = "
                 f"{tol:.1e}: the Newton step is below {SHOOTING_STALL_STEP:g}." + rank_note,
                 iterations,
@@ -425,21 +455,21 @@ def find_periodic_orbit(
     distances = np.sort(np.abs(multipliers - 1.0))
     trivial_error = float(distances[n_trivial - 1]) if n_trivial > 0 else 0.0
     status, message = (
-        STATUS_CONVERGED,
+        OrbitStatus.CONVERGED,
         f"converged in {iterations} iterations: residual {residual:.2e}, period {float(period)!r}, "
         f"trivial multiplier error {trivial_error:.1e}." + rank_note,
     )
     velocity = np.asarray(rhs(y), dtype=float)
     crossing = float(velocity[section])
     if float(np.max(np.abs(velocity))) * period <= EQUILIBRIUM_MOTION * scale:
-        status = STATUS_EQUILIBRIUM
+        status = OrbitStatus.EQUILIBRIUM
         message = (
             f"converged onto an equilibrium (|f(y0)| * T = {np.max(np.abs(velocity)) * period:.1e}),"
             " not a periodic orbit; pin the amplitude or energy with `fixed_indices`, or start "
             "closer to the orbit."
         )
     elif direction != 0 and np.sign(crossing) != direction:
-        status = STATUS_WRONG_DIRECTION
+        status = OrbitStatus.WRONG_DIRECTION
         message = (
             f"converged, but the orbit crosses the section with dy[{section}]/dt = {crossing:.3e}, "
             f"not in the requested direction {direction:+d}; start from the other crossing."

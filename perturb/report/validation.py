@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-import enum
 import math
 from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 
+from perturb.oracle import OrbitStatus, TrajectoryStatus
 from perturb.validation.report import Check, OrbitCheck, ValidationReport
 
 __all__ = ["orbit_as_dict", "validation_as_dict", "validation_as_table"]
@@ -22,7 +22,7 @@ def _jsonable(value: Any) -> Any:
         return [_jsonable(v) for v in value]
     if isinstance(value, np.ndarray):
         return _jsonable(value.tolist())
-    if isinstance(value, enum.Enum):
+    if isinstance(value, TrajectoryStatus | OrbitStatus):
         return _status(value)
     if isinstance(value, bool | np.bool_):
         return bool(value)
@@ -35,13 +35,10 @@ def _jsonable(value: Any) -> Any:
     return value
 
 
-def _status(status) -> str | int | None:
-    """A status for JSON: the enum member's name in lower case (integers as they are)."""
-    if status is None:
-        return None
-    if isinstance(status, enum.Enum):
-        return status.name.lower()
-    return int(status)
+def _status(status: TrajectoryStatus | OrbitStatus | None) -> int | None:
+    """A status for JSON: its integer code (0 success, negative failure), as the contract has it;
+    None when nothing ran (a refused shooting seed)."""
+    return None if status is None else status.code
 
 
 def orbit_as_dict(orbit: OrbitCheck) -> dict:
@@ -127,7 +124,7 @@ def validation_as_table(report: ValidationReport) -> str:
             f"run failed: {report.message} (status {_status(report.status)}, t reached "
             f"{report.t_reached:g})"
         )
-    elif report.message and report.status is not None and not _succeeded(report.status):
+    elif report.status is not None and not report.status.success:
         lines.append(f"note: {report.message}")
     if report.checks:
         lines.append("checks:")
@@ -192,8 +189,3 @@ def validation_as_table(report: ValidationReport) -> str:
         )
     lines.append("timings [s]: " + "  ".join(f"{k} {v:.3f}" for k, v in report.timings.items()))
     return "\n".join(lines)
-
-
-def _succeeded(status) -> bool:
-    success = getattr(status, "success", None)
-    return bool(success) if success is not None else status == 0

@@ -7,52 +7,7 @@ import math
 import numpy as np
 
 from perturb.errors import bad_value
-from perturb.oracle import Integrator
-
-try:  # TEMPORARY until the oracle seams are merged
-    from perturb.oracle import choose
-except ImportError:  # pragma: no cover
-    from perturb.oracle import INTEGRATORS, Heyoka, Scipy, get_integrator, heyoka_available
-    from perturb.errors import UnknownNameError
-
-    def choose(integrator=None, *, rtol=1e-12, stiff=False, symbolic=True, max_steps=None):
-        budget = {} if max_steps is None else {"max_steps": max_steps}
-        if integrator is None:
-            if stiff and max_steps is None:
-                return Scipy("Radau", rtol=max(rtol, 1e-10))
-            if symbolic and heyoka_available():
-                return Heyoka(**budget)
-            return Scipy("DOP853", rtol=rtol, **budget)
-        if isinstance(integrator, str):
-            key = integrator.lower()
-            if key not in INTEGRATORS:
-                raise UnknownNameError(
-                    f"`integrator` = {integrator!r} is not a known integrator: use one of "
-                    f"{sorted(INTEGRATORS)}"
-                )
-            if key in ("dop853", "rk45", "radau", "lsoda"):
-                return get_integrator(key, rtol=rtol, **budget)
-            if key == "heyoka":
-                if not symbolic:
-                    raise bad_value("integrator", integrator, "no symbolic equations; use 'dop853'")
-                return get_integrator(key, **budget)
-            return get_integrator(key)
-        if not isinstance(integrator, Integrator):
-            raise bad_value("integrator", integrator, "pass None, a name or an integrator object")
-        return integrator
-
-
-try:  # TEMPORARY until the oracle seams are merged
-    from perturb.oracle import TrajectoryStatus
-
-    def _is_max_steps(status) -> bool:
-        return status is TrajectoryStatus.MAX_STEPS
-except ImportError:  # pragma: no cover
-
-    def _is_max_steps(status) -> bool:
-        return status == -1
-
-
+from perturb.oracle import Integrator, TrajectoryStatus, choose
 from perturb.validation._constants import AMPLITUDE_FLOOR, SECTION_ZERO, SLOW_COMPONENT
 from perturb.validation.model import Equations, Model, ShootingSetup
 
@@ -141,4 +96,4 @@ def derived_shooting_setup(
 
 def cut_by_budget(traj) -> bool:
     """Whether ``traj`` stopped on its step budget (a deliberate cut, not a numerical failure)."""
-    return _is_max_steps(traj.status)
+    return traj.status is TrajectoryStatus.MAX_STEPS

@@ -584,7 +584,7 @@ def _rk4_experiment(cf: dict, printed: dict, truth_cols: dict) -> dict:
             traj = RK4(steps_per_unit=RK4_STEPS_PER_UNIT).integrate(
                 rhs, (0.0, float(grid[-1])), z0, t_eval=grid
             )
-        run: dict[str, Any] = {"description": description, "status": traj.status}
+        run: dict[str, Any] = {"description": description, "status": traj.status.code}
         if traj.success:
             cols = dict(zip(("p2a", "xa", "gamma2a", "ya"), traj.y, strict=True))
             run["max_diff_vs_table1"] = {

@@ -232,7 +232,7 @@ def conditioned_true_orbit(problem, solution=None, offset: float = 0.0) -> TrueO
         integrator=orbit.integrator,
     )
     if not orbit.success:
-        return _failed(orbit.status, f"conditioned shooting: {orbit.message}", first, **common)
+        return _failed(orbit.status.code, f"conditioned shooting: {orbit.message}", first, **common)
     y = ref + scales * np.asarray(orbit.initial_state[:6], dtype=float)
     t_true = orbit.period * lam * (1 + lam * float(orbit.initial_state[6])) / r0
     forward = problem.reduction().forward_function(values, eps)
@@ -249,7 +249,7 @@ def conditioned_true_orbit(problem, solution=None, offset: float = 0.0) -> TrueO
         n_trivial=N_TRIVIAL,
         resolution=resolution,
         pin_mismatch=float(abs(y[2] / r0 - 1) + abs(y[5] - g3)),
-        status=orbit.status,
+        status=orbit.status.code,
         message=(
             f"conditioned extended-precision shooting ({orbit.integrator}) converged in "
             f"{orbit.iterations} iterations: conditioned residual {orbit.residual:.2e}, amplitudes "

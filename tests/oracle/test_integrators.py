@@ -18,6 +18,7 @@ from perturb.oracle import (
     Scipy,
     SymbolicRHS,
     Trajectory,
+    TrajectoryStatus,
     default_integrator,
     get_integrator,
     heyoka_available,
@@ -217,7 +218,7 @@ def test_default_integrator_and_trajectory_say_which_ran():
 def test_trajectory_is_a_frozen_value_object():
     a = RK4(n_steps=10).integrate(HARMONIC, (0.0, 1.0), [1.0, 0.0])
     b = RK4(n_steps=10).integrate(HARMONIC, (0.0, 1.0), [1.0, 0.0])
-    assert a == b and a.success and a.status == 0
+    assert a == b and a.success and a.status is TrajectoryStatus.SUCCESS
     assert a.y.shape == (2, 2) and a.t_reached == 1.0
     with pytest.raises(ValueError):
         a.y[0, 0] = 5.0  # read-only arrays
@@ -245,7 +246,7 @@ BLOW_UP = SymbolicRHS((sp.Symbol("y"),), (sp.Symbol("y") ** 2,))  # y = 1/(1 - t
 @pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning")
 def test_blow_up_returns_failed_trajectory_with_message_and_time(integrator):
     trajectory = integrator.integrate(BLOW_UP, (0.0, 2.0), [1.0], t_eval=[0.0, 0.5, 1.5, 2.0])
-    assert not trajectory.success and trajectory.status < 0
+    assert not trajectory.success and not trajectory.status.success
     assert trajectory.message and trajectory.message != "failed"
     assert 0.99 < trajectory.t_reached < 1.1
     np.testing.assert_allclose(trajectory.y[0, :2], [1.0, 2.0], rtol=1e-6)  # points before t = 1
@@ -261,7 +262,7 @@ def test_blow_up_returns_failed_trajectory_with_message_and_time(integrator):
 )
 def test_step_budget_exhaustion_is_reported(integrator):
     trajectory = integrator.integrate(HARMONIC, (0.0, 100.0), [1.0, 0.0])
-    assert trajectory.status == -1
+    assert trajectory.status is TrajectoryStatus.MAX_STEPS
     assert "max_steps" in trajectory.message
     assert 0.0 < trajectory.t_reached < 100.0
 

@@ -10,6 +10,7 @@ import pytest
 
 from perturb.errors import InvalidParameterError, PerturbError
 from perturb.oracle import (
+    OrbitStatus,
     PeriodicOrbit,
     Scipy,
     find_periodic_orbit,
@@ -128,7 +129,7 @@ def test_missing_pin_is_reported_but_still_converges():
 def test_collapse_onto_an_equilibrium_is_reported():
     """Without the amplitude pinned, Newton from a poor guess slides down the family to x = 0."""
     orbit = find_periodic_orbit(duffing(), [1.0, 0.0], 6.0, section_index=1, n_trivial=2)
-    assert orbit.status == -5
+    assert orbit.status is OrbitStatus.EQUILIBRIUM
     assert "equilibrium" in orbit.message and "fixed_indices" in orbit.message
 
 
@@ -155,7 +156,7 @@ def test_finite_difference_jacobian_is_accurate():
 
 def test_no_convergence_returns_status_and_message():
     orbit = find_periodic_orbit(van_der_pol(EPS), [3.0, 0.0], 5.0, section_index=1, max_iter=1)
-    assert not orbit.success and orbit.status == -1
+    assert not orbit.success and orbit.status is OrbitStatus.MAX_ITER
     assert "max_iter = 1" in orbit.message and "residual" in orbit.message
     assert orbit.iterations == 1
     with pytest.raises(PerturbError, match="max_iter"):
@@ -164,7 +165,7 @@ def test_no_convergence_returns_status_and_message():
 
 def test_wrong_crossing_direction_is_reported():
     orbit = find_periodic_orbit(van_der_pol(EPS), [-2.0, 0.0], 6.3, section_index=1, direction=-1)
-    assert orbit.status == -4
+    assert orbit.status is OrbitStatus.WRONG_DIRECTION
     assert "direction" in orbit.message
     assert orbit.period == pytest.approx(2 * math.pi * (1 + EPS**2 / 16), rel=1e-5)
 
@@ -176,7 +177,7 @@ def test_integration_failure_returns_status():
     orbit = find_periodic_orbit(
         blow_up, [10.0, 0.0], 50.0, section_index=1, integrator=Scipy("DOP853", max_steps=2000)
     )
-    assert orbit.status == -2
+    assert orbit.status is OrbitStatus.INTEGRATION_FAILED
     assert "integration" in orbit.message and "t =" in orbit.message
 
 
