@@ -143,6 +143,8 @@ def decide(
             body = "The analytic solution does not describe the true motion: " + "; ".join(
                 f"{c.name}: {c.sentence}" for c in failed
             )
+            if open_:
+                body += " (not measured: " + ", ".join(c.name for c in open_) + ")"
         elif open_:
             outcome = Verdict.UNDECIDED
             body = "Undecided whether the analytic solution describes the true motion: " + (
