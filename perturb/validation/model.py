@@ -371,6 +371,8 @@ def as_model(problem, values: Mapping | None = None, options: Mapping | None = N
                 "a bare QuasilinearSystem needs numbers: pass values={name: number} for its "
                 f"parameters {[p.name for p in problem.parameters] + [problem.parameter.name]}",
             )
+        if not isinstance(values, Mapping):
+            raise bad_value("values", values, "pass a mapping {name: number}")
         return SystemModel(problem, values, options or {})
     if not isinstance(problem, Model):
         raise bad_value(
