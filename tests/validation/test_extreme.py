@@ -247,3 +247,19 @@ def test_disk_orbit_unresolvable_at_double_precision_is_resolved_by_the_conditio
     assert abs(orbit.period_error) < 1e-12
     assert report.check("existence").passed and report.check("orbit_error").passed
     assert report.as_dict()["periodic_orbit"]["resolved"] is True
+
+
+def test_disk_orbit_unresolved_when_extended_precision_cannot_run(monkeypatch):
+    """Issue 9.1: a check that cannot run (here the conditioned shooting, as without heyoka) makes
+    the verdict UNDECIDED and says why, never VALID."""
+    from perturb.validation import OrbitEstimate
+
+    def unavailable(self, solution):
+        return OrbitEstimate(False, math.nan, (), "extended precision is not available here")
+
+    monkeypatch.setattr(get_problem("disk"), "true_orbit", unavailable)
+    _, report = _paper_geometry_report()
+    assert report.periodic_orbit.success and not report.periodic_orbit.resolved
+    assert report.outcome is Verdict.UNDECIDED and not report.valid
+    assert report.check("existence").passed is None
+    assert "extended precision is not available here" in report.verdict
