@@ -29,7 +29,7 @@ import numpy as np
 from attrs import frozen
 
 from perturb.errors import bad_value
-from perturb.oracle import RK4, Heyoka, Scipy, heyoka_available
+from perturb.oracle import RK4, Heyoka, Scipy, choose, heyoka_available
 from perturb.validation import AMPLITUDE_FLOOR, SAMPLES_PER_PERIOD, original_system
 
 __all__ = ["WorkPoint", "WorkPrecision", "work_precision"]
@@ -253,7 +253,9 @@ def work_precision(
     y0 = np.array([np.asarray(problem.state(base, 0.0)[n], dtype=float) for n in names])
     original = original_system(problem, y0)
     symbolic = original.symbolic and heyoka_available()
-    reference = Heyoka(high_precision=True) if symbolic else Scipy("DOP853", rtol=REFERENCE_RTOL)
+    reference = (
+        Heyoka(high_precision=True) if symbolic else choose(rtol=REFERENCE_RTOL, symbolic=False)
+    )
     references: dict[bytes, np.ndarray] = {}
 
     def truth(start: np.ndarray) -> np.ndarray:

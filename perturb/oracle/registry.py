@@ -1,26 +1,84 @@
-"""The one rule for "which integrator": :func:`choose`.
+"""The integrators by name, and the one rule for "which integrator": :func:`choose`.
 
-Every part of perturb that runs an integrator on behalf of a user (validation, work-precision
+:data:`INTEGRATORS` is the only registry: adding an integrator is one new module (a subclass of
+:class:`~perturb.oracle.base.IntegratorBase`) and one line here.  Every part of perturb that runs an integrator on behalf of a user (validation, work-precision
 diagrams, the command line) resolves the user's ``integrator`` argument here, so that a name, an
 object or ``None`` means the same thing everywhere.
 """
 
 from __future__ import annotations
 
+import functools
+from collections.abc import Callable
 from typing import Any
 
+from perturb._defaults import DEFAULT_RTOL, STIFF_RTOL
 from perturb.errors import UnknownNameError, bad_value
-from perturb.oracle._settings import DEFAULT_RTOL, STIFF_RTOL
-from perturb.oracle.integrators import (
-    INTEGRATORS,
-    Heyoka,
-    Integrator,
-    Scipy,
-    get_integrator,
-    heyoka_available,
-)
+from perturb.oracle.base import RHS, Integrator
+from perturb.oracle.heyoka import Heyoka, heyoka_available
+from perturb.oracle.rk4 import RK4
+from perturb.oracle.scipy import Scipy
+from perturb.oracle.symbolic import SymbolicRHS
 
-__all__ = ["choose"]
+__all__ = ["INTEGRATORS", "choose", "default_integrator", "get_integrator"]
+
+#: Integrator factories by name (lower case); ``get_integrator(name, **opts)`` calls them.
+INTEGRATORS: dict[str, Callable[..., Integrator]] = {
+    "rk4": RK4,
+    "dop853": functools.partial(Scipy, "DOP853"),
+    "rk45": functools.partial(Scipy, "RK45"),
+    "radau": functools.partial(Scipy, "Radau"),
+    "lsoda": functools.partial(Scipy, "LSODA"),
+    "heyoka": Heyoka,
+}
+
+
+def get_integrator(name: str, **options: Any) -> Integrator:
+    """Build an integrator from its registry name.
+
+    Parameters
+    ----------
+    name : str
+        One of ``INTEGRATORS`` (case-insensitive): 'rk4', 'dop853', 'rk45', 'radau', 'lsoda', 'heyoka'.
+    **options
+        Passed to the factory, e.g. ``rtol=1e-10`` or ``steps_per_unit=100``.
+
+    Raises
+    ------
+    perturb.errors.UnknownNameError
+        If ``name`` is not registered; the message lists the known names.
+
+    Examples
+    --------
+    >>> get_integrator("dop853", rtol=1e-10).name
+    'scipy DOP853 (rtol=1e-10)'
+    """
+    key = str(name).lower()
+    if key not in INTEGRATORS:
+        raise UnknownNameError(
+            f"`name` = {name!r} is not a known integrator: use one of {sorted(INTEGRATORS)}"
+        )
+    return INTEGRATORS[key](**options)
+
+
+def default_integrator(rhs: RHS | None = None) -> Integrator:
+    """The integrator used when none is given: heyoka if importable, else scipy DOP853.
+
+    Parameters
+    ----------
+    rhs : callable, optional
+        The rhs to be integrated; if given and not a
+        :class:`~perturb.oracle.symbolic.SymbolicRHS`, DOP853 is chosen since heyoka cannot
+        integrate a plain numeric callable.
+
+    Returns
+    -------
+    Integrator
+        ``Heyoka()`` or ``Scipy('DOP853')``; the :class:`Trajectory` it returns names it.  This
+        is :func:`choose` for a non-stiff system at the default tolerance.
+    """
+    return choose(None, symbolic=rhs is None or isinstance(rhs, SymbolicRHS))
+
 
 #: Registry names of the adaptive scipy methods, which take ``rtol`` and ``max_steps``.
 _SCIPY_NAMES = ("dop853", "rk45", "radau", "lsoda")

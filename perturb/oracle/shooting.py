@@ -2,8 +2,11 @@
 
 The unknowns are the period :math:`T` and the initial state :math:`y_0` restricted to a Poincaré
 section :math:`y_s = c` (``section_index`` = s, ``section_value`` = c) with some further components
-pinned (``fixed_indices``), which removes the neutral directions along families of orbits created
-by first integrals (energy, momenta) or by a free amplitude.  The residual is the periodicity defect
+pinned (``fixed_indices``) or some first integrals held at their values at the guess
+(``integrals``), which removes the neutral directions along families of orbits created by first
+integrals (energy, momenta) or by a free amplitude.  Without either, Newton drifts along the family
+(minimum-norm steps in the neutral direction), often down to the equilibrium at its end.  The
+residual is the periodicity defect
 
 .. math:: F(y_0, T) = \\varphi_T(y_0) - y_0 ,
 
@@ -12,29 +15,29 @@ integrated together with the state:
 
 .. math:: \\partial F / \\partial y_0 = \\Phi(T) - I,\\qquad \\partial F / \\partial T = f(\\varphi_T(y_0)).
 
-The system is square only without first integrals; in general it has more equations than unknowns
-(the integrals make some rows dependent), so each Newton step is a least-squares (Gauss–Newton)
+to which each pinned integral adds one row :math:`g(y_0) - g(y_{\text{guess}})`, with gradient
+:math:`\nabla g(y_0)`.  The system is square only without first integrals; in general it has more
+equations than unknowns (the integrals make some rows dependent), so each Newton step is a least-squares (Gauss–Newton)
 step, which converges quadratically because the residual vanishes at the solution.  A backtracking
 line search damps steps that would increase the residual.
 
 At convergence :math:`\\Phi(T)` is the monodromy matrix; its eigenvalues are the Floquet multipliers.
-Autonomy gives one trivial multiplier 1 (eigenvector :math:`f(y_0)`) and each first integral another;
+Autonomy gives one trivial multiplier 1 (eigenvector :math:`f(y_0)`) and each first integral
+another, two per integral in involution for a Hamiltonian system (see :mod:`perturb.oracle.floquet`);
 their distance from 1 is an accuracy check of the whole computation (as in AUTO).
 """
 
 from __future__ import annotations
 
-import enum
 import math
-from collections.abc import Sequence
-from typing import Any
+from collections.abc import Callable, Sequence
 
 import attrs
 import numpy as np
-from attrs import field, frozen
+import sympy as sp
+from attrs import frozen
 
-from perturb.errors import PerturbError, bad_value
-from perturb.oracle._settings import (
+from perturb._defaults import (
     EQUILIBRIUM_MOTION,
     FD_REL_STEP,
     SHOOTING_INTEGRATOR_RTOL,
@@ -42,123 +45,21 @@ from perturb.oracle._settings import (
     SHOOTING_MAX_ITER,
     SHOOTING_STALL_STEP,
     SHOOTING_TOL,
+    TRIVIAL_MULTIPLIER_TOL,
 )
-from perturb.oracle.integrators import (
-    RHS,
-    Heyoka,
-    Integrator,
-    Scipy,
-    get_integrator,
-    heyoka_available,
-)
+from perturb.errors import bad_value
+from perturb.oracle.base import RHS, Integrator
+from perturb.oracle.floquet import count_near_one, expected_trivial_multipliers
+from perturb.oracle.orbit import OrbitStatus, PeriodicOrbit, multipliers_of
+from perturb.oracle.registry import choose
+from perturb.oracle.scipy import Scipy
 from perturb.oracle.symbolic import SymbolicRHS
 
-__all__ = ["OrbitStatus", "PeriodicOrbit", "find_periodic_orbit", "finite_difference_jacobian"]
+__all__ = ["find_periodic_orbit", "finite_difference_jacobian"]
 
-
-class OrbitStatus(enum.Enum):
-    """How a shooting search ended; the values are the user-facing messages.
-
-    :attr:`PeriodicOrbit.message` gives the numbers of the particular run.
-    """
-
-    CONVERGED = "The shooting converged to a periodic orbit."
-    MAX_ITER = "The Newton iteration did not converge within `max_iter` iterations."
-    INTEGRATION_FAILED = "An integration of the state and variational equations failed."
-    STALLED = "The Newton iteration stalled: no step reduces the residual (integrator accuracy limits it)."
-    WRONG_DIRECTION = "Converged, but the orbit crosses the section in the wrong direction."
-    EQUILIBRIUM = (
-        "Converged onto an equilibrium, not a periodic orbit (a family parameter was not pinned)."
-    )
-
-    @property
-    def success(self) -> bool:
-        """True only for :attr:`CONVERGED`."""
-        return self is OrbitStatus.CONVERGED
-
-    @property
-    def code(self) -> int:
-        """The legacy integer code (0 converged, negative failure), for integer JSON fields."""
-        return _ORBIT_CODES[self]
-
-
-_ORBIT_CODES = {
-    OrbitStatus.CONVERGED: 0,
-    OrbitStatus.MAX_ITER: -1,
-    OrbitStatus.INTEGRATION_FAILED: -2,
-    OrbitStatus.STALLED: -3,
-    OrbitStatus.WRONG_DIRECTION: -4,
-    OrbitStatus.EQUILIBRIUM: -5,
-}
 
 #: Singular values below this fraction of the largest count as zero in the rank of the Newton matrix.
 _RANK_RTOL = 1e-9
-
-
-def _readonly(value: Any) -> np.ndarray:
-    array = np.array(value)
-    array.setflags(write=False)
-    return array
-
-
-_array_eq = attrs.cmp_using(eq=np.array_equal)
-
-
-@frozen
-class PeriodicOrbit:
-    """A periodic orbit found by shooting, with its Floquet multipliers and how the search ended.
-
-    Attributes
-    ----------
-    period : float
-        The period :math:`T`.
-    initial_state : ndarray, shape (n,)
-        :math:`y(0)`, on the section.
-    floquet_multipliers : ndarray, shape (n,), complex
-        Eigenvalues of :attr:`monodromy`, sorted by distance from 1 (the trivial ones first).
-    monodromy : ndarray, shape (n, n)
-        :math:`\\Phi(T)`, the linearised flow over one period.
-    residual : float
-        Relative periodicity defect :math:`\\|y(T) - y(0)\\|_\\infty / s`, ``s`` the state scale.
-    iterations : int
-        Newton iterations performed.
-    status : OrbitStatus
-        :attr:`OrbitStatus.CONVERGED`, or why the search failed: ``MAX_ITER``,
-        ``INTEGRATION_FAILED``, ``STALLED`` (no step reduces the residual: integrator accuracy limits
-        it), ``WRONG_DIRECTION`` (converged but crossing the section in the wrong direction) or
-        ``EQUILIBRIUM`` (a fixed point is "periodic" with any period, typically because a family
-        parameter was not pinned).
-    message : str
-        What happened, with the numbers.
-    trivial_multiplier_error : float
-        Largest distance from 1 among the ``n_trivial`` multipliers closest to 1.  For a double
-        multiplier (a Jordan block, e.g. a conservative family) it scales like the square root of the
-        integration error, so expect ~1e-7 there rather than ~1e-13.
-    integrator : str
-        The integrator that ran.
-    """
-
-    period: float = field(converter=float)
-    initial_state: np.ndarray = field(converter=_readonly, eq=_array_eq)
-    floquet_multipliers: np.ndarray = field(converter=_readonly, eq=_array_eq)
-    monodromy: np.ndarray = field(converter=_readonly, eq=_array_eq)
-    residual: float = field(converter=float)
-    iterations: int
-    status: OrbitStatus = field(validator=attrs.validators.instance_of(OrbitStatus))
-    message: str
-    trivial_multiplier_error: float = math.nan
-    integrator: str = ""
-
-    @property
-    def success(self) -> bool:
-        """True if the iteration converged to an orbit crossing the section as requested."""
-        return self.status.success
-
-    def raise_for_status(self) -> PeriodicOrbit:
-        """Return ``self`` if successful, else raise :class:`perturb.errors.PerturbError`."""
-        if not self.success:
-            raise PerturbError(f"shooting failed ({self.status.name}): {self.message}")
-        return self
 
 
 def finite_difference_jacobian(rhs: RHS, y: np.ndarray) -> np.ndarray:
@@ -213,16 +114,10 @@ def _variational_rhs(rhs, jac):
 
 def _shooting_integrator(integrator, aug_rhs, n: int) -> Integrator:
     """Resolve the integrator argument and adapt per-component tolerances to the augmented state."""
+    symbolic = isinstance(aug_rhs, SymbolicRHS)
     if integrator is None:
-        if heyoka_available() and isinstance(aug_rhs, SymbolicRHS):
-            return Heyoka()
-        return Scipy("DOP853", rtol=SHOOTING_INTEGRATOR_RTOL)
-    if isinstance(integrator, str):
-        integrator = get_integrator(integrator)
-    if not isinstance(integrator, Integrator):
-        raise bad_value(
-            "integrator", integrator, "pass an integrator object, a registry name or None"
-        )
+        return choose(None, rtol=SHOOTING_INTEGRATOR_RTOL, symbolic=symbolic)
+    integrator = choose(integrator, symbolic=symbolic)
     if isinstance(integrator, Scipy):
         # per-component options given for the n-dimensional state: extend them to the n + n**2
         # augmented state (Phi entries are O(1) near the identity)
@@ -234,6 +129,62 @@ def _shooting_integrator(integrator, aug_rhs, n: int) -> Integrator:
             y_scale = np.concatenate((np.abs(integrator.y_scale), np.ones(n * n)))
             integrator = attrs.evolve(integrator, y_scale=y_scale)
     return integrator
+
+
+@frozen
+class _Integral:
+    """A first integral held at its value at the guess: g(y) and its gradient."""
+
+    value: Callable[[np.ndarray], float]
+    gradient: Callable[[np.ndarray], np.ndarray]
+
+
+def _integral_conditions(integrals, rhs, n: int) -> list[_Integral]:
+    """Numeric value and gradient of each integral (sympy: exact gradient; callable: centred FD)."""
+    items = [integrals] if callable(integrals) or isinstance(integrals, sp.Basic) else integrals
+    try:
+        items = list(items)
+    except TypeError:
+        raise bad_value(
+            "integrals", integrals, "pass a sequence of callables g(y) or sympy expressions"
+        ) from None
+    conditions = []
+    for g in items:
+        if isinstance(g, sp.Basic):
+            if not isinstance(rhs, SymbolicRHS):
+                raise bad_value(
+                    "integrals",
+                    g,
+                    "a sympy integral needs a SymbolicRHS (its state symbols); pass a callable "
+                    "g(y) -> float instead",
+                )
+            stray = g.free_symbols - set(rhs.state)
+            if stray:
+                raise bad_value(
+                    "integrals", g, f"it depends on {sorted(map(str, stray))}, not state symbols"
+                )
+            value_fn = sp.lambdify(rhs.state, g, modules="numpy")
+            grad_fn = sp.lambdify(rhs.state, [sp.diff(g, x) for x in rhs.state], modules="numpy")
+            conditions.append(
+                _Integral(
+                    value=lambda y, f=value_fn: float(f(*y)),
+                    gradient=lambda y, f=grad_fn: np.array(f(*y), dtype=float).reshape(n),
+                )
+            )
+        elif callable(g):
+            conditions.append(
+                _Integral(
+                    value=lambda y, g=g: float(g(y)),
+                    gradient=lambda y, g=g: finite_difference_jacobian(
+                        lambda z: np.atleast_1d(np.asarray(g(z), dtype=float)), y
+                    )[0],
+                )
+            )
+        else:
+            raise bad_value(
+                "integrals", g, "pass callables g(y) -> float or sympy expressions of the state"
+            )
+    return conditions
 
 
 def _as_index_tuple(name: str, value, n: int) -> tuple[int, ...]:
@@ -257,8 +208,10 @@ def find_periodic_orbit(
     integrator: Integrator | str | None = None,
     tol: float = SHOOTING_TOL,
     max_iter: int = SHOOTING_MAX_ITER,
-    n_trivial: int = 1,
+    n_trivial: int | None = None,
     y_scale: float | None = None,
+    integrals: Sequence[Callable[[np.ndarray], float] | sp.Expr] = (),
+    hamiltonian: bool = False,
 ) -> PeriodicOrbit:
     """Find a periodic orbit of ``y' = rhs(y)`` by Newton shooting on a Poincaré section.
 
@@ -279,7 +232,7 @@ def find_periodic_orbit(
         convergence (``OrbitStatus.WRONG_DIRECTION`` if violated).
     fixed_indices : int or sequence of int, optional
         Further components held at their guessed values, one per neutral direction (e.g. the energy
-        of a conservative family: pin the amplitude).
+        of a conservative family: pin the amplitude).  See also ``integrals``.
     jac : callable, optional
         ``jac(y) -> (n, n)`` Jacobian of ``rhs``.  Default: the symbolic Jacobian of a
         :class:`SymbolicRHS`, else centred finite differences of ``rhs``.
@@ -292,10 +245,21 @@ def find_periodic_orbit(
     max_iter : int, optional
         Maximum number of Newton iterations.
     n_trivial : int, optional
-        Number of multipliers expected at 1: one for autonomy plus one per independent first
-        integral; used for :attr:`PeriodicOrbit.trivial_multiplier_error`.
+        Number of multipliers expected at 1, used for :attr:`PeriodicOrbit.trivial_multiplier_error`.
+        Default: derived from ``integrals`` and ``hamiltonian`` by
+        :func:`~perturb.oracle.floquet.expected_trivial_multipliers` (1 for autonomy alone).
     y_scale : float, optional
         State scale of the relative residual; default ``max |y0_guess|`` (1 if that is zero).
+    integrals : sequence of callable or sympy.Expr, optional
+        First integrals ``g(y)`` held at their values at the guess (after the section is applied):
+        they pin the member of a family of orbits, as the energy does for a conservative
+        oscillator, without choosing which component to fix.  A sympy expression (in the state
+        symbols of a :class:`SymbolicRHS`) gets its exact gradient, a callable centred differences.
+        The relative defect ``|g(y0) - g(guess)| / s`` (``s`` the size of ``g`` or of its change
+        over the state scale) is part of the residual.
+    hamiltonian : bool, optional
+        The system is Hamiltonian and ``integrals`` are in involution (energy included; it is
+        implied if none is given): two trivial multipliers per integral instead of one.
 
     Returns
     -------
@@ -332,6 +296,18 @@ def find_periodic_orbit(
         raise bad_value("max_iter", max_iter, "pass an integer >= 1")
     if direction not in (-1, 0, 1):
         raise bad_value("direction", direction, "use +1, -1 or 0 (either direction)")
+    if not isinstance(hamiltonian, bool | np.bool_):
+        raise bad_value("hamiltonian", hamiltonian, "pass True or False")
+    conditions = _integral_conditions(integrals, rhs, n)
+    if n_trivial is None:
+        n_trivial = expected_trivial_multipliers(len(conditions), bool(hamiltonian))
+        if n_trivial > n:
+            raise bad_value(
+                "integrals",
+                f"{len(conditions)} integrals",
+                f"they imply {n_trivial} trivial multipliers for {n} state components; pass "
+                "only independent ones, or `n_trivial`",
+            )
     if not isinstance(n_trivial, int | np.integer) or not 0 <= n_trivial <= n:
         raise bad_value("n_trivial", n_trivial, f"pass an integer in [0, {n}]")
     (section,) = _as_index_tuple("section_index", section_index, n)
@@ -345,6 +321,17 @@ def find_periodic_orbit(
     scale = scale if scale > 0 else 1.0
 
     y0[section] = section_value
+    targets = []
+    for k, condition in enumerate(conditions):
+        value, gradient = condition.value(y0), condition.gradient(y0)
+        size = max(abs(value), float(np.max(np.abs(gradient))) * scale)
+        if not (math.isfinite(size) and size > 0):
+            raise bad_value(
+                "integrals",
+                f"integral {k} = {value!r} with gradient {gradient!r} at the guess",
+                "an integral must be finite and not stationary at the guess to pin a family",
+            )
+        targets.append((value, size))
     aug_rhs = _variational_rhs(rhs, jac)
     solver = _shooting_integrator(integrator, aug_rhs, n)
     identity = np.eye(n)
@@ -358,13 +345,24 @@ def find_periodic_orbit(
         y_end, phi = z[:n], z[n:].reshape(n, n)
         return traj, y_end - y_start, phi, np.asarray(rhs(y_end), dtype=float)
 
+    def residual_of(y_now, defect) -> float:
+        """Relative periodicity defect, and relative defect of each pinned integral."""
+        residual_now = float(np.max(np.abs(defect))) / scale
+        for condition, (value, size) in zip(conditions, targets, strict=True):
+            residual_now = max(residual_now, abs(condition.value(y_now) - value) / size)
+        return residual_now
+
     def failed(status, message, iterations, y_now, period, residual, phi=None):
         phi = np.full((n, n), np.nan) if phi is None else phi
         finite = bool(np.all(np.isfinite(phi)))
         return PeriodicOrbit(
+            n_trivial_expected=n_trivial,
+            n_trivial_found=count_near_one(multipliers_of(phi)) if finite else 0,
             period=period,
             initial_state=y_now,
-            floquet_multipliers=_multipliers(phi) if finite else np.full(n, np.nan, dtype=complex),
+            floquet_multipliers=multipliers_of(phi)
+            if finite
+            else np.full(n, np.nan, dtype=complex),
             monodromy=phi,
             residual=residual,
             iterations=iterations,
@@ -384,7 +382,7 @@ def find_periodic_orbit(
             period,
             math.inf,
         )
-    residual = float(np.max(np.abs(defect))) / scale
+    residual = residual_of(y, defect)
     iterations = 0
     rank_note = ""
     while residual > tol:
@@ -402,7 +400,20 @@ def find_periodic_orbit(
         iterations += 1
         # Newton matrix: d(phi_T(y0) - y0)/d(free y0, T) = [(Phi - I)[:, free], f(y(T))]
         newton = np.column_stack(((phi - identity)[:, free], f_end))
-        step, _, rank, _ = np.linalg.lstsq(newton, -defect, rcond=_RANK_RTOL)
+        target = -defect
+        if conditions:
+            # one row per pinned integral, scaled to state units: (scale / s) grad g . dy0 = ...
+            rows = [
+                np.append(condition.gradient(y)[free] * (scale / size), 0.0)
+                for condition, (_, size) in zip(conditions, targets, strict=True)
+            ]
+            misses = [
+                -(condition.value(y) - value) * (scale / size)
+                for condition, (value, size) in zip(conditions, targets, strict=True)
+            ]
+            newton = np.vstack((newton, rows))
+            target = np.concatenate((target, misses))
+        step, _, rank, _ = np.linalg.lstsq(newton, target, rcond=_RANK_RTOL)
         if rank < newton.shape[1]:
             rank_note = (
                 f" The Newton matrix has rank {rank} < {newton.shape[1]} unknowns: the orbit is "
@@ -416,7 +427,7 @@ def find_periodic_orbit(
             if period_try > 0:
                 trial = shoot(y_try, period_try)
                 if trial[1] is not None:
-                    residual_try = float(np.max(np.abs(trial[1]))) / scale
+                    residual_try = residual_of(y_try, trial[1])
                     if residual_try < residual:
                         accepted = True
                         break
@@ -451,13 +462,15 @@ def find_periodic_orbit(
                 phi,
             )
 
-    multipliers = _multipliers(phi)
+    multipliers = multipliers_of(phi)
     distances = np.sort(np.abs(multipliers - 1.0))
     trivial_error = float(distances[n_trivial - 1]) if n_trivial > 0 else 0.0
+    n_found = count_near_one(multipliers)
     status, message = (
         OrbitStatus.CONVERGED,
         f"converged in {iterations} iterations: residual {residual:.2e}, period {float(period)!r}, "
-        f"trivial multiplier error {trivial_error:.1e}." + rank_note,
+        f"trivial multiplier error {trivial_error:.1e}; {n_found} multipliers within "
+        f"{TRIVIAL_MULTIPLIER_TOL:g} of 1, {n_trivial} expected." + rank_note,
     )
     velocity = np.asarray(rhs(y), dtype=float)
     crossing = float(velocity[section])
@@ -465,8 +478,8 @@ def find_periodic_orbit(
         status = OrbitStatus.EQUILIBRIUM
         message = (
             f"converged onto an equilibrium (|f(y0)| * T = {np.max(np.abs(velocity)) * period:.1e}),"
-            " not a periodic orbit; pin the amplitude or energy with `fixed_indices`, or start "
-            "closer to the orbit."
+            " not a periodic orbit; pin the amplitude with `fixed_indices` or the energy with "
+            "`integrals`, or start closer to the orbit."
         )
     elif direction != 0 and np.sign(crossing) != direction:
         status = OrbitStatus.WRONG_DIRECTION
@@ -484,11 +497,7 @@ def find_periodic_orbit(
         status=status,
         message=message,
         trivial_multiplier_error=trivial_error,
+        n_trivial_expected=n_trivial,
+        n_trivial_found=n_found,
         integrator=solver.name,
     )
-
-
-def _multipliers(phi: np.ndarray) -> np.ndarray:
-    """Eigenvalues of the monodromy matrix sorted by distance from 1."""
-    values = np.linalg.eigvals(phi).astype(complex)
-    return values[np.argsort(np.abs(values - 1.0), kind="stable")]

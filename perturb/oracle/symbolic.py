@@ -3,16 +3,12 @@
 A :class:`SymbolicRHS` is an autonomous vector field :math:`\\dot y = f(y)` written as sympy expressions
 in an ordered tuple of state symbols.  It is *callable* like any numeric rhs (``rhs(y) -> dy/dt``), so
 every integrator accepts it; the Taylor integrator (heyoka) needs it, because it differentiates the
-expressions itself.  The sympy → heyoka conversion is done here rather than with ``heyoka.from_sympy``
-because the latter refuses rationals such as 1/3 (not exact in binary) and always builds double
-constants, whereas reference runs in extended precision need the constants rounded in that precision.
+expressions itself; the sympy → heyoka translation is :func:`perturb.oracle.translate.to_heyoka`.
 """
 
 from __future__ import annotations
 
-import functools
-import operator
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Sequence
 from functools import cached_property
 from typing import Any
 
@@ -22,28 +18,7 @@ from attrs import field, frozen
 
 from perturb.errors import bad_value
 
-__all__ = ["SymbolicRHS", "to_heyoka"]
-
-#: Digits used when a sympy number (pi, a Float, an irrational constant) is rounded to a floating
-#: point type: 40 covers real128 (34 significant digits) with margin.
-_CONSTANT_DIGITS = 40
-
-#: sympy function name → heyoka function name, for the elementary functions heyoka implements.
-_HEYOKA_FUNCTIONS = {
-    "sin": "sin",
-    "cos": "cos",
-    "tan": "tan",
-    "asin": "asin",
-    "acos": "acos",
-    "atan": "atan",
-    "atan2": "atan2",
-    "sinh": "sinh",
-    "cosh": "cosh",
-    "tanh": "tanh",
-    "exp": "exp",
-    "log": "log",
-    "erf": "erf",
-}
+__all__ = ["SymbolicRHS"]
 
 
 def _as_symbols(values) -> tuple[sp.Symbol, ...]:
@@ -54,7 +29,7 @@ def _as_exprs(values) -> tuple[sp.Expr, ...]:
     return tuple(sp.sympify(v) for v in values)
 
 
-@frozen
+@frozen(cache_hash=True)  # hashed on every heyoka call (the compiled-integrator cache key)
 class SymbolicRHS:
     """An autonomous vector field :math:`\\dot y = f(y)` given by sympy expressions.
 
@@ -149,75 +124,3 @@ class SymbolicRHS:
             self.state + tuple(phi),
             self.expressions + tuple(phi_dot),
         )
-
-
-def _constant(value: sp.Expr, fp_type: type) -> Any:
-    """Round a sympy number to ``fp_type`` (float, numpy.longdouble or heyoka.real128)."""
-    if isinstance(value, sp.Rational):  # integers included; p/q rounded once, in fp_type
-        if fp_type is float:
-            return int(value.p) / int(value.q)  # Python's int true division is correctly rounded
-        return fp_type(str(value.p)) / fp_type(str(value.q))
-    text = str(sp.N(value, _CONSTANT_DIGITS))
-    return fp_type(text)
-
-
-def to_heyoka(
-    expr: sp.Expr, variables: Mapping[sp.Symbol, Any], fp_type: type = float
-) -> (
-    Any
-):  # heyoka.expression; heyoka is an optional dependency so it is not imported at module level
-    """Convert a sympy expression into a heyoka expression.
-
-    Parameters
-    ----------
-    expr : sympy.Expr
-        Polynomial/rational combination of the variables and of the elementary functions heyoka
-        implements (sin, cos, tan, their inverses, sinh, cosh, tanh, exp, log, erf, sqrt, powers).
-    variables : mapping
-        sympy symbol → heyoka variable expression.
-    fp_type : type, optional
-        Floating point type in which numeric constants are rounded: ``float``, ``numpy.longdouble``
-        or ``heyoka.real128``.
-
-    Returns
-    -------
-    heyoka.expression
-
-    Raises
-    ------
-    perturb.errors.InvalidParameterError
-        If ``expr`` contains a function heyoka does not implement.
-    """
-    import heyoka as hy
-
-    def conv(e: sp.Expr):
-        if e in variables:
-            return variables[e]
-        if e.is_Number or e.is_NumberSymbol:
-            if not e.is_real:
-                raise bad_value("expr", e, "heyoka accepts only real constants")
-            return hy.expression(_constant(e, fp_type))
-        if isinstance(e, sp.Add):
-            return hy.sum([conv(a) for a in e.args])
-        if isinstance(e, sp.Mul):
-            return functools.reduce(operator.mul, [conv(a) for a in e.args])
-        if isinstance(e, sp.Pow):
-            base, exponent = e.args
-            if exponent == sp.Rational(1, 2):
-                return hy.sqrt(conv(base))
-            if exponent == -1:
-                return hy.expression(_constant(sp.Integer(1), fp_type)) / conv(base)
-            return conv(base) ** conv(exponent)
-        if isinstance(e, sp.Function):
-            name = type(e).__name__
-            if name not in _HEYOKA_FUNCTIONS:
-                raise bad_value(
-                    "expr",
-                    name,
-                    f"heyoka implements only {sorted(_HEYOKA_FUNCTIONS)} and powers; rewrite the "
-                    "rhs with those or use a scipy integrator",
-                )
-            return getattr(hy, _HEYOKA_FUNCTIONS[name])(*[conv(a) for a in e.args])
-        raise bad_value("expr", e, "cannot convert this sympy object to a heyoka expression")
-
-    return conv(sp.sympify(expr))

@@ -1,0 +1,132 @@
+"""The result of a periodic-orbit search: :class:`PeriodicOrbit` and its :class:`OrbitStatus`."""
+
+from __future__ import annotations
+
+import enum
+import math
+from typing import Any
+
+import attrs
+import numpy as np
+from attrs import field, frozen
+
+from perturb.errors import PerturbError
+
+__all__ = ["OrbitStatus", "PeriodicOrbit"]
+
+
+class OrbitStatus(enum.Enum):
+    """How a shooting search ended; the values are the user-facing messages.
+
+    :attr:`PeriodicOrbit.message` gives the numbers of the particular run.
+    """
+
+    CONVERGED = "The shooting converged to a periodic orbit."
+    MAX_ITER = "The Newton iteration did not converge within `max_iter` iterations."
+    INTEGRATION_FAILED = "An integration of the state and variational equations failed."
+    STALLED = "The Newton iteration stalled: no step reduces the residual (integration accuracy)."
+    WRONG_DIRECTION = "Converged, but the orbit crosses the section in the wrong direction."
+    EQUILIBRIUM = (
+        "Converged onto an equilibrium, not a periodic orbit (a family parameter was not pinned)."
+    )
+
+    @property
+    def success(self) -> bool:
+        """True only for :attr:`CONVERGED`."""
+        return self is OrbitStatus.CONVERGED
+
+    @property
+    def code(self) -> int:
+        """The legacy integer code (0 converged, negative failure), for integer JSON fields."""
+        return _ORBIT_CODES[self]
+
+
+_ORBIT_CODES = {
+    OrbitStatus.CONVERGED: 0,
+    OrbitStatus.MAX_ITER: -1,
+    OrbitStatus.INTEGRATION_FAILED: -2,
+    OrbitStatus.STALLED: -3,
+    OrbitStatus.WRONG_DIRECTION: -4,
+    OrbitStatus.EQUILIBRIUM: -5,
+}
+
+
+def _readonly(value: Any) -> np.ndarray:
+    array = np.array(value)
+    array.setflags(write=False)
+    return array
+
+
+_array_eq = attrs.cmp_using(eq=np.array_equal)
+
+
+@frozen
+class PeriodicOrbit:
+    """A periodic orbit found by shooting, with its Floquet multipliers and how the search ended.
+
+    Attributes
+    ----------
+    period : float
+        The period :math:`T`.
+    initial_state : ndarray, shape (n,)
+        :math:`y(0)`, on the section.
+    floquet_multipliers : ndarray, shape (n,), complex
+        Eigenvalues of :attr:`monodromy`, sorted by distance from 1 (the trivial ones first).
+    monodromy : ndarray, shape (n, n)
+        :math:`\\Phi(T)`, the linearised flow over one period.
+    residual : float
+        Relative periodicity defect :math:`\\|y(T) - y(0)\\|_\\infty / s`, ``s`` the state scale.
+    iterations : int
+        Newton iterations performed.
+    status : OrbitStatus
+        :attr:`OrbitStatus.CONVERGED`, or why the search failed: ``MAX_ITER``,
+        ``INTEGRATION_FAILED``, ``STALLED`` (no step reduces the residual: integrator accuracy limits
+        it), ``WRONG_DIRECTION`` (converged but crossing the section in the wrong direction) or
+        ``EQUILIBRIUM`` (a fixed point is "periodic" with any period, typically because a family
+        parameter was not pinned).
+    message : str
+        What happened, with the numbers.
+    trivial_multiplier_error : float
+        Largest distance from 1 among the ``n_trivial`` multipliers closest to 1.  For a double
+        multiplier (a Jordan block, e.g. a conservative family) it scales like the square root of the
+        integration error, so expect ~1e-7 there rather than ~1e-13.
+    integrator : str
+        The integrator that ran.
+    n_trivial_expected : int
+        Multipliers that must equal 1: the ``n_trivial`` given, or the count derived from the
+        integrals and ``hamiltonian`` by :func:`~perturb.oracle.floquet.expected_trivial_multipliers`.
+    n_trivial_found : int
+        Multipliers found within ``TRIVIAL_MULTIPLIER_TOL`` of 1 (0 when the monodromy is not
+        finite).  More than expected: a nearly neutral direction or an unlisted integral; fewer: an
+        integral that is not one, or an inaccurate monodromy.
+    """
+
+    period: float = field(converter=float)
+    initial_state: np.ndarray = field(converter=_readonly, eq=_array_eq)
+    floquet_multipliers: np.ndarray = field(converter=_readonly, eq=_array_eq)
+    monodromy: np.ndarray = field(converter=_readonly, eq=_array_eq)
+    residual: float = field(converter=float)
+    iterations: int
+    status: OrbitStatus = field(validator=attrs.validators.instance_of(OrbitStatus))
+    message: str
+    trivial_multiplier_error: float = math.nan
+    integrator: str = ""
+    n_trivial_expected: int = 0
+    n_trivial_found: int = 0
+
+    @property
+    def success(self) -> bool:
+        """True if the iteration converged to an orbit crossing the section as requested."""
+        return self.status.success
+
+    def raise_for_status(self) -> PeriodicOrbit:
+        """Return ``self`` if successful, else raise :class:`perturb.errors.PerturbError`."""
+        if not self.success:
+            raise PerturbError(f"shooting failed ({self.status.name}): {self.message}")
+        return self
+
+
+def multipliers_of(phi: np.ndarray) -> np.ndarray:
+    """Eigenvalues of the monodromy matrix sorted by distance from 1."""
+    values = np.linalg.eigvals(phi).astype(complex)
+    return values[np.argsort(np.abs(values - 1.0), kind="stable")]
