@@ -132,11 +132,11 @@ def test_latex_and_steps_only_when_asked(capsys):
     [
         ["solve", "van-der-pol", "--set", "eps=5", "--order", "2"],
         ["solve", "resonant-pair", "--set", "eps=10"],
-        ["solve", "disk"],
     ],
 )
 def test_series_outside_its_domain_fails_with_exit_1(capsys, argv):
-    """Issue 9.4: formerly negative periods in a normal table with exit 0."""
+    """Issue 9.4: formerly negative periods in a normal table with exit 0 (the disk's defaults:
+    tests/rigid_body/test_disk.py)."""
     code, out, err = run(capsys, *argv)
     assert code == 1 and out == ""
     assert "outside its domain" in err and "not a positive number" in err
