@@ -53,7 +53,7 @@ def main(argv=None) -> int:
     n_periods = args.periods
 
     from perturb.oracle import Heyoka, SymbolicRHS, find_periodic_orbit, heyoka_available
-    from perturb.validation import _shooting_setup, original_system
+    from perturb.validation.setup import derived_shooting_setup
     from problems import get_problem
 
     if not heyoka_available():
@@ -103,16 +103,16 @@ def main(argv=None) -> int:
     ratio = med["oracle"] / med["bare"]
 
     # shooting one orbit, as validate() sets it up
-    original = original_system(problem, y0)
+    equations = problem.original_equations(y0)
     samples = np.array(
         [[float(problem.state(solution, s)[n]) for s in np.linspace(0, period, 16)] for n in names]
     )
-    setup = _shooting_setup(problem, y0, original.rhs, 3, samples)
+    setup = derived_shooting_setup(problem, equations, y0, 3, samples)
     kwargs = dict(
-        section_index=setup["section_index"],
-        section_value=setup["section_value"],
-        fixed_indices=setup["fixed_indices"],
-        n_trivial=setup["n_trivial"],
+        section_index=setup.section_index,
+        section_value=setup.section_value,
+        fixed_indices=setup.fixed_indices,
+        n_trivial=setup.n_trivial,
         integrator=Heyoka(),
     )
     start = time.perf_counter()

@@ -17,6 +17,16 @@ from perturb.system import EPS, QuasilinearSystem, Regime
 
 __version__ = "0.1.0"
 
+
+def __getattr__(name: str):
+    """``perturb.validate``: imported on first use (it brings in the numerical oracle)."""
+    if name == "validate":
+        from perturb.validation import validate
+
+        return validate
+    raise AttributeError(f"module 'perturb' has no attribute {name!r}")
+
+
 __all__ = [
     "EPS",
     "AccuracyWarning",
@@ -32,4 +42,5 @@ __all__ = [
     "Status",
     "UnknownNameError",
     "solve",
+    "validate",
 ]

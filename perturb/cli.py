@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from perturb._defaults import DEFAULT_SAMPLES, MAX_TIMES
+from perturb.domain import series_domain
 from perturb.errors import PerturbError
 from perturb.progress import listening
 
@@ -146,7 +147,13 @@ def _build_parser() -> argparse.ArgumentParser:
     validate.add_argument(
         "--periods",
         default="10",
-        help="horizon of the trajectory comparison, in periods (default 10)",
+        help="horizon of the trajectory comparison, in periods (default 10; information only)",
+    )
+    validate.add_argument(
+        "--tol",
+        default=None,
+        help="accuracy tolerance: largest relative distance of the analytic orbit and period from "
+        "the true ones (default 0.1)",
     )
     _add_format(validate, ["table", "json"])
     work = sub.add_parser(
@@ -303,17 +310,32 @@ def _cmd_solve(args) -> int:
         raise _UsageError(
             f"--euler: problem {args.problem!r} has no Euler angles (rigid bodies only)"
         )
-    solution = problem.solve(order)
-    if not solution.success:
-        print(
-            f"perturb: {args.problem}: {solution.status.value}: {solution.message}", file=sys.stderr
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        solution = problem.solve(order)
+        domain = None
+        if solution.success:
+            domain = series_domain(solution, problem.parameter_value(), problem.symbol_values())
+    notes = [str(w.message) for w in caught]
+    if not solution.success or not domain.ok:
+        reason = (
+            f"{solution.status.value}: {solution.message}"
+            if not solution.success
+            else "the series is outside its domain: " + "; ".join(domain.reasons)
         )
+        if args.format == "json":
+            failed = {"problem": args.problem, "status": "failed", "reason": reason}
+            print(json.dumps({**failed, "warnings": notes}, allow_nan=True))
+        print(f"perturb: {args.problem}: {reason}", file=sys.stderr)
         return EXIT_FAILED
     period = problem.period(solution)
     if times is None:
         times = np.linspace(0.0, period, DEFAULT_SAMPLES)
-    state = problem.state(solution, times)
-    extras = {"euler": problem.euler_angles(solution, times)} if args.euler else {}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        state = problem.state(solution, times)
+        extras = {"euler": problem.euler_angles(solution, times)} if args.euler else {}
+    notes += [str(w.message) for w in caught if str(w.message) not in notes]
     report = problem.report_extras() if hasattr(problem, "report_extras") else {}
     payload = {
         "problem": args.problem,
@@ -328,7 +350,11 @@ def _cmd_solve(args) -> int:
             k: {n: np.asarray(v, dtype=float).tolist() for n, v in d.items()}
             for k, d in extras.items()
         },
+        "warnings": notes,
     }
+    if args.format != "json":
+        for note in notes:
+            print(f"perturb: warning: {note}", file=sys.stderr)
     if args.latex:
         payload["latex"] = solution.latex()
     if args.steps:
@@ -343,21 +369,24 @@ def _cmd_solve(args) -> int:
 
 
 def _cmd_validate(args) -> int:
-    from perturb.validation import validate
+    from perturb.report import validation_as_dict, validation_as_table
+    from perturb.validation import DEFAULT_TOL, validate
     from problems import load_problem
 
     cls = load_problem(args.problem)
     problem = cls.create(**_parse_sets(args.sets))
+    tol = DEFAULT_TOL if args.tol is None else _parse_positive("--tol", args.tol, float)
     report = validate(
         problem,
         order=_parse_order(args.order),
         integrator=args.integrator,
         periods=_parse_positive("--periods", args.periods, float),
+        tol=tol,
     )
     if args.format == "json":
-        print(json.dumps(report.as_dict(), allow_nan=True))
+        print(json.dumps(validation_as_dict(report), allow_nan=True))
     else:
-        print(report.as_table())
+        print(validation_as_table(report))
     return EXIT_OK if report.completed else EXIT_FAILED
 
 

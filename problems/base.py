@@ -13,9 +13,17 @@ Subclass contract (as scipy's ``OdeSolver`` states its own):
 3. optionally override :meth:`Problem.method_options`, :meth:`Problem.symbol_values`,
    :meth:`Problem.state` (to map the quasilinear state back to physical variables) and
    :meth:`Problem.original_rhs` (the unreduced equations for validation);
-4. in the ``problems`` package, decorate the class with :func:`problems.register` (that alone lists
+4. optionally override the validation hooks of :class:`perturb.validation.Model` (typed:
+   ``original_equations``, ``integrals_of_motion``, ``with_epsilon``, ``validity_estimates``,
+   ``true_orbit``, ``shooting_setup``), or the older duck-typed ones that the typed ones read by
+   default (``original_symbolic()``, ``first_integrals_function()``, ``validity_conditions()``,
+   ``true_periodic_orbit(solution)``);
+5. in the ``problems`` package, decorate the class with :func:`problems.register` (that alone lists
    it); elsewhere, name it as ``path/to/file.py:Class`` or declare it in the entry-point group
    ``perturb.problems`` (see :mod:`problems.loading`).
+
+A problem *is* a :class:`perturb.validation.Model`: :func:`perturb.validation.validate` needs
+nothing else.
 """
 
 from __future__ import annotations
@@ -28,8 +36,18 @@ from typing import ClassVar
 import numpy as np
 from attrs import field, frozen
 
-from perturb import PeriodicSolution, PoincareMethod, QuasilinearSystem
+from perturb import PeriodicSolution, PerturbError, PoincareMethod, QuasilinearSystem
 from perturb.errors import InvalidParameterError, UnknownNameError
+from perturb.oracle import SymbolicRHS
+from perturb.validation import (
+    KNOB_PROBE,
+    Condition,
+    Equations,
+    Integrals,
+    Model,
+    OrbitEstimate,
+    ShootingSetup,
+)
 
 __all__ = ["ParameterSpec", "Problem"]
 
@@ -83,7 +101,7 @@ def positive(value: float) -> str | None:
 
 
 @frozen
-class Problem(ABC):
+class Problem(Model, ABC):
     """A registered problem with validated parameter values (see the module docstring)."""
 
     name: ClassVar[str]
@@ -177,3 +195,117 @@ class Problem(ABC):
     def resolved_parameters(self) -> dict[str, float]:
         """Every parameter value in force (defaults included), for reports."""
         return dict(self.values)
+
+    # ------------------------------------------------------------------ validation (Model)
+    def label(self) -> str:
+        return self.name
+
+    def parameters_in_force(self) -> dict[str, float]:
+        return self.resolved_parameters()
+
+    def original_equations(self, y0: np.ndarray | None = None) -> Equations:
+        """The unreduced equations: ``original_symbolic()`` if given, else a user
+        ``original_rhs`` override, else the quasilinear system itself."""
+        symbolic = self.original_symbolic()
+        if symbolic is not None:
+            return Equations(SymbolicRHS(*symbolic))
+        if type(self).original_rhs is not Problem.original_rhs:
+            return Equations.from_time_rhs(self.original_rhs())
+        if self.system().initial_values and y0 is None:
+            return Equations.from_time_rhs(self.original_rhs(), quasilinear=True)
+        return super().original_equations(y0)
+
+    def integrals_of_motion(self, y0: np.ndarray | None = None) -> Integrals | None:
+        """``first_integrals_function()`` (names from its ``names`` or ``first_integral_names()``),
+        else an ``integrals(y)`` method, else the system's own (for unreduced problems only)."""
+        function = self.first_integrals_function()
+        if function is not None:
+            names = tuple(getattr(function, "names", ()))
+            if not names and callable(getattr(self, "first_integral_names", None)):
+                names = tuple(self.first_integral_names())
+            return Integrals(function, names)
+        if callable(getattr(self, "integrals", None)):
+            return Integrals(self.integrals, tuple(getattr(self, "integral_names", ())))
+        if self.original_symbolic() is None and type(self).original_rhs is Problem.original_rhs:
+            return super().integrals_of_motion(y0)
+        return None
+
+    def validity_estimates(self) -> tuple[Condition, ...]:
+        return tuple(Condition(*item) for item in self.validity_conditions())
+
+    def true_orbit(self, solution: PeriodicSolution) -> OrbitEstimate | None:
+        """The orbit of ``true_periodic_orbit(solution)``, read into an :class:`OrbitEstimate`."""
+        true = self.true_periodic_orbit(solution)
+        if true is None:
+            return None
+        if isinstance(true, OrbitEstimate):
+            return true
+        n_trivial = getattr(true, "n_trivial", None)
+        return OrbitEstimate(
+            success=bool(getattr(true, "success", False)),
+            period=float(getattr(true, "period", math.nan)),
+            initial_state=getattr(true, "initial_state", ()),
+            message=str(getattr(true, "message", "")),
+            floquet=tuple(getattr(true, "floquet", ())),
+            n_trivial=None if n_trivial is None else int(n_trivial),
+            trivial_multiplier_error=float(getattr(true, "trivial_multiplier_error", math.nan)),
+            resolution=float(getattr(true, "resolution", 0.0)),
+            integrator=str(getattr(true, "integrator", "")),
+        )
+
+    def with_epsilon(self, eps: float) -> Problem | None:
+        """The problem at expansion parameter ``eps``: through the ``eps`` parameter, else a
+        pure-ε knob (a parameter that changes ε as a power law and nothing the solution depends on,
+        e.g. the disk's ``r0``), else None."""
+        if "eps" in self.values:
+            return type(self).create(**{**self.values, "eps": eps})
+        knob = self._epsilon_knob()
+        if knob is None:
+            return None
+        name, exponent = knob
+        factor = (eps / float(self.epsilon())) ** (1.0 / exponent)
+        return type(self).create(**{**self.values, name: self.values[name] * factor})
+
+    def _epsilon_knob(self) -> tuple[str, float] | None:
+        """``(name, exponent)`` of a parameter with ε ∝ p^exponent that leaves ``symbol_values()``
+        unchanged (preferring |exponent| = 1), or None."""
+        eps = float(self.epsilon())
+        values = self.symbol_values()
+        best = None
+        for name, value in self.values.items():
+            if not (isinstance(value, float | int) and math.isfinite(value) and value != 0):
+                continue
+            try:
+                probe = type(self).create(**{**self.values, name: value * KNOB_PROBE})
+            except (PerturbError, ValueError):
+                continue
+            if probe.symbol_values() != values:
+                continue
+            ratio = float(probe.epsilon()) / eps
+            if not (ratio > 0 and math.isfinite(ratio)) or abs(ratio - 1) < 1e-12:
+                continue
+            exponent = math.log(ratio) / math.log(KNOB_PROBE)
+            if best is None or abs(abs(exponent) - 1) < abs(abs(best[1]) - 1):
+                best = (name, exponent)
+        return best
+
+    # ------------------------------------------------------------------ older duck-typed hooks
+    def original_symbolic(self) -> tuple | None:
+        """``(state symbols, sympy rhs)`` of the original system, or None (default)."""
+        return None
+
+    def first_integrals_function(self):
+        """``y -> array`` of first-integral values, or None (default)."""
+        return None
+
+    def validity_conditions(self) -> list[tuple[str, float, bool, str]]:
+        """``[(name, value, ok, sentence), ...]``: the problem's validity estimates (default none)."""
+        return []
+
+    def true_periodic_orbit(self, solution: PeriodicSolution | None = None):
+        """A problem-specific true periodic orbit, or None (default)."""
+        return None
+
+    def shooting_setup(self) -> ShootingSetup | dict | None:
+        """The shooting set-up (a :class:`ShootingSetup` or its dict form), or None: derived."""
+        return None

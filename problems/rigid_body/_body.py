@@ -18,6 +18,8 @@ import sympy as sp
 
 from perturb import PeriodicSolution, PoincareMethod
 from perturb.errors import AccuracyWarning, InvalidParameterError
+from perturb.oracle import SymbolicRHS
+from perturb.validation import Condition, Equations, Integrals
 from problems.base import _SOLUTION_CACHE, ParameterSpec, Problem, positive
 from problems.rigid_body import equations as eq
 from problems.rigid_body.euler_angles import angles_from_state, precession_by_quadrature
@@ -345,9 +347,21 @@ class FastSpinBody(Problem):
         out["integrals"] = float(np.max(drift))
         return out
 
-    # ------------------------------------------------------------------ validation hooks
+    # ------------------------------------------------------------------ validation (Model)
+    def original_equations(self, y0=None) -> Equations:
+        """The dimensional Euler–Poisson equations on (p, q, r, gammas), symbolic."""
+        return Equations(SymbolicRHS(*self.original_symbolic()))
+
+    def integrals_of_motion(self, y0=None) -> Integrals:
+        """Energy, area and geometric integrals of the physical state."""
+        return Integrals(eq.integrals_function(self.body()), INTEGRAL_NAMES)
+
+    def validity_estimates(self) -> tuple[Condition, ...]:
+        """Estimates of the fast-spin expansion's domain (they warn; the verdict is measured)."""
+        return tuple(Condition(*item) for item in self.validity_conditions())
+
     def validity_conditions(self) -> list[tuple[str, float, bool, str]]:
-        """Conditions of the fast-spin expansion, for :func:`perturb.validation.validate`.
+        """Conditions of the fast-spin expansion (read by :meth:`validity_estimates`).
 
         Returns
         -------

@@ -125,3 +125,27 @@ def test_latex_and_steps_only_when_asked(capsys):
     data = json.loads(out)
     assert "\\cos" in data["latex"] and data["latex"].count("\\\\") == 1  # x line and T line
     assert data["steps"][0].startswith("generating solution") and "Omega1" in data["steps"][1]
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["solve", "van-der-pol", "--set", "eps=5", "--order", "2"],
+        ["solve", "resonant-pair", "--set", "eps=10"],
+    ],
+)
+def test_series_outside_its_domain_fails_with_exit_1(capsys, argv):
+    """Issue 9.4: formerly negative periods in a normal table with exit 0 (the disk's defaults:
+    tests/rigid_body/test_disk.py)."""
+    code, out, err = run(capsys, *argv)
+    assert code == 1 and out == ""
+    assert "outside its domain" in err and "not a positive number" in err
+    code, out, _ = run(capsys, *argv, "--format", "json")
+    data = json.loads(out)
+    assert code == 1 and data["status"] == "failed" and "outside its domain" in data["reason"]
+    assert isinstance(data["warnings"], list)
+
+
+def test_solve_json_carries_warnings(capsys):
+    code, out, _ = run(capsys, "solve", "duffing", "--times", "0", "--format", "json")
+    assert code == 0 and json.loads(out)["warnings"] == []

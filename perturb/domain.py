@@ -1,0 +1,119 @@
+"""Whether a series solution is inside its domain at the given parameter values: :func:`series_domain`.
+
+A truncated series :math:`x = \\sum_k \\varepsilon^k x_k`, :math:`\\Omega = \\sum_k \\varepsilon^k
+\\Omega_k` says nothing when its frequency is not a positive number or when its terms do not
+decrease at the given ε (van der Pol at ε = 5 gives a negative period at order 2; the disk's
+defaults have ε = 232).  This is a cheap necessary condition, checked before any state is printed;
+whether the series describes the motion is measured by :func:`perturb.validation.validate`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+import numpy as np
+import sympy as sp
+from attrs import field, frozen
+
+from perturb.solution import PeriodicSolution
+from perturb.system import Regime
+
+__all__ = ["DomainCheck", "series_domain"]
+
+
+@frozen
+class DomainCheck:
+    """Outcome of :func:`series_domain`.
+
+    Attributes
+    ----------
+    ok : bool
+        True when the frequency is positive and finite and the terms decrease.
+    reasons : tuple of str
+        Why the series is outside its domain (empty when ``ok``).
+    frequency : float
+        Ω at the given values.
+    term_sizes : tuple of float
+        Size of each order's contribution to the coordinates, :math:`|\\varepsilon|^k \\max|x_k|`.
+    frequency_terms : tuple of float
+        :math:`|\\varepsilon^k \\Omega_k|`.
+    """
+
+    ok: bool
+    reasons: tuple = field(converter=tuple)
+    frequency: float = field(converter=float)
+    term_sizes: tuple = field(converter=tuple)
+    frequency_terms: tuple = field(converter=tuple)
+
+
+def _numbers(exprs, subs) -> list[float]:
+    out = []
+    for expr in exprs:
+        try:
+            out.append(float(sp.sympify(expr).xreplace(subs)))
+        except (TypeError, ValueError):
+            out.append(math.nan)
+    return out
+
+
+def _not_decreasing(sizes, what: str, eps: float) -> list[str]:
+    """Consecutive non-zero terms that do not decrease (zero terms are skipped, not compared)."""
+    reasons = []
+    kept = [(k, s) for k, s in enumerate(sizes) if s != 0]
+    for (k0, s0), (k1, s1) in zip(kept, kept[1:], strict=False):
+        if not (s1 < s0):
+            reasons.append(
+                f"the order-{k1} term of the {what} ({s1:.3g}) is not smaller than the order-{k0} "
+                f"term ({s0:.3g}) at eps = {eps:.6g}"
+            )
+    return reasons
+
+
+def series_domain(
+    solution: PeriodicSolution, parameter_value: float, values: Mapping[str, float] | None = None
+) -> DomainCheck:
+    """Check that ``solution``'s series is inside its domain at these values.
+
+    Parameters
+    ----------
+    solution : PeriodicSolution
+    parameter_value : float
+        ε (or μ in the large-parameter regime), as for :meth:`PeriodicSolution.evaluate`.
+    values : mapping, optional
+        Values of the system's free parameters, by name.
+
+    Returns
+    -------
+    DomainCheck
+    """
+    values = dict(values or {})
+    system = solution.system
+    eps = 1.0 / parameter_value if system.regime is Regime.LARGE else float(parameter_value)
+    subs = {p: values[p.name] for p in system.parameters if p.name in values}
+    freq_terms = [abs(eps**k * f) for k, f in enumerate(_numbers(solution.frequency, subs))]
+    sizes = []
+    for k in range(solution.order + 1):
+        size = 0.0
+        for row in solution.terms:
+            if k >= len(row):
+                continue
+            term = row[k]
+            coeffs = [c for j in range(term.max_harmonic + 1) for c in term.coefficient(j)]
+            size = max([size, *(abs(c) for c in _numbers(coeffs, subs))])
+        sizes.append(abs(eps) ** k * size)
+    with np.errstate(all="ignore"):
+        omega = float(np.asarray(solution.coefficients(parameter_value, values)[0]).ravel()[0])
+    reasons = []
+    if not (math.isfinite(omega) and omega > 0):
+        period = 2 * math.pi / omega if omega else math.inf
+        reasons.append(
+            f"the frequency Omega = {omega:.6g} at eps = {eps:.6g} is not a positive number (the "
+            f"period would be {period:.6g})"
+        )
+    if not all(math.isfinite(s) for s in sizes + freq_terms):
+        reasons.append(f"some terms of the series are not finite at eps = {eps:.6g}")
+    else:
+        reasons += _not_decreasing(freq_terms, "frequency", eps)
+        reasons += _not_decreasing(sizes, "coordinates", eps)
+    return DomainCheck(not reasons, reasons, omega, sizes, freq_terms)

@@ -1,0 +1,6 @@
+"""Formatting of result objects (JSON dictionaries, text tables): a leaf that only the CLI and the
+tests import; the result objects themselves stay data."""
+
+from perturb.report.validation import validation_as_dict, validation_as_table
+
+__all__ = ["validation_as_dict", "validation_as_table"]

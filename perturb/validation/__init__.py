@@ -1,0 +1,102 @@
+"""Check a problem's analytic periodic solution against the true motion: :func:`validate`.
+
+The verdict rests on three measurements, each a number against its tolerance
+(``docs/validation.md``): a true periodic orbit exists near the analytic one (existence), the
+analytic orbit and period are within ``tol`` of it (accuracy), and the error falls like ε^(N+1)
+along a scan of the problem's own small parameter (order).  Problems take part through the typed
+:class:`Model` protocol; :class:`SystemModel` adapts a bare :class:`perturb.QuasilinearSystem`.
+
+Modules: :mod:`.model` (the protocol), :mod:`.checks` and :mod:`.orbit` (the measurements),
+:mod:`.verdict` (the rule), :mod:`.report` (the result objects), :mod:`.validate` (orchestration).
+"""
+
+from perturb.validation._compat import OriginalSystem, original_system
+from perturb.validation._constants import (
+    AMPLITUDE_FLOOR,
+    DEFAULT_PERIODS,
+    DEFAULT_RTOL,
+    DEFAULT_TOL,
+    EPSILON_LIMIT,
+    ERROR_FLOOR,
+    ESTIMATE_FAILED_MAX_STEPS,
+    FLOQUET_TOL,
+    INVALID_MAX_STEPS,
+    KNOB_PROBE,
+    MAX_OUTPUT_SAMPLES,
+    MAX_RELATIVE_ERROR,
+    MULTIPLIER_FLOOR,
+    ORBIT_RESOLUTION_LIMIT,
+    SAMPLES_PER_PERIOD,
+    SHOOTING_ITERATIONS,
+    SHOOTING_PRECISION,
+    SLOPE_FACTORS,
+    SLOPE_TOLERANCE,
+    STIFF_RTOL,
+    STIFFNESS_SAMPLES,
+    STIFFNESS_THRESHOLD,
+)
+from perturb.validation.checks import stiffness_indicator
+from perturb.validation.model import (
+    Equations,
+    Integrals,
+    Model,
+    OrbitEstimate,
+    ShootingSetup,
+    SystemModel,
+    as_model,
+)
+from perturb.validation.report import (
+    Check,
+    Condition,
+    InvariantDrift,
+    OrbitCheck,
+    SlopeFit,
+    Stiffness,
+    ValidationReport,
+    Verdict,
+)
+from perturb.validation.validate import validate
+
+__all__ = [
+    "AMPLITUDE_FLOOR",
+    "DEFAULT_PERIODS",
+    "DEFAULT_RTOL",
+    "DEFAULT_TOL",
+    "EPSILON_LIMIT",
+    "ERROR_FLOOR",
+    "ESTIMATE_FAILED_MAX_STEPS",
+    "FLOQUET_TOL",
+    "INVALID_MAX_STEPS",
+    "KNOB_PROBE",
+    "MAX_OUTPUT_SAMPLES",
+    "MAX_RELATIVE_ERROR",
+    "MULTIPLIER_FLOOR",
+    "ORBIT_RESOLUTION_LIMIT",
+    "SAMPLES_PER_PERIOD",
+    "SHOOTING_ITERATIONS",
+    "SHOOTING_PRECISION",
+    "SLOPE_FACTORS",
+    "SLOPE_TOLERANCE",
+    "STIFFNESS_SAMPLES",
+    "STIFFNESS_THRESHOLD",
+    "STIFF_RTOL",
+    "Check",
+    "Condition",
+    "Equations",
+    "Integrals",
+    "InvariantDrift",
+    "Model",
+    "OrbitCheck",
+    "OrbitEstimate",
+    "OriginalSystem",
+    "ShootingSetup",
+    "SlopeFit",
+    "Stiffness",
+    "SystemModel",
+    "ValidationReport",
+    "Verdict",
+    "as_model",
+    "original_system",
+    "stiffness_indicator",
+    "validate",
+]

@@ -1,0 +1,85 @@
+"""Defaults of :class:`perturb.validation.Model` derived from the quasilinear system itself.
+
+For a model whose original equations *are* its quasilinear system
+:math:`\\ddot x_i + \\omega_i^2 x_i = f_i(x, \\dot x)` (with numbers put in), the first-order form,
+its declared first integrals and, for conservative forces, its energy.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+
+import numpy as np
+import sympy as sp
+
+from perturb.oracle import SymbolicRHS
+from perturb.system import QuasilinearSystem
+
+__all__ = ["conservative_energy", "first_order_form", "lambdify_integrals", "substitutions"]
+
+
+def substitutions(
+    system: QuasilinearSystem,
+    values: Mapping[str, float],
+    parameter_value: float,
+    y0: np.ndarray | None,
+) -> dict | None:
+    """Numbers for the system's symbols (parameters, its own small parameter, initial values).
+
+    None when the system's equations need the initial values and ``y0`` is not given.
+    """
+    subs = {p: values[p.name] for p in system.parameters if p.name in values}
+    subs[system.parameter] = parameter_value
+    if system.initial_values:
+        if y0 is None:
+            return None
+        subs.update(zip(system.initial_values, map(float, y0), strict=True))
+    return subs
+
+
+def first_order_form(system: QuasilinearSystem, subs: Mapping) -> SymbolicRHS:
+    """y' = (ẋ, f(x, ẋ) − ω² x) of the quasilinear system, with ``subs`` put in."""
+    n = system.n
+    state = system.state_symbols
+    forces = [sp.sympify(f).subs(subs) for f in system.rhs]
+    w2 = [sp.sympify(w**2).subs(subs) for w in system.frequencies]
+    exprs = list(state[n:]) + [forces[i] - w2[i] * state[i] for i in range(n)]
+    return SymbolicRHS(state, exprs)
+
+
+def conservative_energy(system: QuasilinearSystem, subs: Mapping) -> sp.Expr | None:
+    """The energy of ẍ_i + ω_i² x_i = f_i(x) when the forces f derive from a potential, else None.
+
+    With ``f = -grad V`` (velocity-free, symmetric Jacobian), :math:`H = \\sum \\dot x_i^2/2 +
+    \\omega_i^2 x_i^2/2 + V` and :math:`V(x) = -\\int_0^1 f(s x)\\cdot x\\,ds`.
+    """
+    n = system.n
+    xs, vs = system.state_symbols[:n], system.state_symbols[n:]
+    forces = [sp.sympify(f).subs(subs) for f in system.rhs]
+    if any(f.free_symbols & set(vs) for f in forces):
+        return None
+    jac = sp.Matrix(forces).jacobian(sp.Matrix(xs))
+    if any(sp.simplify(jac[i, j] - jac[j, i]) != 0 for i in range(n) for j in range(i)):
+        return None
+    s = sp.Dummy("s")
+    scaled = {x: s * x for x in xs}
+    work = sp.integrate(
+        sp.expand(
+            sum(f.subs(scaled, simultaneous=True) * x for f, x in zip(forces, xs, strict=True))
+        ),
+        (s, 0, 1),
+    )
+    w2 = [sp.sympify(w**2).subs(subs) for w in system.frequencies]
+    kinetic = sum(v**2 for v in vs) / 2
+    return sp.expand(kinetic + sum(w2[i] * xs[i] ** 2 for i in range(n)) / 2 - work)
+
+
+def lambdify_integrals(state, exprs) -> Callable:
+    """``y -> array`` of the expressions ``exprs`` of the state symbols ``state``."""
+    fn = sp.lambdify(state, list(exprs), modules="numpy", cse=True)
+
+    def integrals(y):
+        y = np.asarray(y, dtype=float)
+        return np.array(np.broadcast_arrays(*fn(*y)), dtype=float)
+
+    return integrals

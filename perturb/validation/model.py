@@ -1,0 +1,388 @@
+"""What validation needs from a problem: the :class:`Model` protocol, and :class:`SystemModel`.
+
+:func:`perturb.validation.validate` talks to problems only through :class:`Model` (no attribute
+probing): ``problems.Problem`` implements it, and :class:`SystemModel` makes a bare
+:class:`perturb.QuasilinearSystem` with parameter values a model.
+"""
+
+from __future__ import annotations
+
+import math
+from abc import ABC, abstractmethod
+from collections.abc import Callable, Mapping
+
+import numpy as np
+from attrs import evolve, field, frozen
+
+from perturb.errors import InvalidParameterError, bad_value
+from perturb.oracle import Integrator, SymbolicRHS
+from perturb.poincare import PoincareMethod
+from perturb.solution import PeriodicSolution
+from perturb.system import QuasilinearSystem, Regime
+from perturb.validation._quasilinear import (
+    conservative_energy,
+    first_order_form,
+    lambdify_integrals,
+    substitutions,
+)
+from perturb.validation.report import Condition
+
+__all__ = ["Equations", "Integrals", "Model", "OrbitEstimate", "ShootingSetup", "SystemModel"]
+
+
+@frozen
+class Equations:
+    """The original (unreduced) equations of a model, as the oracle integrates them.
+
+    Attributes
+    ----------
+    rhs : callable
+        ``rhs(y) -> dy/dt`` on the state of :meth:`Model.state_names`; a
+        :class:`perturb.oracle.SymbolicRHS` when the equations are symbolic (heyoka and exact
+        Jacobians need that).
+    quasilinear : bool
+        Whether the state is the quasilinear system's own ``(x..., ẋ...)`` (then the derived
+        shooting set-up uses the system's amplitudes and phase coordinate).
+    """
+
+    rhs: Callable
+    quasilinear: bool = False
+
+    @property
+    def symbolic(self) -> bool:
+        return isinstance(self.rhs, SymbolicRHS)
+
+    @classmethod
+    def from_time_rhs(cls, function: Callable, *, quasilinear: bool = False) -> Equations:
+        """Wrap an autonomous ``f(t, y)`` (scipy's convention) as ``rhs(y)``."""
+
+        def rhs(y, _f=function):
+            return np.asarray(_f(0.0, y), dtype=float)
+
+        return cls(rhs, quasilinear)
+
+
+@frozen
+class Integrals:
+    """First integrals with names: ``function(y)`` of a state of shape ``(n,)`` or ``(n, m)``."""
+
+    function: Callable
+    names: tuple = field(converter=tuple)
+
+
+@frozen
+class ShootingSetup:
+    """How to shoot for the true orbit (:func:`perturb.oracle.find_periodic_orbit`).
+
+    Attributes
+    ----------
+    section_index : int
+        Component defining the Poincaré section.
+    section_value : float
+    fixed_indices : tuple of int
+        Components pinned (one per family parameter: a first integral's value, an amplitude).
+    direction : int
+        Required sign of the section component's velocity at the crossing (0: either).
+    n_trivial : int or None
+        Floquet multipliers expected at 1 (None: 1 + the number of first integrals).
+    integrator : Integrator or None
+        The shooting's integrator (None: the oracle's default, Radau on stiff systems).
+    """
+
+    section_index: int = field(converter=int)
+    section_value: float = field(default=0.0, converter=float)
+    fixed_indices: tuple = field(default=(), converter=lambda v: tuple(int(i) for i in v))
+    direction: int = field(default=0, converter=int)
+    n_trivial: int | None = None
+    integrator: Integrator | None = None
+
+    @classmethod
+    def from_mapping(cls, setup: Mapping) -> ShootingSetup:
+        """From the dictionary form ``{"section_index", "fixed_indices", ...}`` of earlier versions."""
+        known = {"section_index", "section_value", "fixed_indices", "direction", "n_trivial"}
+        known |= {"integrator"}
+        unknown = sorted(set(setup) - known)
+        if unknown or "section_index" not in setup:
+            raise bad_value(
+                "shooting_setup",
+                dict(setup),
+                f"give `section_index` and optionally {sorted(known - {'section_index'})}",
+            )
+        return cls(**dict(setup))
+
+
+@frozen
+class OrbitEstimate:
+    """A true periodic orbit found by a model's own method (:meth:`Model.true_orbit`).
+
+    Attributes
+    ----------
+    success : bool
+    period : float
+        Physical period.
+    initial_state : tuple of float
+        State on the analytic solution's section, in the order of :meth:`Model.state_names`.
+    message : str
+        What ran, or why it failed (e.g. no extended precision available).
+    floquet : tuple of complex
+    n_trivial : int or None
+    trivial_multiplier_error : float
+    resolution : float
+        Uncertainty of the orbit relative to its amplitudes.
+    integrator : str
+    """
+
+    success: bool
+    period: float = field(converter=float)
+    initial_state: tuple = field(converter=lambda v: tuple(float(x) for x in np.ravel(v)))
+    message: str = ""
+    floquet: tuple = field(default=(), converter=tuple)
+    n_trivial: int | None = None
+    trivial_multiplier_error: float = field(default=math.nan, converter=float)
+    resolution: float = field(default=0.0, converter=float)
+    integrator: str = ""
+
+
+class Model(ABC):
+    """What :func:`perturb.validation.validate` needs from a problem (abstract base).
+
+    Contract, for implementers (``problems.Problem`` fulfils it; :class:`SystemModel` adapts a
+    bare system):
+
+    1. implement :meth:`state_names`, :meth:`solve`, :meth:`state`, :meth:`period` and
+       :meth:`epsilon` — the analytic solution and its physical state;
+    2. implement :meth:`system`, :meth:`symbol_values` and :meth:`parameter_value` — the
+       quasilinear system and the numbers for its symbols (the defaults below are derived from
+       them);
+    3. optionally override :meth:`original_equations` (default: the quasilinear system itself,
+       :math:`\\ddot x + \\omega^2 x = \\varepsilon f` written first order);
+    4. optionally override :meth:`integrals_of_motion` (default: the system's declared first
+       integrals, else its energy when the forces derive from a potential, else none);
+    5. optionally override :meth:`with_epsilon` — the same model with its own small parameter
+       rescaled, for the order check (default: None, the order is then undecided);
+    6. optionally override :meth:`validity_estimates` (default: none), :meth:`true_orbit` (a
+       model-specific true-orbit finder for near-degenerate cases, default: none),
+       :meth:`shooting_setup` (default: derived), :meth:`method_options`, :meth:`label` and
+       :meth:`parameters_in_force` (for reports).
+    """
+
+    __slots__ = ()
+
+    # ------------------------------------------------------------------ required
+    @abstractmethod
+    def state_names(self) -> tuple[str, ...]:
+        """Names of the state components, in the order of the original equations' state."""
+
+    @abstractmethod
+    def solve(self, order: int = 1) -> PeriodicSolution:
+        """The analytic periodic solution of ``order``."""
+
+    @abstractmethod
+    def state(self, solution: PeriodicSolution, t) -> dict[str, np.ndarray]:
+        """The physical state along ``solution`` at physical times ``t``, by name."""
+
+    @abstractmethod
+    def period(self, solution: PeriodicSolution) -> float:
+        """The analytic period in physical time."""
+
+    @abstractmethod
+    def epsilon(self) -> float:
+        """The value of the expansion parameter ε."""
+
+    @abstractmethod
+    def system(self) -> QuasilinearSystem:
+        """The quasilinear system the solution is built for."""
+
+    @abstractmethod
+    def symbol_values(self) -> dict[str, float]:
+        """Numbers for the system's parameters, by name."""
+
+    @abstractmethod
+    def parameter_value(self) -> float:
+        """The value of the system's own parameter (ε, or μ = 1/ε in the large-parameter regime)."""
+
+    # ------------------------------------------------------------------ with defaults
+    def label(self) -> str:
+        """The name shown in reports."""
+        return type(self).__name__
+
+    def parameters_in_force(self) -> dict[str, float]:
+        """Every parameter value in force, for reports."""
+        return dict(self.symbol_values())
+
+    def method_options(self) -> dict:
+        """Options of :class:`perturb.PoincareMethod` (amplitudes, phase coordinate, branch)."""
+        return {}
+
+    def original_equations(self, y0: np.ndarray | None = None) -> Equations:
+        """The original equations (default: the quasilinear system written first order).
+
+        ``y0``, the initial state, is needed only by systems whose equations contain initial values.
+        """
+        subs = self._substitutions(y0)
+        if subs is None:
+            raise bad_value("y0", y0, "this system's equations contain initial values: give y0")
+        return Equations(first_order_form(self.system(), subs), quasilinear=True)
+
+    def integrals_of_motion(self, y0: np.ndarray | None = None) -> Integrals | None:
+        """Named first integrals (default: the declared ones, else the conservative energy)."""
+        subs = self._substitutions(y0)
+        if subs is None:
+            return None
+        system = self.system()
+        exprs = [h.subs(subs) for h in system.first_integrals]
+        names = tuple(f"I{i}" for i in range(len(exprs)))
+        if not exprs:
+            energy = conservative_energy(system, subs)
+            if energy is None:
+                return None
+            exprs, names = [energy], ("energy",)
+        return Integrals(lambdify_integrals(system.state_symbols, exprs), names)
+
+    def with_epsilon(self, eps: float) -> Model | None:
+        """The same model with ε replaced by ``eps`` (default: None, not rescalable)."""
+        return None
+
+    def validity_estimates(self) -> tuple[Condition, ...]:
+        """The model's own estimates of where its expansion holds (default: none)."""
+        return ()
+
+    def true_orbit(self, solution: PeriodicSolution) -> OrbitEstimate | None:
+        """A model-specific true periodic orbit, asked for only when generic shooting cannot
+        resolve the orbit (default: None, no such method)."""
+        return None
+
+    def shooting_setup(self) -> ShootingSetup | None:
+        """The shooting set-up (default: None, derived by validation)."""
+        return None
+
+    def _substitutions(self, y0) -> dict | None:
+        return substitutions(self.system(), self.symbol_values(), self.parameter_value(), y0)
+
+
+_SOLUTIONS: dict[tuple, PeriodicSolution] = {}
+
+
+def _check_values(system: QuasilinearSystem, values) -> dict[str, float]:
+    if not isinstance(values, Mapping):
+        raise bad_value("values", values, "pass a mapping {name: number}")
+    names = [p.name for p in system.parameters] + [system.parameter.name]
+    unknown = sorted(set(map(str, values)) - set(names))
+    missing = [n for n in names if n not in values]
+    if unknown or missing:
+        raise InvalidParameterError(
+            f"`values` = {dict(values)!r} is invalid: give exactly the system's parameters "
+            f"{names} (missing {missing}, unknown {unknown})"
+        )
+    out = {}
+    for name in names:
+        try:
+            number = float(values[name])
+        except (TypeError, ValueError):
+            raise bad_value("values", dict(values), f"{name} must be a real number") from None
+        if not math.isfinite(number):
+            raise bad_value("values", dict(values), f"{name} must be finite")
+        out[name] = number
+    return out
+
+
+@frozen
+class SystemModel(Model):
+    """A bare :class:`perturb.QuasilinearSystem` with numbers, as a :class:`Model`.
+
+    Parameters
+    ----------
+    quasilinear : QuasilinearSystem
+    values : mapping
+        A number for every symbol of ``quasilinear.parameters`` and for its own parameter
+        (``quasilinear.parameter``, e.g. ``epsilon``), by name.
+    options : mapping, optional
+        Options of :class:`perturb.PoincareMethod` (``amplitudes``, ``branch``, ...).
+    name : str, optional
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from perturb import EPS, QuasilinearSystem
+    >>> x, v = sp.symbols("x v")
+    >>> duffing = QuasilinearSystem([x], [v], [1], [-EPS * x**3], parameter=EPS)
+    >>> SystemModel(duffing, {"epsilon": 0.1}, {"amplitudes": {"x": 1}}).epsilon()
+    0.1
+    """
+
+    quasilinear: QuasilinearSystem
+    values: dict = field(converter=dict)
+    options: dict = field(factory=dict, converter=dict)
+    name: str = ""
+
+    def __attrs_post_init__(self):
+        object.__setattr__(self, "values", _check_values(self.quasilinear, self.values))
+
+    def label(self) -> str:
+        return self.name or self.quasilinear.name
+
+    def parameters_in_force(self) -> dict[str, float]:
+        return dict(self.values)
+
+    def system(self) -> QuasilinearSystem:
+        return self.quasilinear
+
+    def symbol_values(self) -> dict[str, float]:
+        return {p.name: self.values[p.name] for p in self.quasilinear.parameters}
+
+    def parameter_value(self) -> float:
+        return self.values[self.quasilinear.parameter.name]
+
+    def epsilon(self) -> float:
+        value = self.parameter_value()
+        return 1.0 / value if self.quasilinear.regime is Regime.LARGE else value
+
+    def method_options(self) -> dict:
+        return dict(self.options)
+
+    def solve(self, order: int = 1) -> PeriodicSolution:
+        key = (self.quasilinear, order, repr(sorted(self.options.items(), key=str)))
+        if key not in _SOLUTIONS:
+            _SOLUTIONS[key] = PoincareMethod(order=order, **self.options).solve(self.quasilinear)
+        return _SOLUTIONS[key]
+
+    def state_names(self) -> tuple[str, ...]:
+        return self.quasilinear.state_names
+
+    def state(self, solution: PeriodicSolution, t) -> dict[str, np.ndarray]:
+        y = solution.evaluate(t, self.parameter_value(), self.symbol_values())
+        return dict(zip(solution.state_names, y, strict=True))
+
+    def period(self, solution: PeriodicSolution) -> float:
+        return float(solution.period_at(self.parameter_value(), self.symbol_values()))
+
+    def with_epsilon(self, eps: float) -> SystemModel:
+        value = 1.0 / eps if self.quasilinear.regime is Regime.LARGE else eps
+        return evolve(self, values={**self.values, self.quasilinear.parameter.name: value})
+
+
+def as_model(problem, values: Mapping | None = None, options: Mapping | None = None) -> Model:
+    """``problem`` as a :class:`Model` (a bare system is wrapped in :class:`SystemModel`)."""
+    if isinstance(problem, QuasilinearSystem):
+        if values is None:
+            raise bad_value(
+                "values",
+                None,
+                "a bare QuasilinearSystem needs numbers: pass values={name: number} for its "
+                f"parameters {[p.name for p in problem.parameters] + [problem.parameter.name]}",
+            )
+        if not isinstance(values, Mapping):
+            raise bad_value("values", values, "pass a mapping {name: number}")
+        return SystemModel(problem, values, options or {})
+    if not isinstance(problem, Model):
+        raise bad_value(
+            "problem",
+            problem,
+            "pass a problems.Problem, a perturb.validation.Model or a QuasilinearSystem with "
+            "values=",
+        )
+    if values is not None or options is not None:
+        raise bad_value(
+            "values", values, "values= and options= go with a bare QuasilinearSystem only"
+        )
+    return problem
