@@ -15,8 +15,8 @@ import numpy as np
 from attrs import evolve, field, frozen
 
 from perturb.errors import InvalidParameterError, bad_value
+from perturb.method import PoincareMethod
 from perturb.oracle import Integrator, SymbolicRHS
-from perturb.poincare import PoincareMethod
 from perturb.solution import PeriodicSolution
 from perturb.system import QuasilinearSystem, Regime
 from perturb.validation._quasilinear import (
