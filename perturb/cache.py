@@ -35,6 +35,8 @@ perturb did not write unreadable, at a cost of microseconds.
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import enum
 import functools
 import hashlib
@@ -55,7 +57,7 @@ from typing import TypeVar
 
 from perturb.errors import CacheWarning, bad_value
 
-__all__ = ["cache_dir", "cached", "key_file"]
+__all__ = ["bypassed", "cache_dir", "cached", "key_file"]
 
 T = TypeVar("T")
 
@@ -350,6 +352,29 @@ def _write(folder: Path, path: Path, data: bytes) -> None:
         raise
 
 
+#: Set inside :func:`bypassed`: every :func:`cached` call computes afresh and writes nothing.
+_BYPASS: contextvars.ContextVar[bool] = contextvars.ContextVar(
+    "perturb_cache_bypass", default=False
+)
+
+
+@contextlib.contextmanager
+def bypassed():
+    """Compute everything afresh inside the block (to time a derivation), leaving the cache as it is.
+
+    Examples
+    --------
+    >>> with bypassed():
+    ...     cached("solution", ("demo",), lambda: 42)
+    42
+    """
+    token = _BYPASS.set(True)
+    try:
+        yield
+    finally:
+        _BYPASS.reset(token)
+
+
 def cached(kind: str, parts: tuple, compute: Callable[[], T]) -> T:
     """Return ``compute()``, reading it from / writing it to the disk cache when enabled.
 
@@ -370,7 +395,7 @@ def cached(kind: str, parts: tuple, compute: Callable[[], T]) -> T:
     if not isinstance(kind, str) or not _KIND.fullmatch(kind):
         raise bad_value("kind", kind, "use a short label of letters, digits, '-' or '_'")
     folder = cache_dir()
-    if folder is None:
+    if folder is None or _BYPASS.get():
         return compute()
     try:
         _check_folder(folder)

@@ -403,6 +403,11 @@ def _parse_positive(flag: str, text: str, kind=float):
 
 
 def _cmd_work_precision(args) -> int:
+    from perturb.report import (
+        work_precision_as_csv,
+        work_precision_as_dict,
+        work_precision_as_table,
+    )
     from perturb.workprecision import work_precision
     from problems import load_problem
 
@@ -420,11 +425,11 @@ def _cmd_work_precision(args) -> int:
             ) from None
     result = work_precision(problem, periods=periods, orders=orders, repeat=repeat)
     if args.format == "json":
-        print(json.dumps(result.as_dict(), allow_nan=True))
+        print(json.dumps(work_precision_as_dict(result), allow_nan=True))
     elif args.format == "csv":
-        print(result.as_csv())
+        print(work_precision_as_csv(result))
     else:
-        print(result.as_table())
+        print(work_precision_as_table(result))
     if args.plot is not None:
         result.plot().savefig(args.plot)
     return EXIT_OK

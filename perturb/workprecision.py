@@ -12,10 +12,10 @@ Times are medians of ``repeat`` runs.  The reference is heyoka in extended preci
 (``long double``/``real128``), else DOP853 at ``REFERENCE_RTOL``.  The error is the maximum over the
 output grid and the components of ``|y - y_ref| / amplitude`` (amplitude = max |y_ref| per component).
 
-Suggested CLI (not wired here)::
-
-    perturb work-precision PROBLEM [--set NAME=VALUE ...] [--periods 10] [--orders 3]
-                           [--repeat 3] [--format table|csv|json] [--plot FILE.png]
+The problem is anything validation accepts (a :class:`perturb.validation.Model`: a registered
+problem, a user's Problem subclass, or a bare system through :func:`perturb.validation.as_model`).
+The command line is ``perturb work-precision``; the tables are written by
+:mod:`perturb.report.workprecision`.
 """
 
 from __future__ import annotations
@@ -28,9 +28,11 @@ from collections.abc import Callable, Sequence
 import numpy as np
 from attrs import frozen
 
+from perturb.cache import bypassed
 from perturb.errors import bad_value
 from perturb.oracle import RK4, Heyoka, Scipy, choose, heyoka_available
-from perturb.validation import AMPLITUDE_FLOOR, SAMPLES_PER_PERIOD, original_system
+from perturb.progress import track
+from perturb.validation import AMPLITUDE_FLOOR, SAMPLES_PER_PERIOD, as_model, original_system
 
 __all__ = ["WorkPoint", "WorkPrecision", "work_precision"]
 
@@ -94,35 +96,6 @@ class WorkPrecision:
     reference: str
     points: tuple
 
-    def as_csv(self) -> str:
-        """``method,setting,error,seconds`` lines (with a header)."""
-        lines = ["method,setting,error,seconds"]
-        lines += [f"{p.method},{p.setting},{p.error:.6e},{p.seconds:.6e}" for p in self.points]
-        return "\n".join(lines)
-
-    def as_table(self) -> str:
-        """Aligned text table."""
-        lines = [
-            f"# work-precision {self.problem}: {self.periods:g} periods (t = {self.horizon:.6g}), "
-            f"reference {self.reference}",
-            f"{'method':<22s} {'setting':<16s} {'error':>11s} {'seconds':>11s}",
-        ]
-        for p in self.points:
-            lines.append(f"{p.method:<22s} {p.setting:<16s} {p.error:11.3e} {p.seconds:11.4g}")
-        return "\n".join(lines)
-
-    def as_dict(self) -> dict:
-        return {
-            "problem": self.problem,
-            "periods": self.periods,
-            "horizon": self.horizon,
-            "reference": self.reference,
-            "points": [
-                {"method": p.method, "setting": p.setting, "error": p.error, "seconds": p.seconds}
-                for p in self.points
-            ],
-        }
-
     def plot(self, ax=None):
         """Work–precision diagram (log error against log seconds), one line per method.
 
@@ -174,16 +147,12 @@ def _relative_error(y: np.ndarray, ref: np.ndarray) -> float:
     return float(np.max(np.abs(y - ref) / amp[:, None]))
 
 
-def _derivation_seconds(problem, order: int) -> float:
-    """Time of the symbolic construction, bypassing caches where the problem allows it."""
-    from perturb import PoincareMethod
-    from problems.base import Problem
-
+def _derivation_seconds(model, order: int) -> float:
+    """Time of the symbolic construction with the disk cache bypassed (a problem's own in-memory
+    caches of intermediate objects, such as the rigid body's reduction, still count as built)."""
     start = time.perf_counter()
-    if type(problem).solve is Problem.solve:
-        PoincareMethod(order=order, cache=False, **problem.method_options()).solve(problem.system())
-    else:  # the problem's own solve (possibly cached: then this is the cache look-up)
-        problem.solve(order)
+    with bypassed():
+        model.solve(order)
     return time.perf_counter() - start
 
 
@@ -203,7 +172,8 @@ def work_precision(
 
     Parameters
     ----------
-    problem : problems.Problem
+    problem : perturb.validation.Model
+        A problem (``get_problem(name).create(...)``, a user's Problem subclass) or any Model.
     periods : float, optional
         Horizon in periods of the order-1 analytic solution (> 0).
     orders : int or sequence of int, optional
@@ -223,7 +193,8 @@ def work_precision(
     Returns
     -------
     WorkPrecision
-        ``.as_csv()`` gives the ``method,setting,error,seconds`` table, ``.plot()`` a Figure.
+        Data only: :mod:`perturb.report.workprecision` writes it as CSV (``method,setting,error,
+        seconds``), JSON or a text table.
 
     Raises
     ------
@@ -244,6 +215,7 @@ def work_precision(
     if not order_list or any(not isinstance(k, int) or k < 1 for k in order_list):
         raise bad_value("orders", orders, "pass N >= 1 or a list of integers >= 1")
 
+    problem = as_model(problem)
     names = tuple(problem.state_names())
     base = problem.solve(1)
     period = problem.period(base)
@@ -267,7 +239,7 @@ def work_precision(
         return references[key]
 
     points: list[WorkPoint] = []
-    for k in order_list:
+    for k in track(order_list, label="work-precision: analytic orders"):
         try:
             derive = _derivation_seconds(problem, k)
             solution = problem.solve(k)
@@ -293,14 +265,14 @@ def work_precision(
         hy = Heyoka()
         hy.integrate(original.rhs, (0.0, min(horizon, period)), y0)  # JIT compile, not timed
         runs.append(("heyoka", "tol=eps", hy))
-    for method, setting, integrator in runs:
+    for method, setting, integrator in track(runs, label="work-precision: integrators"):
         seconds, traj = _median_time(
             lambda i=integrator: i.integrate(original.rhs, (0.0, horizon), y0, t_eval=t), repeat
         )
         error = _relative_error(np.asarray(traj.y, dtype=float), ref) if traj.success else math.nan
         points.append(WorkPoint(method, setting, error, seconds))
     return WorkPrecision(
-        problem=getattr(problem, "name", type(problem).__name__),
+        problem=problem.label(),
         periods=float(periods),
         horizon=horizon,
         reference=reference.name,

@@ -234,11 +234,6 @@ class OrbitCheck:
         """Whether shooting at this precision determines the orbit well enough to judge against it."""
         return self.success and self.resolution <= self.resolution_limit
 
-    def as_dict(self) -> dict:
-        from perturb.report.validation import orbit_as_dict
-
-        return orbit_as_dict(self)
-
 
 @frozen
 class Stiffness:
@@ -350,15 +345,3 @@ class ValidationReport:
     def check(self, name: str) -> Check | None:
         """The check called ``name``, or None if it is not in the report."""
         return next((c for c in self.checks if c.name == name), None)
-
-    def as_dict(self) -> dict:
-        """The JSON contract (see ``docs/validation.md``); :func:`perturb.report.validation_as_dict`."""
-        from perturb.report.validation import validation_as_dict
-
-        return validation_as_dict(self)
-
-    def as_table(self) -> str:
-        """A human-readable summary; :func:`perturb.report.validation_as_table`."""
-        from perturb.report.validation import validation_as_table
-
-        return validation_as_table(self)

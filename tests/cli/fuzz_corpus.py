@@ -59,7 +59,9 @@ def corpus() -> list[list[str]]:
         base = ["reproduce", "paper"] if command == "reproduce" else [command, "duffing"]
         if command != "reproduce":
             cases.extend([[command, problem] for problem in PROBLEMS if problem != "duffing"])
-            cases.extend([*base, "--set", f"{name}={value}"] for name in SET_NAMES for value in VALUES)
+            cases.extend(
+                [*base, "--set", f"{name}={value}"] for name in SET_NAMES for value in VALUES
+            )
         for option in options:
             cases.extend([*base, option, value] for value in VALUES)
             cases.append([*base, option])  # missing value
@@ -80,7 +82,9 @@ def judge(argv: list[str], code: int | None, out: str, err: str) -> list[str]:
     if code not in (0, 1, 2):
         broken.append(f"exit {code}")
     if code == 2 and argv:
-        lines = [line for line in err.strip().splitlines() if not line.startswith("perturb: warning")]
+        lines = [
+            line for line in err.strip().splitlines() if not line.startswith("perturb: warning")
+        ]
         if len(lines) != 1 or not lines[0].startswith("perturb: error:"):
             broken.append("exit 2 without one error line")
     if code == 0 and argv and argv[0] in ("solve", "validate", "work-precision"):

@@ -42,3 +42,17 @@ def test_cache_can_be_switched_off(tmp_path, monkeypatch):
     assert cache_dir() is None
     assert PoincareMethod(order=1, amplitudes={"x": A}).solve(SYSTEM).success
     assert not list(tmp_path.iterdir())
+
+
+def test_bypassed_computes_afresh_and_leaves_the_cache_alone(tmp_path, monkeypatch):
+    from perturb.cache import bypassed, cached
+
+    monkeypatch.setenv("PERTURB_CACHE_DIR", str(tmp_path))
+    calls = []
+    assert cached("demo", ("k",), lambda: calls.append(1) or "stored") == "stored"
+    entries = sorted(p.name for p in tmp_path.iterdir())
+    with bypassed():
+        assert cached("demo", ("k",), lambda: calls.append(2) or "fresh") == "fresh"
+    assert calls == [1, 2]  # the bypassed call computed although an entry exists ...
+    assert sorted(p.name for p in tmp_path.iterdir()) == entries  # ... and wrote nothing
+    assert cached("demo", ("k",), lambda: "not called") == "stored"

@@ -12,6 +12,7 @@ import pytest
 
 from perturb.errors import InvalidParameterError
 from perturb.oracle import TrajectoryStatus, heyoka_available
+from perturb.report import validation_as_dict
 from perturb.validation import Verdict, validate
 from problems import get_problem
 
@@ -221,7 +222,7 @@ def test_disk_orbit_unresolvable_at_double_precision_is_not_used():
     assert orbit is not None and orbit.success and not orbit.resolved
     # a check that cannot run (no extended precision) makes the verdict undecided, never valid
     assert report.outcome is Verdict.UNDECIDED and "cannot resolve" in report.verdict
-    assert report.as_dict()["periodic_orbit"]["resolution"] is None
+    assert validation_as_dict(report)["periodic_orbit"]["resolution"] is None
 
 
 @pytest.mark.skipif(not heyoka_available(), reason="needs heyoka (extended precision)")
@@ -247,7 +248,7 @@ def test_disk_orbit_unresolvable_at_double_precision_is_resolved_by_the_conditio
     assert 0.005 < orbit.orbit_error < 0.015
     assert abs(orbit.period_error) < 1e-12
     assert report.check("existence").passed and report.check("orbit_error").passed
-    assert report.as_dict()["periodic_orbit"]["resolved"] is True
+    assert validation_as_dict(report)["periodic_orbit"]["resolved"] is True
 
 
 def test_disk_orbit_unresolved_when_extended_precision_cannot_run(monkeypatch):

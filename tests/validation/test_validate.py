@@ -110,7 +110,6 @@ def test_van_der_pol_floquet_multiplier():
 def test_json_contract():
     report = validate(get_problem("resonant-pair").create(eps=0.05), periods=2)
     data = json.loads(json.dumps(validation_as_dict(report)))
-    assert data == json.loads(json.dumps(report.as_dict()))  # the method delegates
     assert CONTRACT_KEYS <= set(data)
     assert isinstance(data["valid"], bool) and data["outcome"] == "valid"
     assert data["verdict"].endswith(".")

@@ -5,6 +5,7 @@ import math
 import pytest
 
 from perturb.errors import InvalidParameterError
+from perturb.report import work_precision_as_csv
 from perturb.workprecision import work_precision
 from problems import get_problem
 
@@ -23,7 +24,7 @@ def table():
 
 
 def test_rows_and_csv(table):
-    csv = table.as_csv().splitlines()
+    csv = work_precision_as_csv(table).splitlines()
     assert csv[0] == "method,setting,error,seconds"
     methods = {p.method for p in table.points}
     assert {"analytic", "analytic derivation", "rk4", "scipy DOP853"} <= methods
