@@ -58,29 +58,39 @@ from sympy.polys.rings import PolyElement
 from perturb.cache import cached
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.system import EPS, QuasilinearSystem
+from problems.rigid_body._elimination import (  # the symbols are public here
+    DISK_PARAMETERS,
+    G0,
+    GENERAL_PARAMETERS,
+    INITIAL_VALUES,
+    LIGHT_SPECS,
+    P0,
+    REDUCED_STATE,
+    VARIABLES,
+    Builder,
+    G,
+    P,
+    derived,
+    dG,
+    dG0,
+    dP,
+    dP0,
+    gamma3_0,
+)
 from problems.rigid_body._inverse_map import PolynomialMap, compile_polynomials
 from problems.rigid_body._series_ring import SeriesRing
-from problems.rigid_body.equations import (
-    NONDIMENSIONAL_STATE,
-    a,
-    b,
-    gamma1,
-    gamma2,
-    gamma3,
-    inertia_ratio_values,
-    k,
-    nondimensional_equations,
-    nondimensional_integrals,
-    p1,
-    q1,
-    r1,
-    x0p,
-    y0p,
-    z0p,
-)
+from problems.rigid_body.equations import NONDIMENSIONAL_STATE, a, b, gamma1, p1
 
 __all__ = [
     "DISK_PARAMETERS",
+    "G",
+    "G0",
+    "P",
+    "P0",
+    "dG",
+    "dG0",
+    "dP",
+    "dP0",
     "GENERAL_PARAMETERS",
     "INITIAL_VALUES",
     "REDUCED_STATE",
@@ -93,179 +103,11 @@ __all__ = [
     "specialised_general_body_reduction",
 ]
 
-# ---------------------------------------------------------------------------- symbols
-P, G, dP, dG = sp.symbols("P G dP dG")
-P0, G0, dP0, dG0 = sp.symbols("P0 G0 dP0 dG0")
-#: Initial value of gamma'' (the paper's gamma0'').
-gamma3_0 = sp.Symbol("gamma3_0")
-#: Reduced state in the order (P, dP, G, dG).
-REDUCED_STATE = (P, dP, G, dG)
-#: Initial values in the engine's order: x(0)'s then xdot(0)'s.
-INITIAL_VALUES = (P0, G0, dP0, dG0)
-DISK_PARAMETERS = (a, b, k, x0p, y0p, gamma3_0)
-GENERAL_PARAMETERS = (a, b, k, x0p, y0p, z0p, gamma3_0)
-
-#: Placeholders for the constants of the energy and area integrals.
-_H0, _K0 = sp.symbols("H_0 K_0")
-#: Generators of the series ring besides the parameters (epsilon first: the truncation variable).
-_VARIABLES = (EPS, *NONDIMENSIONAL_STATE, *REDUCED_STATE, *INITIAL_VALUES, _H0, _K0)
-
 #: Highest reduction order accepted (symbolic disk, cold: order 3 ~0.2 s, 4 ~0.5 s, 5 ~2.5 s of
 #: series arithmetic, plus the sympy expressions of what is asked for).
 MAX_REDUCTION_ORDER = 5
 #: Specialised reductions kept in memory (one per body and order; each is a few hundred kB).
 SPECIALISED_CACHE_SIZE = 32
-
-_INITIAL_OF = {P: P0, dP: dP0, G: G0, dG: dG0}
-
-
-# ---------------------------------------------------------------------------- derivation
-@frozen
-class _Spec:
-    """What distinguishes the disk from the general body."""
-
-    equations: tuple[sp.Expr, ...]  # dimensionless rhs (p1, q1, r1, gamma1..3)
-    energy: sp.Expr
-    area: sp.Expr
-    shift_p: sp.Expr  # p1 = P + shift_p
-    shift_g: sp.Expr  # gamma = G + shift_g * P
-    omega_sq: sp.Expr  # frequency squared of P
-    params: tuple[sp.Symbol, ...]
-    fraction_field: bool  # coefficients in QQ(a, b) (general) or a, b, 1/a, 1/b generators (disk)
-
-
-def _solve_linear(equation: sp.Expr, unknown: sp.Symbol) -> tuple[sp.Expr, sp.Expr]:
-    """Solve ``equation = 0``, linear in ``unknown``: return (numerator, denominator).
-
-    ``equation = alpha * unknown + beta`` gives ``unknown = -beta / alpha``; both are polynomials,
-    so the series evaluation needs one series inversion (of alpha).
-    """
-    equation = sp.expand(equation)
-    alpha = sp.diff(equation, unknown)
-    if alpha == 0 or sp.diff(alpha, unknown) != 0:
-        raise AssertionError(f"{equation} = 0 is not linear in {unknown}")
-    beta = sp.expand(equation.xreplace({unknown: 0}))
-    return -beta, alpha
-
-
-@frozen
-class _Eliminations:
-    """Solved forms: each unknown as numerator/denominator (sympy), and r1**2 for the energy."""
-
-    q1: tuple[sp.Expr, sp.Expr]
-    gamma2: tuple[sp.Expr, sp.Expr]
-    gamma3: tuple[sp.Expr, sp.Expr]
-    r1_squared: tuple[sp.Expr, sp.Expr]
-
-
-def _eliminations(spec: _Spec) -> _Eliminations:
-    f_p, _, _, f_g, _, _ = spec.equations
-    # p1 = P + const  =>  dp1/dtau = dP
-    q_sol = _solve_linear(f_p - dP, q1)
-    # gamma = G + s_G P  =>  dgamma/dtau = dG + s_G dP
-    g2_sol = _solve_linear(f_g - dG - spec.shift_g * dP, gamma2)
-    # area integral = its value at tau = 0
-    g3_sol = _solve_linear(spec.area - _K0, gamma3)
-    # energy: H = c2 r1**2 + H|_{r1=0} (no linear term), so r1**2 = (H0 - H|_{r1=0}) / c2
-    poly = sp.Poly(spec.energy, r1)
-    if poly.degree() != 2 or poly.coeff_monomial(r1) != 0:
-        raise AssertionError("the energy integral is not of the form c2*r1**2 + rest")
-    c2 = poly.coeff_monomial(r1**2)
-    rest = poly.coeff_monomial(1)
-    return _Eliminations(q_sol, g2_sol, g3_sol, (sp.expand(_H0 - rest), sp.expand(c2)))
-
-
-def _accelerations(spec: _Spec) -> tuple[sp.Expr, sp.Expr]:
-    """d/dtau of dp1/dtau and of dgamma/dtau along the full flow (exact, expanded)."""
-    f = spec.equations
-    return tuple(
-        sp.expand(sum(sp.diff(f[i], y) * fy for y, fy in zip(NONDIMENSIONAL_STATE, f, strict=True)))
-        for i in (0, 3)
-    )
-
-
-@cache
-def _derived(kind: str) -> tuple[_Spec, _Eliminations, tuple[sp.Expr, sp.Expr]]:
-    """The body's spec, its solved eliminations and its accelerations (derived once a process)."""
-    spec = _SPECS[kind]()
-    return spec, _eliminations(spec), _accelerations(spec)
-
-
-class _Builder:
-    """Runs the elimination as truncated series in one polynomial ring."""
-
-    def __init__(self, kind: str, sr: SeriesRing):
-        self.spec, elim, self.accelerations = _derived(kind)
-        self.sr = conv = sr
-        self.q_num, self.q_den = map(conv, elim.q1)
-        self.g2_num, self.g2_den = map(conv, elim.gamma2)
-        self.g3_num, self.g3_den = map(conv, elim.gamma3)
-        self.rs_num, self.rs_den = map(conv, elim.r1_squared)
-
-    def _ratio(self, num, den, mapping):
-        return self.sr.mul(
-            self.sr.substitute(num, mapping), self.sr.inverse(self.sr.substitute(den, mapping))
-        )
-
-    def _iterate(self, state: dict, reduced: Mapping, constants: Mapping | None) -> dict:
-        """Fixed-point iteration; ``constants`` None means r1 = 1, gamma'' = gamma3_0 (tau = 0)."""
-        sr = self.sr
-        for _ in range(sr.order + 3):
-            previous = dict(state)
-            mapping = {**state, **reduced, **(constants or {})}
-            state[q1] = self._ratio(self.q_num, self.q_den, mapping)
-            mapping[q1] = state[q1]
-            state[gamma2] = self._ratio(self.g2_num, self.g2_den, mapping)
-            mapping[gamma2] = state[gamma2]
-            if constants is not None:
-                state[gamma3] = self._ratio(self.g3_num, self.g3_den, mapping)
-                mapping[gamma3] = state[gamma3]
-                r_sq = self._ratio(self.rs_num, self.rs_den, mapping)
-                state[r1] = sr.sqrt(r_sq)
-            if state == previous:
-                return state
-        raise AssertionError("the elimination series did not converge")
-
-    def _start(self, reduced: Mapping[sp.Symbol, PolyElement]) -> dict:
-        sr = self.sr
-        shift_p = sr(self.spec.shift_p)
-        shift_g = sr(self.spec.shift_g)
-        p_val = reduced[P]
-        return {
-            p1: sr.trunc(p_val + shift_p),
-            gamma1: sr.trunc(reduced[G] + sr.mul(shift_g, p_val)),
-            r1: sr.ring.one,
-            gamma3: sr(gamma3_0),
-            q1: sr.ring.zero,
-            gamma2: sr.ring.zero,
-        }
-
-    def run(self) -> dict[str, PolyElement]:
-        """The reduction's series by name (see :class:`Reduction` for their meaning)."""
-        sr = self.sr
-        # --- tau = 0: r1 = 1, gamma'' = gamma3_0, reduced state = initial values
-        initial_reduced = {s: sr.gen(_INITIAL_OF[s]) for s in REDUCED_STATE}
-        initial = self._iterate(self._start(initial_reduced), initial_reduced, None)
-        h0 = sr.substitute(sr(self.spec.energy), initial)
-        k0 = sr.substitute(sr(self.spec.area), initial)
-        # --- any tau
-        reduced = {s: sr.gen(s) for s in REDUCED_STATE}
-        state = self._iterate(self._start(reduced), reduced, {_H0: h0, _K0: k0})
-        # --- accelerations along the flow, on the series: P'' and G'' = gamma'''' - s_G P''
-        ddp, ddgamma = (sr.substitute(sr(expr), state) for expr in self.accelerations)
-        shift_g = sr(self.spec.shift_g)
-        ddg = sr.trunc(ddgamma - sr.mul(shift_g, ddp))
-        out = {
-            "rhs_p": sr.trunc(ddp + sr(self.spec.omega_sq) * sr.gen(P)),
-            "rhs_g": sr.trunc(ddg + sr.gen(G)),
-            "geometric": sr.substitute(sr(gamma1**2 + gamma2**2 + gamma3**2), state),
-            "energy": h0,
-            "area": k0,
-        }
-        for s in NONDIMENSIONAL_STATE:
-            out[f"state:{s.name}"] = state[s]
-            out[f"initial:{s.name}"] = initial[s]
-        return out
 
 
 # ---------------------------------------------------------------------------- result
@@ -348,7 +190,7 @@ class Reduction:
 
     @cached_property
     def system(self) -> QuasilinearSystem:
-        spec = _SPECS_LIGHT[self.kind]
+        spec = LIGHT_SPECS[self.kind]
         frequencies = spec["frequencies"]()
         if self.values:
             frequencies = tuple(sp.sympify(w).subs(dict(self.values)) for w in frequencies)
@@ -368,7 +210,7 @@ class Reduction:
 
     @cached_property
     def reduced_state(self) -> tuple[sp.Expr, ...]:
-        spec = _derived(self.kind)[0]
+        spec = derived(self.kind)[0]
         f, shift_g = spec.equations, spec.shift_g
         return (
             p1 - spec.shift_p,
@@ -379,14 +221,14 @@ class Reduction:
 
     @cached_property
     def reduced_accelerations(self) -> tuple[sp.Expr, ...]:
-        spec, _, (ddp, ddgamma) = _derived(self.kind)
+        spec, _, (ddp, ddgamma) = derived(self.kind)
         return (ddp, sp.expand(ddgamma - spec.shift_g * ddp))
 
     # ------------------------------------------------------------------ numeric versions
     @property
     def body_parameters(self) -> tuple[sp.Symbol, ...]:
         """Every parameter of the body (also those a specialised reduction has put in)."""
-        return _SPECS_LIGHT[self.kind]["params"]
+        return LIGHT_SPECS[self.kind]["params"]
 
     def _check(self, values: Mapping, eps: float) -> tuple[dict[str, float], float]:
         by_name = {str(key): val for key, val in values.items()}
@@ -493,78 +335,22 @@ class Reduction:
         return lambda z, z0: np.array(np.broadcast_arrays(*f(tuple(z), tuple(z0), args)))
 
 
-# ---------------------------------------------------------------------------- the two bodies
-def _disk_spec() -> _Spec:
-    ratios = inertia_ratio_values(disk=True)
-    eqs = nondimensional_equations(True, ratios=True).subs(ratios).subs(z0p, 0)
-    ints = nondimensional_integrals(True)
-    return _Spec(
-        equations=tuple(sp.expand(e) for e in eqs),
-        energy=ints["energy"].subs(z0p, 0),
-        area=ints["area"],
-        shift_p=EPS * x0p * gamma3_0 / b,
-        shift_g=EPS * a * gamma3_0,
-        omega_sq=sp.S.One,
-        params=DISK_PARAMETERS,
-        fraction_field=False,
-    )
-
-
-def _general_omega_sq() -> sp.Expr:
-    ratios = inertia_ratio_values(disk=False)
-    return sp.factor(-ratios[sp.Symbol("A1")] * ratios[sp.Symbol("B1")])
-
-
-def _general_spec() -> _Spec:
-    ratios = inertia_ratio_values(disk=False)
-    eqs = nondimensional_equations(True, ratios=True).subs(ratios)
-    ints = nondimensional_integrals(True)
-    return _Spec(
-        equations=tuple(sp.expand(e) for e in eqs),
-        energy=ints["energy"],
-        area=ints["area"],
-        shift_p=sp.S.Zero,
-        shift_g=sp.S.Zero,
-        omega_sq=_general_omega_sq(),
-        params=GENERAL_PARAMETERS,
-        fraction_field=True,
-    )
-
-
-_SPECS = {"disk": _disk_spec, "general": _general_spec}
-#: What a reduction needs of its body without deriving the equations (a cache hit skips them).
-_SPECS_LIGHT = {
-    "disk": {
-        "name": "disk-newtonian-fast-spin",
-        "frequencies": lambda: (1, 1),
-        "params": DISK_PARAMETERS,
-        "fraction_field": False,
-    },
-    "general": {
-        "name": "rigid-body-fast-spin",
-        "frequencies": lambda: (sp.sqrt(_general_omega_sq()), 1),
-        "params": GENERAL_PARAMETERS,
-        "fraction_field": True,
-    },
-}
-
-
 @cache
 def _source_fingerprint() -> str:
     """Hash of the sources the reduction is derived by: an edit invalidates the disk cache."""
     here = Path(__file__).parent
     digest = hashlib.sha256()
-    for name in ("reduction.py", "_series_ring.py", "equations.py"):
+    for name in ("reduction.py", "_elimination.py", "_series_ring.py", "equations.py"):
         digest.update(name.encode() + b"\0" + (here / name).read_bytes())
     return digest.hexdigest()[:16]
 
 
 def _reduce(kind: str, order: int, values: tuple[tuple[sp.Symbol, sp.Rational], ...]) -> Reduction:
-    light = _SPECS_LIGHT[kind]
+    light = LIGHT_SPECS[kind]
     params = light["params"]
-    sr = SeriesRing(order, _VARIABLES, params, (a, b), light["fraction_field"], dict(values))
+    sr = SeriesRing(order, VARIABLES, params, (a, b), light["fraction_field"], dict(values))
     if sr.fraction_field:  # coefficients in QQ(a, b): computed, not kept on disk
-        series = _Builder(kind, sr).run()
+        series = Builder(kind, sr).run()
     else:
         parts = (
             kind,
@@ -574,7 +360,7 @@ def _reduce(kind: str, order: int, values: tuple[tuple[sp.Symbol, sp.Rational], 
         )
 
         def compute() -> dict:
-            return {name: sr.export(poly) for name, poly in _Builder(kind, sr).run().items()}
+            return {name: sr.export(poly) for name, poly in Builder(kind, sr).run().items()}
 
         series = {name: sr.load(data) for name, data in cached("reduction", parts, compute).items()}
     return Reduction(
@@ -600,7 +386,7 @@ def _check_order(order: int) -> int:
 def _exact_values(kind: str, values: Mapping) -> tuple[tuple[sp.Symbol, sp.Rational], ...]:
     """``values`` (name or symbol -> number) as exact rationals for every parameter of ``kind``."""
     by_name = {str(key): val for key, val in values.items()}
-    params = _SPECS_LIGHT[kind]["params"]
+    params = LIGHT_SPECS[kind]["params"]
     missing = [s.name for s in params if s.name not in by_name]
     if missing:
         raise bad_value("values", dict(by_name), f"give values for {missing}")
