@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 import warnings
 from abc import abstractmethod
-from functools import cache
+from functools import cache, lru_cache
 
 import numpy as np
 import sympy as sp
@@ -102,12 +102,19 @@ class FastSpinBody(Problem):
 
     #: Whether the reduced parameters include z0' (the general body).
     uses_z0 = False
+    #: The dimensionless parameters of the reduction (:meth:`symbol_values` gives their values).
+    parameter_symbols: tuple[sp.Symbol, ...] = ()
 
     # ------------------------------------------------------------------ to provide
     @classmethod
     @abstractmethod
     def reduction_for(cls, order: int) -> Reduction:
         """The reduction whose truncation suffices for a solution of ``order``."""
+
+    @classmethod
+    @abstractmethod
+    def specialised_reduction_for(cls, order: int, values: dict) -> Reduction:
+        """:meth:`reduction_for` with the parameters put in (exact ``values``) before the reduction."""
 
     @classmethod
     def reduction(cls) -> Reduction:
@@ -167,45 +174,48 @@ class FastSpinBody(Problem):
         return out
 
     # ------------------------------------------------------------------ solving
+    def _selection_options(self) -> dict:
+        """The method options besides the amplitude constraint (which root, which phase)."""
+        return {"phase_coordinate": "G"}
+
     def method_options(self) -> dict:
         return {
             "amplitudes": {"G": geometric_constraint(self.reduction())},
-            "phase_coordinate": "G",
+            **self._selection_options(),
         }
-
-    def _options_for(self, order: int) -> dict:
-        options = self.method_options()
-        if self.reduction_for(order) is not self.reduction():
-            options["amplitudes"] = {"G": geometric_constraint(self.reduction_for(order))}
-        return options
 
     #: Orders up to which the solution is kept symbolic in the body's parameters (one derivation
     #: serves every body, and exports LaTeX); above it the parameters are put in first, as exact
     #: rationals, which keeps the construction to seconds instead of minutes.
     SYMBOLIC_MAX_ORDER: int = 1
 
+    def exact_values(self) -> dict[sp.Symbol, sp.Rational]:
+        """The body's dimensionless parameters as exact rationals (the decimal values given)."""
+        values = self.symbol_values()
+        return dict(_exact(tuple((p, values[p.name]) for p in self.parameter_symbols)))
+
+    def _solving_reduction(self, order: int) -> Reduction:
+        """The reduction :meth:`solve` uses at ``order`` (specialised above SYMBOLIC_MAX_ORDER)."""
+        if order > self.SYMBOLIC_MAX_ORDER:
+            return self.specialised_reduction_for(order, self.exact_values())
+        return self.reduction_for(order)
+
     def solve(self, order: int = 1) -> PeriodicSolution:
         """The periodic solution of ``order`` (cached; higher orders use a longer reduction).
 
         Orders up to :attr:`SYMBOLIC_MAX_ORDER` are symbolic in the parameters; higher orders are
         derived for this body's parameter values, converted to exact rationals (no rounding enters
-        the construction; the result is exact for the decimal values given).
+        the construction; the result is exact for the decimal values given). Those values are put
+        in before the reduction (:func:`~problems.rigid_body.reduction.specialised_disk_reduction`),
+        which gives the same system as putting them into the symbolic one, much faster.
         """
-        reduction = self.reduction_for(order)
-        options = self._options_for(order)
+        reduction = self._solving_reduction(order)
         system = reduction.system
-        specialise = order > self.SYMBOLIC_MAX_ORDER
-        values = {}
-        if specialise:
-            values = {
-                p: sp.nsimplify(self.symbol_values()[p.name], rational=True)
-                for p in system.parameters
-            }
-            system = system.with_values(values)
-            options["amplitudes"] = {
-                name: sp.sympify(expr).xreplace(values)
-                for name, expr in options["amplitudes"].items()
-            }
+        values = dict(reduction.values)
+        options = {
+            "amplitudes": {"G": geometric_constraint(reduction)},
+            **self._selection_options(),
+        }
         key = (
             type(self).__module__,
             type(self).__qualname__,
@@ -220,11 +230,14 @@ class FastSpinBody(Problem):
         return _SOLUTION_CACHE[key]
 
     def _reduction_of(self, solution: PeriodicSolution) -> Reduction:
-        for order in range(1, solution.order + 1):
-            candidate = self.reduction_for(order)
+        orders = [solution.order, *range(1, solution.order)]
+        for order in orders:
+            candidate = self._solving_reduction(order)
             if candidate.system == solution.system or candidate.system.rhs == solution.system.rhs:
                 return candidate
-        return self.reduction_for(solution.order)
+        if solution.system.parameters:
+            return self.reduction_for(solution.order)
+        return self.specialised_reduction_for(solution.order, self.exact_values())
 
     # ------------------------------------------------------------------ physical state
     def state_names(self) -> tuple[str, ...]:
@@ -407,6 +420,12 @@ class _NamedIntegrals:
 
     def __call__(self, y) -> np.ndarray:
         return self._function(y)
+
+
+@lru_cache(maxsize=256)
+def _exact(pairs: tuple) -> tuple:
+    """``(symbol, float)`` pairs as ``(symbol, Rational)`` (``nsimplify`` is slow: kept)."""
+    return tuple((p, sp.nsimplify(value, rational=True)) for p, value in pairs)
 
 
 def _user_parameter(solution: PeriodicSolution, eps: float) -> float:

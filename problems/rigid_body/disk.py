@@ -32,7 +32,12 @@ from perturb.validation import OrbitEstimate
 from problems import register
 from problems.rigid_body._body import FastSpinBody, _user_parameter, body_parameter_specs
 from problems.rigid_body.equations import a, b
-from problems.rigid_body.reduction import Reduction, disk_reduction
+from problems.rigid_body.reduction import (
+    DISK_PARAMETERS,
+    Reduction,
+    disk_reduction,
+    specialised_disk_reduction,
+)
 
 __all__ = ["DETUNING_RATIO_LIMIT", "DISK_RTOL", "DiskInNewtonianField"]
 
@@ -89,8 +94,18 @@ class DiskInNewtonianField(FastSpinBody):
             )
 
     # ------------------------------------------------------------------ system
+    parameter_symbols = DISK_PARAMETERS
+
     @classmethod
     def reduction_for(cls, order: int) -> Reduction:
+        return disk_reduction(cls._reduction_order(order))
+
+    @classmethod
+    def specialised_reduction_for(cls, order: int, values: dict) -> Reduction:
+        return specialised_disk_reduction(cls._reduction_order(order), values)
+
+    @classmethod
+    def _reduction_order(cls, order: int) -> int:
         if (
             isinstance(order, bool)
             or not isinstance(order, int)
@@ -100,10 +115,10 @@ class DiskInNewtonianField(FastSpinBody):
                 f"`order` = {order!r} is invalid: the disk solution is implemented to order "
                 f"{MAX_DISK_ORDER}; pass order=1, 2 or 3"
             )
-        return disk_reduction(order + _FORCING_DELAY)
+        return order + _FORCING_DELAY
 
-    def method_options(self) -> dict:
-        return {**super().method_options(), "branch": dict(BRANCH_M1_M2_ZERO)}
+    def _selection_options(self) -> dict:
+        return {**super()._selection_options(), "branch": dict(BRANCH_M1_M2_ZERO)}
 
     def solve(self, order: int = 1) -> PeriodicSolution:
         solution = super().solve(order)

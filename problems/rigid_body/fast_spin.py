@@ -25,7 +25,12 @@ from perturb._defaults import NEAR_RESONANCE
 from perturb.errors import InvalidParameterError
 from problems import register
 from problems.rigid_body._body import EPSILON_WARN, FastSpinBody, body_parameter_specs
-from problems.rigid_body.reduction import Reduction, general_body_reduction
+from problems.rigid_body.reduction import (
+    GENERAL_PARAMETERS,
+    Reduction,
+    general_body_reduction,
+    specialised_general_body_reduction,
+)
 
 __all__ = ["FastSpinRigidBody", "MAX_BODY_ORDER", "RESONANCE_TOL"]
 
@@ -64,6 +69,7 @@ class FastSpinRigidBody(FastSpinBody):
         A=9.0, B=11.0, C=16.0, z0=0.5, gamma3_0=0.25, r0=_DEFAULT_R0
     )
     uses_z0 = True
+    parameter_symbols = GENERAL_PARAMETERS
 
     def check_values(self, values) -> None:
         super().check_values(values)
@@ -90,6 +96,14 @@ class FastSpinRigidBody(FastSpinBody):
 
     @classmethod
     def reduction_for(cls, order: int) -> Reduction:
+        return general_body_reduction(cls._reduction_order(order))
+
+    @classmethod
+    def specialised_reduction_for(cls, order: int, values: dict) -> Reduction:
+        return specialised_general_body_reduction(cls._reduction_order(order), values)
+
+    @classmethod
+    def _reduction_order(cls, order: int) -> int:
         if (
             isinstance(order, bool)
             or not isinstance(order, int)
@@ -99,7 +113,7 @@ class FastSpinRigidBody(FastSpinBody):
                 f"`order` = {order!r} is invalid: the fast-spin body is implemented to order "
                 f"{MAX_BODY_ORDER}; pass order=1 or 2"
             )
-        return general_body_reduction(order + _REDUCTION_EXTRA)
+        return order + _REDUCTION_EXTRA
 
     def _specific_conditions(self) -> list[tuple[str, float, bool, str]]:
         """The small divisor 1/(1 - omega**2) of the forced response must stay moderate."""

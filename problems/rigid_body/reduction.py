@@ -28,8 +28,12 @@ each solved (with sympy) for its variable and then iterated as a truncated serie
 \\dot G_0)`. The forcing is then :math:`\\ddot P + \\omega^2 P` with
 :math:`\\ddot P = \\nabla \\dot p_1 \\cdot f` evaluated on that series.
 
-The series arithmetic uses sympy's sparse polynomial rings (coefficients in
-:math:`\\mathbb{Q}(a, b)`), which keeps the order-3 disk reduction to about a second.
+The series arithmetic stays in one of sympy's sparse polynomial rings
+(:mod:`problems.rigid_body._series_ring`) until the end; the sympy expressions of the result
+(``F``, ``Phi``, ``system``, ``full_state`` ...) are built only when asked for. A reduction is kept in
+memory and on disk (:func:`perturb.cache.cached`, kind ``reduction``). Orders that are solved for one
+body's parameter values (:func:`specialised_disk_reduction`) put those values in *before* the
+reduction: the same series, evaluated, at a fraction of the cost.
 
 References
 ----------
@@ -39,38 +43,54 @@ References
 
 from __future__ import annotations
 
+import hashlib
+import math
 from collections.abc import Callable, Mapping
-from functools import cache, cached_property
+from fractions import Fraction
+from functools import cache, cached_property, lru_cache
+from pathlib import Path
 
 import numpy as np
 import sympy as sp
 from attrs import field, frozen
-from sympy.polys.domains import QQ
-from sympy.polys.rings import PolyElement, ring
+from sympy.polys.rings import PolyElement
 
+from perturb.cache import cached
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.system import EPS, QuasilinearSystem
-from problems.rigid_body.equations import (
-    NONDIMENSIONAL_STATE,
-    a,
-    b,
-    gamma1,
-    gamma2,
-    gamma3,
-    inertia_ratio_values,
-    k,
-    nondimensional_equations,
-    nondimensional_integrals,
-    p1,
-    q1,
-    r1,
-    x0p,
-    y0p,
-    z0p,
+from problems.rigid_body._elimination import (  # the symbols are public here
+    DISK_PARAMETERS,
+    G0,
+    GENERAL_PARAMETERS,
+    INITIAL_VALUES,
+    LIGHT_SPECS,
+    P0,
+    REDUCED_STATE,
+    VARIABLES,
+    Builder,
+    G,
+    P,
+    derived,
+    dG,
+    dG0,
+    dP,
+    dP0,
+    gamma3_0,
 )
+from problems.rigid_body._inverse_map import PolynomialMap, compile_polynomials
+from problems.rigid_body._series_ring import SeriesRing
+from problems.rigid_body.equations import NONDIMENSIONAL_STATE, a, b, gamma1, p1
 
 __all__ = [
     "DISK_PARAMETERS",
+    "G",
+    "G0",
+    "P",
+    "P0",
+    "dG",
+    "dG0",
+    "dP",
+    "dP0",
     "GENERAL_PARAMETERS",
     "INITIAL_VALUES",
     "REDUCED_STATE",
@@ -79,316 +99,37 @@ __all__ = [
     "disk_reduction",
     "general_body_reduction",
     "gamma3_0",
+    "specialised_disk_reduction",
+    "specialised_general_body_reduction",
 ]
 
-# ---------------------------------------------------------------------------- symbols
-P, G, dP, dG = sp.symbols("P G dP dG")
-P0, G0, dP0, dG0 = sp.symbols("P0 G0 dP0 dG0")
-#: Initial value of gamma'' (the paper's gamma0'').
-gamma3_0 = sp.Symbol("gamma3_0")
-#: Reduced state in the order (P, dP, G, dG).
-REDUCED_STATE = (P, dP, G, dG)
-#: Initial values in the engine's order: x(0)'s then xdot(0)'s.
-INITIAL_VALUES = (P0, G0, dP0, dG0)
-DISK_PARAMETERS = (a, b, k, x0p, y0p, gamma3_0)
-GENERAL_PARAMETERS = (a, b, k, x0p, y0p, z0p, gamma3_0)
-
-#: Placeholders for the constants of the energy and area integrals.
-_H0, _K0 = sp.symbols("H_0 K_0")
-#: Ring generators standing for 1/a and 1/b (polynomial mode of the series ring).
-_INV_A, _INV_B = sp.symbols("inv_a inv_b")
-
-#: Highest reduction order accepted (cold cost of the disk: order 3 ~2 s, 4 ~5 s, 5 ~15 s).
+#: Highest reduction order accepted (symbolic disk, cold: order 3 ~0.2 s, 4 ~0.5 s, 5 ~2.5 s of
+#: series arithmetic, plus the sympy expressions of what is asked for).
 MAX_REDUCTION_ORDER = 5
-
-_INITIAL_OF = {P: P0, dP: dP0, G: G0, dG: dG0}
-
-
-# ---------------------------------------------------------------------------- truncated series
-class _SeriesRing:
-    """Polynomials in all symbols, truncated in epsilon at ``order``.
-
-    With ``fraction_field=False`` the ratios a, b and their inverses ``1/a``, ``1/b`` are ring
-    generators over QQ (fast; enough for the disk, whose only denominators are a and b); otherwise
-    the coefficients live in QQ(a, b) (general body: 1/(1 - b) and the like appear).
-    """
-
-    def __init__(self, order: int, params: tuple[sp.Symbol, ...], fraction_field: bool):
-        self.order = order
-        self.fraction_field = fraction_field
-        other = tuple(s for s in params if s not in (a, b))
-        extra = () if fraction_field else (a, b, _INV_A, _INV_B)
-        self.symbols = (
-            EPS,
-            *NONDIMENSIONAL_STATE,
-            *REDUCED_STATE,
-            *INITIAL_VALUES,
-            _H0,
-            _K0,
-            *extra,
-            *other,
-        )
-        domain = QQ.frac_field(a, b) if fraction_field else QQ
-        self.ring, *_ = ring(self.symbols, domain)
-        self.index = {s: i for i, s in enumerate(self.symbols)}
-
-    def __call__(self, expr) -> PolyElement:
-        expr = sp.expand(sp.sympify(expr))
-        if not self.fraction_field:
-            inverse = {a: _INV_A, b: _INV_B}
-            expr = expr.replace(
-                lambda e: e.is_Pow and e.base in inverse and e.exp.is_negative,
-                lambda e: inverse[e.base] ** (-e.exp),
-            )
-            stray = expr.free_symbols - set(self.symbols)
-            if stray or any(
-                isinstance(d, sp.Pow) and d.exp.is_negative for d in sp.preorder_traversal(expr)
-            ):
-                raise AssertionError(f"cannot represent {expr} with inverse generators only")
-        return self.ring.from_expr(expr)
-
-    def gen(self, symbol: sp.Symbol) -> PolyElement:
-        return self.ring.gens[self.index[symbol]]
-
-    def trunc(self, poly: PolyElement) -> PolyElement:
-        n = self.order
-        return self.ring.from_dict({m: c for m, c in poly.items() if m[0] <= n})
-
-    def _by_degree(self, poly: PolyElement) -> list[PolyElement]:
-        parts: list[dict] = [{} for _ in range(self.order + 1)]
-        for m, c in poly.items():
-            if m[0] <= self.order:
-                parts[m[0]][m] = c
-        return [self.ring.from_dict(d) if d else None for d in parts]
-
-    def mul(self, x: PolyElement, y: PolyElement) -> PolyElement:
-        """Product truncated at eps**order (only the pairs of degrees that survive are multiplied)."""
-        xs, ys = self._by_degree(x), self._by_degree(y)
-        out = self.ring.zero
-        for i, xi in enumerate(xs):
-            if xi is None:
-                continue
-            for j in range(self.order + 1 - i):
-                if ys[j] is not None:
-                    out += xi * ys[j]
-        return out
-
-    def substitute(
-        self, poly: PolyElement, mapping: Mapping[sp.Symbol, PolyElement]
-    ) -> PolyElement:
-        """Replace generators by series (truncated products)."""
-        slots = [(self.index[s], v) for s, v in mapping.items()]
-        powers: dict[tuple[int, int], PolyElement] = {}
-
-        def power(i: int, value: PolyElement, e: int) -> PolyElement:
-            key = (i, e)
-            if key not in powers:
-                powers[key] = value if e == 1 else self.mul(power(i, value, e - 1), value)
-            return powers[key]
-
-        result = self.ring.zero
-        for monom, coeff in poly.items():
-            rest = list(monom)
-            factors = []
-            for i, value in slots:
-                if rest[i]:
-                    factors.append(power(i, value, rest[i]))
-                    rest[i] = 0
-            term = self.ring.from_dict({tuple(rest): coeff})
-            if term and rest[0] > self.order:
-                continue
-            for f in factors:
-                term = self.mul(term, f)
-            result += term
-        return self.trunc(result)
-
-    def _split_unit(self, s: PolyElement):
-        """s = c0 * (1 + u) with c0 a constant and u = O(eps)."""
-        lowest = {m: c for m, c in s.items() if m[0] == 0}
-        if len(lowest) != 1 or any(next(iter(lowest))):
-            raise AssertionError(f"series has no constant leading term: {s.as_expr()}")
-        c0 = next(iter(lowest.values()))
-        return c0, s * (1 / c0) - 1
-
-    def inverse(self, s: PolyElement) -> PolyElement:
-        c0, u = self._split_unit(s)
-        out, term = self.ring.one, self.ring.one
-        for _ in range(self.order):
-            term = self.mul(term, -u)
-            out += term
-        return out * (1 / c0)
-
-    def sqrt(self, s: PolyElement) -> PolyElement:
-        c0, u = self._split_unit(s)
-        if c0 != 1:
-            raise AssertionError(f"sqrt of a series with leading term {c0} (expected 1)")
-        out, term = self.ring.one, self.ring.one
-        for n in range(1, self.order + 1):
-            term = self.mul(term, u)
-            out += self.ring.domain.convert(sp.binomial(sp.Rational(1, 2), n)) * term
-        return out
-
-    def to_expr(self, poly: PolyElement) -> sp.Expr:
-        expr = poly.as_expr()
-        if not self.fraction_field:
-            expr = expr.subs({_INV_A: 1 / a, _INV_B: 1 / b})
-        return sp.expand(expr)
-
-    def coefficients(self, poly: PolyElement) -> tuple[sp.Expr, ...]:
-        """Coefficients of eps**0 .. eps**order as expanded sympy expressions."""
-        grouped: list[dict] = [{} for _ in range(self.order + 1)]
-        for m, c in poly.items():
-            grouped[m[0]][(0, *m[1:])] = c
-        return tuple(self.to_expr(self.ring.from_dict(d)) if d else sp.S.Zero for d in grouped)
-
-
-# ---------------------------------------------------------------------------- derivation
-@frozen
-class _Spec:
-    """What distinguishes the disk from the general body."""
-
-    equations: tuple[sp.Expr, ...]  # dimensionless rhs (p1, q1, r1, gamma1..3)
-    energy: sp.Expr
-    area: sp.Expr
-    shift_p: sp.Expr  # p1 = P + shift_p
-    shift_g: sp.Expr  # gamma = G + shift_g * P
-    omega_sq: sp.Expr  # frequency squared of P
-    params: tuple[sp.Symbol, ...]
-    fraction_field: bool  # coefficients in QQ(a, b) (general) or a, b, 1/a, 1/b generators (disk)
-
-
-def _solve_linear(equation: sp.Expr, unknown: sp.Symbol) -> tuple[sp.Expr, sp.Expr]:
-    """Solve ``equation = 0``, linear in ``unknown``: return (numerator, denominator).
-
-    ``equation = alpha * unknown + beta`` gives ``unknown = -beta / alpha``; both are polynomials,
-    so the series evaluation needs one series inversion (of alpha).
-    """
-    equation = sp.expand(equation)
-    alpha = sp.diff(equation, unknown)
-    if alpha == 0 or sp.diff(alpha, unknown) != 0:
-        raise AssertionError(f"{equation} = 0 is not linear in {unknown}")
-    beta = sp.expand(equation.subs(unknown, 0))
-    return -beta, alpha
-
-
-@frozen
-class _Eliminations:
-    """Solved forms: each unknown as numerator/denominator (sympy), and r1**2 for the energy."""
-
-    q1: tuple[sp.Expr, sp.Expr]
-    gamma2: tuple[sp.Expr, sp.Expr]
-    gamma3: tuple[sp.Expr, sp.Expr]
-    r1_squared: tuple[sp.Expr, sp.Expr]
-
-
-def _eliminations(spec: _Spec) -> _Eliminations:
-    f_p, _, _, f_g, _, _ = spec.equations
-    # p1 = P + const  =>  dp1/dtau = dP
-    q_sol = _solve_linear(f_p - dP, q1)
-    # gamma = G + s_G P  =>  dgamma/dtau = dG + s_G dP
-    g2_sol = _solve_linear(f_g - dG - spec.shift_g * dP, gamma2)
-    # area integral = its value at tau = 0
-    g3_sol = _solve_linear(spec.area - _K0, gamma3)
-    # energy: H = c2 r1**2 + H|_{r1=0} (no linear term), so r1**2 = (H0 - H|_{r1=0}) / c2
-    poly = sp.Poly(spec.energy, r1)
-    if poly.degree() != 2 or poly.coeff_monomial(r1) != 0:
-        raise AssertionError("the energy integral is not of the form c2*r1**2 + rest")
-    c2 = poly.coeff_monomial(r1**2)
-    rest = poly.coeff_monomial(1)
-    return _Eliminations(q_sol, g2_sol, g3_sol, (sp.expand(_H0 - rest), sp.expand(c2)))
-
-
-class _Builder:
-    """Runs the elimination as truncated series in one polynomial ring."""
-
-    def __init__(self, spec: _Spec, order: int):
-        self.spec = spec
-        self.sr = _SeriesRing(order, spec.params, spec.fraction_field)
-        self.elim = _eliminations(spec)
-        conv = self.sr
-        self.q_num, self.q_den = map(conv, self.elim.q1)
-        self.g2_num, self.g2_den = map(conv, self.elim.gamma2)
-        self.g3_num, self.g3_den = map(conv, self.elim.gamma3)
-        self.rs_num, self.rs_den = map(conv, self.elim.r1_squared)
-
-    def _ratio(self, num, den, mapping):
-        return self.sr.mul(
-            self.sr.substitute(num, mapping), self.sr.inverse(self.sr.substitute(den, mapping))
-        )
-
-    def _iterate(self, state: dict, reduced: Mapping, constants: Mapping | None) -> dict:
-        """Fixed-point iteration; ``constants`` None means r1 = 1, gamma'' = gamma3_0 (tau = 0)."""
-        sr = self.sr
-        for _ in range(sr.order + 3):
-            previous = dict(state)
-            mapping = {**state, **reduced, **(constants or {})}
-            state[q1] = self._ratio(self.q_num, self.q_den, mapping)
-            mapping[q1] = state[q1]
-            state[gamma2] = self._ratio(self.g2_num, self.g2_den, mapping)
-            mapping[gamma2] = state[gamma2]
-            if constants is not None:
-                state[gamma3] = self._ratio(self.g3_num, self.g3_den, mapping)
-                mapping[gamma3] = state[gamma3]
-                r_sq = self._ratio(self.rs_num, self.rs_den, mapping)
-                state[r1] = sr.sqrt(r_sq)
-            if state == previous:
-                return state
-        raise AssertionError("the elimination series did not converge")
-
-    def _start(self, reduced: Mapping[sp.Symbol, PolyElement]) -> dict:
-        sr = self.sr
-        shift_p = sr(self.spec.shift_p)
-        shift_g = sr(self.spec.shift_g)
-        p_val = reduced[P]
-        return {
-            p1: sr.trunc(p_val + shift_p),
-            gamma1: sr.trunc(reduced[G] + sr.mul(shift_g, p_val)),
-            r1: sr.ring.one,
-            gamma3: sr(gamma3_0),
-            q1: sr.ring.zero,
-            gamma2: sr.ring.zero,
-        }
-
-    def run(self):
-        sr = self.sr
-        # --- tau = 0: r1 = 1, gamma'' = gamma3_0, reduced state = initial values
-        initial_reduced = {s: sr.gen(_INITIAL_OF[s]) for s in REDUCED_STATE}
-        initial = self._iterate(self._start(initial_reduced), initial_reduced, None)
-        h0 = sr.substitute(sr(self.spec.energy), initial)
-        k0 = sr.substitute(sr(self.spec.area), initial)
-        # --- any tau
-        reduced = {s: sr.gen(s) for s in REDUCED_STATE}
-        state = self._iterate(self._start(reduced), reduced, {_H0: h0, _K0: k0})
-        # --- accelerations along the flow: d/dtau of dp1/dtau and of dgamma/dtau
-        f = self.spec.equations
-        second = []
-        for i in (0, 3):
-            expr = sum(sp.diff(f[i], y) * fy for y, fy in zip(NONDIMENSIONAL_STATE, f, strict=True))
-            second.append(sr.substitute(sr(sp.expand(expr)), state))
-        ddp, ddgamma = second
-        shift_g = sr(self.spec.shift_g)
-        ddg = sr.trunc(ddgamma - sr.mul(shift_g, ddp))
-        rhs_p = sr.trunc(ddp + sr(self.spec.omega_sq) * sr.gen(P))
-        rhs_g = sr.trunc(ddg + sr.gen(G))
-        geometric = sr.substitute(sr(gamma1**2 + gamma2**2 + gamma3**2), state)
-        return state, initial, rhs_p, rhs_g, geometric, h0, k0
+#: Specialised reductions kept in memory (one per body and order; each is a few hundred kB).
+SPECIALISED_CACHE_SIZE = 32
 
 
 # ---------------------------------------------------------------------------- result
-def _tuple_of_exprs(values) -> tuple[sp.Expr, ...]:
-    return tuple(sp.sympify(v) for v in values)
-
-
 @frozen
 class Reduction:
     """A derived reduction: the quasilinear system and the maps between the two sets of variables.
 
+    The series live in a polynomial ring; each sympy attribute below is built on first use.
+
     Attributes
     ----------
-    system : perturb.system.QuasilinearSystem
-        Coordinates (P, G), velocities (dP, dG), rhs in ``epsilon``.
+    kind : str
+        ``"disk"`` or ``"general"``.
     order : int
         Truncation order in epsilon of the rhs and of the maps.
+    parameters : tuple of sympy.Symbol
+        The parameters the series are symbolic in (empty for a specialised reduction).
+    values : tuple of (sympy.Symbol, sympy.Rational)
+        The parameters put in before the reduction (empty for a symbolic one).
+    system : perturb.system.QuasilinearSystem
+        Coordinates (P, G), velocities (dP, dG), rhs in ``epsilon``. For a specialised reduction it
+        equals ``symbolic.system.with_values(values)``.
     F, Phi : tuple of sympy.Expr
         ``F[n]`` is the coefficient of ``epsilon**n`` in the P-equation (``n = 0..order``), likewise
         ``Phi`` for the G-equation.
@@ -398,75 +139,171 @@ class Reduction:
     initial_full_state : tuple of sympy.Expr
         The same at tau = 0, in the initial values only.
     reduced_state : tuple of sympy.Expr
-        The exact forward map: ``(P, dP, G, dG)`` as functions of the full dimensionless state.
+        The exact forward map: ``(P, dP, G, dG)`` as functions of the full dimensionless state (in
+        the body's parameters, also for a specialised reduction: it is exact, not a series).
     reduced_accelerations : tuple of sympy.Expr
         ``(d2P, d2G)`` as exact functions of the full state (along the flow).
     geometric_integral : sympy.Expr
         :math:`|\\gamma|^2` in the reduced variables (a first integral, equal to 1).
     energy_constant, area_constant : sympy.Expr
         Values of the dimensionless energy and area integrals in terms of the initial values.
-    parameters : tuple of sympy.Symbol
     """
 
-    system: QuasilinearSystem
+    kind: str
     order: int
-    F: tuple[sp.Expr, ...] = field(converter=_tuple_of_exprs)
-    Phi: tuple[sp.Expr, ...] = field(converter=_tuple_of_exprs)
-    full_state: tuple[sp.Expr, ...] = field(converter=_tuple_of_exprs)
-    initial_full_state: tuple[sp.Expr, ...] = field(converter=_tuple_of_exprs)
-    reduced_state: tuple[sp.Expr, ...] = field(converter=_tuple_of_exprs)
-    reduced_accelerations: tuple[sp.Expr, ...] = field(converter=_tuple_of_exprs)
-    geometric_integral: sp.Expr
-    energy_constant: sp.Expr
-    area_constant: sp.Expr
     parameters: tuple[sp.Symbol, ...]
+    values: tuple[tuple[sp.Symbol, sp.Rational], ...]
+    _ring: SeriesRing = field(eq=False, repr=False)
+    _series: Mapping[str, PolyElement] = field(eq=False, repr=False)
+
+    # ------------------------------------------------------------------ sympy views
+    @cached_property
+    def F(self) -> tuple[sp.Expr, ...]:
+        return self._ring.coefficients(self._series["rhs_p"])
+
+    @cached_property
+    def Phi(self) -> tuple[sp.Expr, ...]:
+        return self._ring.coefficients(self._series["rhs_g"])
+
+    @cached_property
+    def full_state(self) -> tuple[sp.Expr, ...]:
+        return tuple(self._expr(f"state:{s.name}") for s in NONDIMENSIONAL_STATE)
+
+    @cached_property
+    def initial_full_state(self) -> tuple[sp.Expr, ...]:
+        return tuple(self._expr(f"initial:{s.name}") for s in NONDIMENSIONAL_STATE)
+
+    @cached_property
+    def geometric_integral(self) -> sp.Expr:
+        return self._expr("geometric")
+
+    @cached_property
+    def energy_constant(self) -> sp.Expr:
+        return self._expr("energy")
+
+    @cached_property
+    def area_constant(self) -> sp.Expr:
+        return self._expr("area")
+
+    def _expr(self, name: str) -> sp.Expr:
+        return self._ring.to_expr(self._series[name])
+
+    @cached_property
+    def system(self) -> QuasilinearSystem:
+        spec = LIGHT_SPECS[self.kind]
+        frequencies = spec["frequencies"]()
+        if self.values:
+            frequencies = tuple(sp.sympify(w).subs(dict(self.values)) for w in frequencies)
+        rhs = [sp.Add(*[EPS**n * c for n, c in enumerate(coeffs)]) for coeffs in (self.F, self.Phi)]
+        return QuasilinearSystem(
+            coordinates=(P, G),
+            velocities=(dP, dG),
+            frequencies=frequencies,
+            rhs=rhs,
+            parameter=EPS,
+            parameters=self.parameters,
+            initial_values=INITIAL_VALUES,
+            first_integrals=(self.geometric_integral,),
+            name=spec["name"],
+            truncation=self.order + 1,
+        )
+
+    @cached_property
+    def reduced_state(self) -> tuple[sp.Expr, ...]:
+        spec = derived(self.kind)[0]
+        f, shift_g = spec.equations, spec.shift_g
+        return (
+            p1 - spec.shift_p,
+            f[0],
+            gamma1 - shift_g * (p1 - spec.shift_p),
+            f[3] - shift_g * f[0],
+        )
+
+    @cached_property
+    def reduced_accelerations(self) -> tuple[sp.Expr, ...]:
+        spec, _, (ddp, ddgamma) = derived(self.kind)
+        return (ddp, sp.expand(ddgamma - spec.shift_g * ddp))
 
     # ------------------------------------------------------------------ numeric versions
-    def _args(self, values: Mapping, eps: float) -> tuple[float, ...]:
+    @property
+    def body_parameters(self) -> tuple[sp.Symbol, ...]:
+        """Every parameter of the body (also those a specialised reduction has put in)."""
+        return LIGHT_SPECS[self.kind]["params"]
+
+    def _check(self, values: Mapping, eps: float) -> tuple[dict[str, float], float]:
         by_name = {str(key): val for key, val in values.items()}
-        missing = [s.name for s in self.parameters if s.name not in by_name]
+        missing = [s.name for s in self.body_parameters if s.name not in by_name]
         if missing:
             raise bad_value("values", dict(by_name), f"give values for {missing}")
-        out = tuple(float(by_name[s.name]) for s in self.parameters)
-        for s, value in zip(self.parameters, out, strict=True):
+        out = {s.name: float(by_name[s.name]) for s in self.body_parameters}
+        for name, value in out.items():
             if np.isnan(value) or np.isinf(value):
-                raise bad_value(s.name, value, "give a finite real number")
+                raise bad_value(name, value, "give a finite real number")
         for name in ("a", "b"):
-            if float(by_name[name]) <= 0:
-                raise bad_value(name, float(by_name[name]), "moment ratios must be positive")
-        if float(by_name["k"]) < 0:
-            raise bad_value("k", float(by_name["k"]), "give k = 3C/(RMl) >= 0")
-        check_gamma3_0(by_name["gamma3_0"])
+            if out[name] <= 0:
+                raise bad_value(name, out[name], "moment ratios must be positive")
+        if out["k"] < 0:
+            raise bad_value("k", out["k"], "give k = 3C/(RMl) >= 0")
+        check_gamma3_0(out["gamma3_0"])
+        for symbol, fixed in self.values:
+            if not math.isclose(out[symbol.name], float(fixed), rel_tol=1e-12, abs_tol=1e-15):
+                raise bad_value(
+                    symbol.name,
+                    out[symbol.name],
+                    f"this reduction was derived for {symbol.name} = {float(fixed)!r}; use the "
+                    "reduction of these values",
+                )
         eps = float(eps)
         if not eps > 0 or np.isinf(eps):
             raise bad_value("eps", eps, "give a positive finite expansion parameter")
-        return (*out, eps)
+        return out, eps
 
-    def _lambdify(self, exprs, first, second) -> Callable:
-        args = (*self.parameters, EPS)
-        return sp.lambdify((first, second, args), list(exprs), "numpy", cse=True)
-
-    @cached_property
-    def _inverse_lambda(self) -> Callable:
-        return self._lambdify(self.full_state, REDUCED_STATE, INITIAL_VALUES)
+    def _lambdify(self, exprs, first, second, symbols) -> Callable:
+        return sp.lambdify((first, second, (*symbols, EPS)), list(exprs), "numpy", cse=True)
 
     @cached_property
     def _forward_lambda(self) -> Callable:
         return self._lambdify(
-            self.reduced_state + self.reduced_accelerations, NONDIMENSIONAL_STATE, ()
+            self.reduced_state + self.reduced_accelerations,
+            NONDIMENSIONAL_STATE,
+            (),
+            self.body_parameters,
         )
 
     @cached_property
     def _rhs_lambda(self) -> Callable:
-        return self._lambdify(self.system.rhs, REDUCED_STATE, INITIAL_VALUES)
+        return self._lambdify(self.system.rhs, REDUCED_STATE, INITIAL_VALUES, self.parameters)
+
+    @cached_property
+    def _inverse_compiled(self) -> dict:
+        return {}
+
+    def _inverse_lambda(self, values: dict[str, float], eps: float) -> PolynomialMap:
+        """The inverse map with the parameters and eps put in exactly (kept per values)."""
+        key = (tuple(values[s.name] for s in self.parameters), eps)
+        cache_ = self._inverse_compiled
+        if key not in cache_:
+            numbers = {s: Fraction(values[s.name]) for s in self.parameters}
+            numbers[EPS] = Fraction(eps)
+            polys = [self._series[f"state:{s.name}"] for s in NONDIMENSIONAL_STATE]
+            if len(cache_) >= SPECIALISED_CACHE_SIZE:
+                cache_.clear()
+            cache_[key] = compile_polynomials(
+                self._ring, polys, numbers, REDUCED_STATE, INITIAL_VALUES
+            )
+        return cache_[key]
 
     def inverse_function(self, values: Mapping, eps: float) -> Callable[..., np.ndarray]:
         """Numeric inverse map ``(Z, Z0) -> (p1, q1, r1, gamma1, gamma2, gamma3)``.
 
+        The parameters and ``eps`` are put in exactly (as the binary values of the floats) before
+        the series are compiled, so the compiled map is a short polynomial in ``Z, Z0``.
+
         Parameters
         ----------
         values : Mapping
-            Parameter name (or symbol) -> value, for every symbol of ``parameters``.
+            Parameter name (or symbol) -> value, for every parameter of the body (a specialised
+            reduction checks them against the values it was derived for).
         eps : float
             The expansion parameter c/r0.
 
@@ -476,9 +313,8 @@ class Reduction:
             ``f(Z, Z0)`` with ``Z = (P, dP, G, dG)`` (scalars or arrays of one shape) and
             ``Z0 = (P0, G0, dP0, dG0)``; returns an array of shape (6, ...).
         """
-        f = self._inverse_lambda
-        args = self._args(values, eps)
-        return lambda z, z0: np.array(np.broadcast_arrays(*f(tuple(z), tuple(z0), args)))
+        checked, eps = self._check(values, eps)
+        return self._inverse_lambda(checked, eps)
 
     def forward_function(self, values: Mapping, eps: float) -> Callable[[np.ndarray], np.ndarray]:
         """Numeric exact forward map ``y -> (P, dP, G, dG, d2P, d2G)``.
@@ -486,15 +322,55 @@ class Reduction:
         ``y = (p1, q1, r1, gamma1, gamma2, gamma3)`` (shape (6,) or (6, n)); the derivatives are
         those along the full flow.
         """
+        checked, eps = self._check(values, eps)
         f = self._forward_lambda
-        args = self._args(values, eps)
+        args = (*(checked[s.name] for s in self.body_parameters), eps)
         return lambda y: np.array(np.broadcast_arrays(*f(tuple(y), (), args)))
 
     def rhs_function(self, values: Mapping, eps: float) -> Callable[..., np.ndarray]:
         """Numeric ``(Z, Z0) -> (rhs_P, rhs_G)`` of the reduced system (all orders kept)."""
+        checked, eps = self._check(values, eps)
         f = self._rhs_lambda
-        args = self._args(values, eps)
+        args = (*(checked[s.name] for s in self.parameters), eps)
         return lambda z, z0: np.array(np.broadcast_arrays(*f(tuple(z), tuple(z0), args)))
+
+
+@cache
+def _source_fingerprint() -> str:
+    """Hash of the sources the reduction is derived by: an edit invalidates the disk cache."""
+    here = Path(__file__).parent
+    digest = hashlib.sha256()
+    for name in ("reduction.py", "_elimination.py", "_series_ring.py", "equations.py"):
+        digest.update(name.encode() + b"\0" + (here / name).read_bytes())
+    return digest.hexdigest()[:16]
+
+
+def _reduce(kind: str, order: int, values: tuple[tuple[sp.Symbol, sp.Rational], ...]) -> Reduction:
+    light = LIGHT_SPECS[kind]
+    params = light["params"]
+    sr = SeriesRing(order, VARIABLES, params, (a, b), light["fraction_field"], dict(values))
+    if sr.fraction_field:  # coefficients in QQ(a, b): computed, not kept on disk
+        series = Builder(kind, sr).run()
+    else:
+        parts = (
+            kind,
+            order,
+            tuple((s.name, sp.srepr(v)) for s, v in values),
+            _source_fingerprint(),
+        )
+
+        def compute() -> dict:
+            return {name: sr.export(poly) for name, poly in Builder(kind, sr).run().items()}
+
+        series = {name: sr.load(data) for name, data in cached("reduction", parts, compute).items()}
+    return Reduction(
+        kind=kind,
+        order=order,
+        parameters=() if values else params,
+        values=values,
+        ring=sr,
+        series=series,
+    )
 
 
 def _check_order(order: int) -> int:
@@ -507,53 +383,20 @@ def _check_order(order: int) -> int:
     return order
 
 
-def _build(spec: _Spec, order: int, name: str, frequencies) -> Reduction:
-    builder = _Builder(spec, order)
-    state, initial, rhs_p, rhs_g, geometric, h0, k0 = builder.run()
-    sr = builder.sr
-    F = sr.coefficients(rhs_p)
-    Phi = sr.coefficients(rhs_g)
-    rhs = [sp.Add(*[EPS**n * c for n, c in enumerate(coeffs)]) for coeffs in (F, Phi)]
-    geometric_expr = sr.to_expr(geometric)
-    system = QuasilinearSystem(
-        coordinates=(P, G),
-        velocities=(dP, dG),
-        frequencies=frequencies,
-        rhs=rhs,
-        parameter=EPS,
-        parameters=spec.params,
-        initial_values=INITIAL_VALUES,
-        first_integrals=(geometric_expr,),
-        name=name,
-        truncation=order + 1,
-    )
-    f = spec.equations
-    shift_g = spec.shift_g
-    reduced_state = (
-        p1 - spec.shift_p,
-        f[0],
-        gamma1 - shift_g * (p1 - spec.shift_p),
-        f[3] - shift_g * f[0],
-    )
-    dd = [
-        sp.expand(sum(sp.diff(f[i], y) * fy for y, fy in zip(NONDIMENSIONAL_STATE, f, strict=True)))
-        for i in (0, 3)
-    ]
-    accelerations = (dd[0], sp.expand(dd[1] - shift_g * dd[0]))
-    return Reduction(
-        system=system,
-        order=order,
-        F=F,
-        Phi=Phi,
-        full_state=[sr.to_expr(state[s]) for s in NONDIMENSIONAL_STATE],
-        initial_full_state=[sr.to_expr(initial[s]) for s in NONDIMENSIONAL_STATE],
-        reduced_state=reduced_state,
-        reduced_accelerations=accelerations,
-        geometric_integral=geometric_expr,
-        energy_constant=sr.to_expr(h0),
-        area_constant=sr.to_expr(k0),
-        parameters=spec.params,
-    )
+def _exact_values(kind: str, values: Mapping) -> tuple[tuple[sp.Symbol, sp.Rational], ...]:
+    """``values`` (name or symbol -> number) as exact rationals for every parameter of ``kind``."""
+    by_name = {str(key): val for key, val in values.items()}
+    params = LIGHT_SPECS[kind]["params"]
+    missing = [s.name for s in params if s.name not in by_name]
+    if missing:
+        raise bad_value("values", dict(by_name), f"give values for {missing}")
+    out = []
+    for s in params:
+        value = sp.sympify(by_name[s.name])
+        if not value.is_Rational:
+            raise bad_value(s.name, by_name[s.name], "give an exact rational (sympy Rational)")
+        out.append((s, value))
+    return tuple(out)
 
 
 @cache
@@ -578,21 +421,27 @@ def disk_reduction(order: int = 3) -> Reduction:
     C1 = b - a (the reference's convention), so expressions are equal to other forms only modulo
     a + b = 1.
     """
-    order = _check_order(order)
-    ratios = inertia_ratio_values(disk=True)
-    eqs = nondimensional_equations(True, ratios=True).subs(ratios).subs(z0p, 0)
-    ints = nondimensional_integrals(True)
-    spec = _Spec(
-        equations=tuple(sp.expand(e) for e in eqs),
-        energy=ints["energy"].subs(z0p, 0),
-        area=ints["area"],
-        shift_p=EPS * x0p * gamma3_0 / b,
-        shift_g=EPS * a * gamma3_0,
-        omega_sq=sp.S.One,
-        params=DISK_PARAMETERS,
-        fraction_field=False,
-    )
-    return _build(spec, order, "disk-newtonian-fast-spin", (1, 1))
+    return _reduce("disk", _check_order(order), ())
+
+
+def specialised_disk_reduction(order: int, values: Mapping) -> Reduction:
+    """:func:`disk_reduction` for one body: the parameters put in (exactly) before the reduction.
+
+    Parameters
+    ----------
+    order : int
+        Truncation order in epsilon.
+    values : Mapping
+        Parameter name (or symbol) -> sympy Rational, for each of ``(a, b, k, x0p, y0p, gamma3_0)``.
+
+    Returns
+    -------
+    Reduction
+        With no free parameters; its ``system`` equals ``disk_reduction(order).system
+        .with_values(values)`` and its series are those of :func:`disk_reduction` evaluated at
+        ``values`` (evaluation commutes with every step of the reduction).
+    """
+    return _specialised("disk", _check_order(order), _exact_values("disk", values))
 
 
 @cache
@@ -608,22 +457,18 @@ def general_body_reduction(order: int = 2) -> Reduction:
     Valid for :math:`A_1 \\ne 0` (B != C, so that q1 can be eliminated) and away from the resonance
     :math:`\\omega = 1` (the disk), where the O(eps) forcing has a small divisor.
     """
-    order = _check_order(order)
-    ratios = inertia_ratio_values(disk=False)
-    eqs = nondimensional_equations(True, ratios=True).subs(ratios)
-    ints = nondimensional_integrals(True)
-    omega_sq = sp.factor(-ratios[sp.Symbol("A1")] * ratios[sp.Symbol("B1")])
-    spec = _Spec(
-        equations=tuple(sp.expand(e) for e in eqs),
-        energy=ints["energy"],
-        area=ints["area"],
-        shift_p=sp.S.Zero,
-        shift_g=sp.S.Zero,
-        omega_sq=omega_sq,
-        params=GENERAL_PARAMETERS,
-        fraction_field=True,
-    )
-    return _build(spec, order, "rigid-body-fast-spin", (sp.sqrt(omega_sq), 1))
+    return _reduce("general", _check_order(order), ())
+
+
+def specialised_general_body_reduction(order: int, values: Mapping) -> Reduction:
+    """:func:`general_body_reduction` with the parameters put in first (see
+    :func:`specialised_disk_reduction`); ``values`` covers ``(a, b, k, x0p, y0p, z0p, gamma3_0)``."""
+    return _specialised("general", _check_order(order), _exact_values("general", values))
+
+
+@lru_cache(maxsize=SPECIALISED_CACHE_SIZE)
+def _specialised(kind: str, order: int, values: tuple) -> Reduction:
+    return _reduce(kind, order, values)
 
 
 def check_gamma3_0(value: float) -> float:
