@@ -12,6 +12,7 @@ from perturb.errors import (
     UnknownNameError,
 )
 from perturb.method import PoincareMethod, solve
+from perturb.method.families import Family, FamilyList, find_families
 from perturb.solution import PeriodicSolution, SolutionFailed, Status
 from perturb.system import EPS, QuasilinearSystem, Regime
 
@@ -20,6 +21,8 @@ __version__ = "0.1.0"
 __all__ = [
     "EPS",
     "AccuracyWarning",
+    "Family",
+    "FamilyList",
     "IntegrationError",
     "InvalidParameterError",
     "InvalidSystemError",
@@ -31,5 +34,6 @@ __all__ = [
     "SolutionFailed",
     "Status",
     "UnknownNameError",
+    "find_families",
     "solve",
 ]
