@@ -171,7 +171,7 @@ class Problem(ABC):
         from perturb import find_families
 
         system, options = self.family_options(order)
-        key = (type(self).__module__, type(self).__qualname__, order, repr(sorted(options.items())))
+        key = (type(self).__qualname__, order, system, repr(sorted(options.items())))
         if key not in _FAMILY_CACHE:
             _FAMILY_CACHE[key] = find_families(system, order, **options)
         return _FAMILY_CACHE[key]

@@ -129,7 +129,40 @@ def solution_components(
         When sympy cannot solve a part within ``seconds``.
     """
     unknowns = list(unknowns)
-    parts = _split([sp.expand(e) for e in eqs], unknowns)
+    polys, back = _polynomial_form(eqs, set(unknowns))
+    components = [
+        Component(
+            values={s: sp.sympify(v).xreplace(back) for s, v in c.values.items()}, free=c.free
+        )
+        for c in _components(polys, unknowns, preference, seconds)
+    ]
+    return [c for c in components if all(vanishes(sp.expand(e.xreplace(c.values))) for e in eqs)]
+
+
+def _polynomial_form(eqs: list, unknowns: set) -> tuple[list, dict]:
+    """Numerators of ``eqs`` with every non-polynomial constant (``sqrt(1 - g**2)``, ``pi``) named.
+
+    Groebner bases need polynomials over a field of rational functions of the parameters; radicals of
+    the parameters are replaced by new symbols (``back`` maps them back).
+    """
+    atoms = set()
+    for e in eqs:
+        for atom in sp.sympify(e).atoms(sp.Pow, sp.Function, sp.NumberSymbol):
+            if atom.free_symbols & unknowns:
+                continue
+            if atom.is_Pow and atom.exp.is_Integer:
+                continue
+            atoms.add(atom)
+    names = {atom: sp.Dummy(f"c{i}") for i, atom in enumerate(sorted(atoms, key=str))}
+    polys = []
+    for e in eqs:
+        numerator, _ = sp.fraction(sp.together(sp.sympify(e).xreplace(names)))
+        polys.append(sp.expand(numerator))
+    return polys, {d: atom for atom, d in names.items()}
+
+
+def _components(eqs, unknowns, preference, seconds) -> list[Component]:
+    parts = _split(eqs, unknowns)
     unique: list[tuple[list, object]] = []
     seen = set()
     for basis in (sp.groebner(p, *unknowns, order="grevlex") for p in parts):
@@ -156,8 +189,6 @@ def solution_components(
         for root in roots:
             root = {s: v for s, v in root.items() if s in targets}
             if not all(_is_real(v) for v in root.values()):
-                continue
-            if not all(vanishes(sp.expand(e.xreplace(root))) for e in eqs):
                 continue
             components.append(Component(values=root, free=tuple(free)))
     return components

@@ -210,6 +210,12 @@ class _FamilySolver:
                 f"order {k}: the amplitude equations {eqs} could not be solved within "
                 f"{self.seconds:g} s (solve_seconds=...)",
             ) from None
+        except (sp.PolynomialError, NotImplementedError, ValueError) as exc:
+            raise OrderFailed(
+                Status.NO_ROOT,
+                f"order {k}: the amplitude equations {eqs} could not be split into their "
+                f"components ({type(exc).__name__}: {exc})",
+            ) from None
         components = [c for c in found if self._admissible(c, generating, {**solved, **extra})]
         if not components:
             raise OrderFailed(

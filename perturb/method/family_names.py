@@ -13,11 +13,18 @@ coordinate's generating amplitudes are not identically zero on the family.
 
 2. Two coordinates oscillate, the phase coordinate ``p`` (``a_p``) and ``c`` (``a_c``, ``b_c``):
 
+
    * ``b_c ≡ 0`` (a straight line through the origin, ``c = r p``): ``in-phase`` (r a positive
      number), ``anti-phase`` (r a negative number), ``line`` (r depends on the amplitudes or the
      parameters: e.g. every direction at once);
    * ``a_c ≡ 0`` (quadrature): ``circle`` when ``b_c² = a_p²``, else ``ellipse``, followed by
      ``-ccw`` (``b_c/a_p > 0``: counter-clockwise in the (p, c) plane) or ``-cw``.
+
+   * both non-zero on a continuum whose free amplitudes leave ``a_c² + b_c²`` unchanged: ``circle``
+     (fixed amplitude, free phase of ``c``: the disk's second family ``M1² + M2² = k M3²``; sympy
+     gives it as two halves, ``circle-1`` and ``circle-2``, one for each sign of the square root).
+
+   The phase coordinate is the one with no sine amplitude (its velocity vanishes at t = 0).
 
 3. Anything else: ``family-1``, ``family-2``, … in canonical order.
 
@@ -67,9 +74,10 @@ def _structural(amplitudes: dict, free: tuple) -> str | None:
         return "continuum" if free else "limit-cycle"
     if len(moving) != 2:
         return None
-    p, c = moving
-    if f"b_{p}" in amplitudes and not is_zero(value(f"b_{p}")):
-        return None  # the first oscillating coordinate is not the phase coordinate
+    phase = [m for m in moving if f"b_{m}" not in amplitudes]
+    if len(phase) != 1:
+        return None
+    p, c = phase[0], next(m for m in moving if m != phase[0])
     a_p, a_c, b_c = value(f"a_{p}"), value(f"a_{c}"), value(f"b_{c}")
     if is_zero(b_c):
         ratio = sp.simplify(a_c / a_p)
@@ -79,6 +87,9 @@ def _structural(amplitudes: dict, free: tuple) -> str | None:
     if is_zero(a_c):
         shape = "circle" if is_zero(sp.expand(b_c**2 - a_p**2)) else "ellipse"
         return f"{shape}-ccw" if _sign(b_c / a_p) > 0 else f"{shape}-cw"
+    radius = sp.simplify(a_c**2 + b_c**2)
+    if free and not radius.free_symbols & {sp.Symbol(f) for f in free}:
+        return "circle"
     return None
 
 

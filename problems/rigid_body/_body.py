@@ -182,19 +182,12 @@ class FastSpinBody(Problem):
     #: rationals, which keeps the construction to seconds instead of minutes.
     SYMBOLIC_MAX_ORDER: int = 1
 
-    def solve(self, order: int = 1) -> PeriodicSolution:
-        """The periodic solution of ``order`` (cached; higher orders use a longer reduction).
-
-        Orders up to :attr:`SYMBOLIC_MAX_ORDER` are symbolic in the parameters; higher orders are
-        derived for this body's parameter values, converted to exact rationals (no rounding enters
-        the construction; the result is exact for the decimal values given).
-        """
-        reduction = self.reduction_for(order)
+    def _frame(self, order: int) -> tuple:
+        """The reduced system, the method options and the exact parameter values put in (if any)."""
         options = self._options_for(order)
-        system = reduction.system
-        specialise = order > self.SYMBOLIC_MAX_ORDER
+        system = self.reduction_for(order).system
         values = {}
-        if specialise:
+        if order > self.SYMBOLIC_MAX_ORDER:
             values = {
                 p: sp.nsimplify(self.symbol_values()[p.name], rational=True)
                 for p in system.parameters
@@ -204,6 +197,24 @@ class FastSpinBody(Problem):
                 name: sp.sympify(expr).xreplace(values)
                 for name, expr in options["amplitudes"].items()
             }
+        return system, options, values
+
+    def family_options(self, order: int) -> tuple:
+        """The frame of :meth:`families`: the reduced system and options of :meth:`solve`."""
+        system, options, _ = self._frame(order)
+        return system, {k: v for k, v in options.items() if k != "branch"}
+
+    def solve(self, order: int = 1) -> PeriodicSolution:
+        """The periodic solution of ``order`` (cached; higher orders use a longer reduction).
+
+        Orders up to :attr:`SYMBOLIC_MAX_ORDER` are symbolic in the parameters; higher orders are
+        derived for this body's parameter values, converted to exact rationals (no rounding enters
+        the construction; the result is exact for the decimal values given).
+        """
+        if self.family is not None:
+            return self.family_solution(order, self.family)
+        reduction = self.reduction_for(order)
+        system, options, values = self._frame(order)
         key = (
             type(self).__module__,
             type(self).__qualname__,
