@@ -353,6 +353,12 @@ def _member_choices(system: QuasilinearSystem, options: Mapping) -> dict[str, sp
     }
 
 
+def _readable(value) -> sp.Expr:
+    """An amplitude as users read it: simplified (a root in radicals can come back unsimplified)."""
+    value = sp.sympify(value)
+    return value if value.is_Atom else sp.simplify(value)
+
+
 def _describe(solution: PeriodicSolution, free_names: tuple, members: dict) -> tuple[dict, tuple]:
     """User-facing amplitudes of a carried family and the names of its free ones."""
     generating = solution.generating
@@ -360,9 +366,9 @@ def _describe(solution: PeriodicSolution, free_names: tuple, members: dict) -> t
     for i, name in enumerate(generating.coordinates):
         if generating.harmonics[i] is None:
             continue
-        amplitudes[f"a_{name}"] = sp.sympify(generating.cos_amplitudes[i])
+        amplitudes[f"a_{name}"] = _readable(generating.cos_amplitudes[i])
         if name != generating.phase_coordinate:
-            amplitudes[f"b_{name}"] = sp.sympify(generating.sin_amplitudes[i])
+            amplitudes[f"b_{name}"] = _readable(generating.sin_amplitudes[i])
     free = tuple(free_names) + tuple(n for n in members if n not in free_names)
     return amplitudes, free
 
