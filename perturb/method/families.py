@@ -35,6 +35,7 @@ How
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator, Mapping
 
 import attrs
@@ -156,11 +157,11 @@ def _user_name(symbol: sp.Symbol) -> str:
 
 def _correction_of(symbol: sp.Symbol, free_names: set[str]) -> bool:
     """Whether ``symbol`` is a correction ``a_x1, a_x2, ...`` of a free amplitude ``a_x``."""
-    head, digits = (
-        symbol.name.rstrip("0123456789"),
-        symbol.name[len(symbol.name.rstrip("0123456789")) :],
-    )
-    return head in free_names and digits not in ("", "0")
+    for free in free_names:
+        match = re.fullmatch(rf"{re.escape(free)}(\d+)", symbol.name)
+        if match and int(match.group(1)) >= 1:
+            return True
+    return False
 
 
 @attrs.define
