@@ -12,6 +12,7 @@ from perturb.errors import (
     UnknownNameError,
 )
 from perturb.method import PoincareMethod, solve
+from perturb.method.families import Family, FamilyList, find_families
 from perturb.solution import PeriodicSolution, SolutionFailed, Status
 from perturb.system import EPS, QuasilinearSystem, Regime
 
@@ -30,6 +31,8 @@ def __getattr__(name: str):
 __all__ = [
     "EPS",
     "AccuracyWarning",
+    "Family",
+    "FamilyList",
     "IntegrationError",
     "InvalidParameterError",
     "InvalidSystemError",
@@ -41,6 +44,7 @@ __all__ = [
     "SolutionFailed",
     "Status",
     "UnknownNameError",
+    "find_families",
     "solve",
     "validate",
 ]

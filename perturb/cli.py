@@ -34,6 +34,8 @@ _EPILOG = """examples:
   perturb solve disk --euler --format json
   perturb solve my_oscillator.py:MyOscillator --set eps=0.05   (your own Problem subclass)
   perturb validate duffing --set eps=0.05
+  perturb families resonant-pair --order 2
+  perturb solve resonant-pair --family anti-phase
   perturb reproduce paper
   perturb work-precision duffing --periods 10 --orders 3 --format csv
 """
@@ -191,6 +193,7 @@ def _build_parser() -> argparse.ArgumentParser:
     reproduce.add_argument(
         "--output", default=None, metavar="DIR", help="also write the report files into DIR"
     )
+    _add_family_arguments(sub, solve, validate)
     for command in sub.choices.values():
         command.add_argument(
             "--quiet",
@@ -305,7 +308,7 @@ def _cmd_solve(args) -> int:
     overrides = _parse_sets(args.sets)
     order = _parse_order(args.order)
     times = _parse_times(args.times)
-    problem = cls.create(**overrides)
+    problem = _select_family(cls.create(**overrides), args.family, order)
     if args.euler and not hasattr(problem, "euler_angles"):
         raise _UsageError(
             f"--euler: problem {args.problem!r} has no Euler angles (rigid bodies only)"
@@ -374,7 +377,7 @@ def _cmd_validate(args) -> int:
     from problems import load_problem
 
     cls = load_problem(args.problem)
-    problem = cls.create(**_parse_sets(args.sets))
+    problem = _select_family(cls.create(**_parse_sets(args.sets)), args.family, args.order)
     tol = DEFAULT_TOL if args.tol is None else _parse_positive("--tol", args.tol, float)
     report = validate(
         problem,
@@ -448,6 +451,49 @@ def _cmd_reproduce(args) -> int:
         print()
         print(reproduction.full(report))
     return EXIT_OK
+
+
+def _add_family_arguments(sub, solve, validate) -> None:
+    """``perturb families`` and the ``--family NAME`` option of ``solve`` and ``validate``."""
+    families = sub.add_parser(
+        "families",
+        help="every family of periodic solutions a problem admits, each carried to order N",
+        description="List every family of periodic solutions of PROBLEM that the first order "
+        "selecting the generating amplitudes admits (isolated roots and continua, with the free "
+        "amplitude named), each with its name, the amplitudes that select it, and its status "
+        "carried to --order. Select one in `solve`/`validate` with --family NAME.",
+    )
+    _add_problem_arguments(families)
+    _add_format(families, ["table", "json"])
+    for command in (solve, validate):
+        command.add_argument(
+            "--family",
+            default=None,
+            metavar="NAME",
+            help="follow the family NAME (see `perturb families PROBLEM`) instead of the default",
+        )
+
+
+def _select_family(problem, name: str | None, order):
+    """The problem following family ``name`` (checked now: an unknown name exits 2 with the list)."""
+    if name is None:
+        return problem
+    problem.families(_parse_order(order) if isinstance(order, str) else order).get(name)
+    return problem.with_family(name)
+
+
+def _cmd_families(args) -> int:
+    from perturb.report.families import as_dict, as_table
+    from problems import load_problem
+
+    cls = load_problem(args.problem)
+    problem = cls.create(**_parse_sets(args.sets))
+    families = problem.families(_parse_order(args.order))
+    if args.format == "json":
+        print(json.dumps(as_dict(families, args.problem)))
+    else:
+        print(as_table(families, args.problem))
+    return EXIT_OK if len(families) else EXIT_FAILED
 
 
 def _non_finite(value) -> bool:
@@ -543,6 +589,7 @@ _COMMANDS = {
     "validate": lambda args: _cmd_validate(args),
     "reproduce": lambda args: _cmd_reproduce(args),
     "work-precision": lambda args: _cmd_work_precision(args),
+    "families": lambda args: _cmd_families(args),
 }
 
 

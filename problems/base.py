@@ -33,10 +33,18 @@ from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
 from typing import ClassVar
 
+import attrs
 import numpy as np
 from attrs import field, frozen
 
-from perturb import PeriodicSolution, PerturbError, PoincareMethod, QuasilinearSystem
+from perturb import (
+    FamilyList,
+    PeriodicSolution,
+    PerturbError,
+    PoincareMethod,
+    QuasilinearSystem,
+    Status,
+)
 from perturb.errors import InvalidParameterError, UnknownNameError
 from perturb.oracle import SymbolicRHS
 from perturb.validation import (
@@ -53,6 +61,7 @@ __all__ = ["ParameterSpec", "Problem"]
 
 _SYSTEM_CACHE: dict[tuple, QuasilinearSystem] = {}
 _SOLUTION_CACHE: dict[tuple, PeriodicSolution] = {}
+_FAMILY_CACHE: dict[tuple, FamilyList] = {}
 
 
 @frozen
@@ -109,6 +118,9 @@ class Problem(Model, ABC):
     parameter_specs: ClassVar[tuple[ParameterSpec, ...]]
 
     values: dict = field(converter=dict)
+    #: The family of periodic solutions :meth:`solve` follows, by its name in :meth:`families`
+    #: (None: the one :meth:`method_options` selects). Set it with :meth:`with_family`.
+    family: str | None = field(default=None, kw_only=True)
 
     def __attrs_post_init__(self):
         self.check_values(self.values)
@@ -167,8 +179,62 @@ class Problem(Model, ABC):
             _SYSTEM_CACHE[key] = cls.build_system()
         return _SYSTEM_CACHE[key]
 
-    def solve(self, order: int = 1) -> PeriodicSolution:
-        """The symbolic periodic solution (cached per class, order and method options)."""
+    def with_family(self, name: str | None) -> Problem:
+        """This problem following the family ``name`` (see :meth:`families`); checked when solved."""
+        return attrs.evolve(self, family=name)
+
+    def family_options(self, order: int) -> tuple[QuasilinearSystem, dict]:
+        """The system and the options that define the frame of :meth:`families` at ``order``.
+
+        The options of :meth:`method_options` without ``branch`` (the families are the branches):
+        ``amplitudes`` that the problem fixes stay fixed (a parameter such as Duffing's
+        ``amplitude`` picks the member of a continuum; a first integral fixes the disk's G(0)).
+        """
+        options = {k: v for k, v in self.method_options().items() if k != "branch"}
+        return self.system(), options
+
+    def families(self, order: int = 1) -> FamilyList:
+        """Every family of periodic solutions (:func:`perturb.find_families`), carried to ``order``."""
+        from perturb import find_families
+
+        system, options = self.family_options(order)
+        key = (type(self).__qualname__, order, system, repr(sorted(options.items())))
+        if key not in _FAMILY_CACHE:
+            _FAMILY_CACHE[key] = find_families(system, order, **options)
+        return _FAMILY_CACHE[key]
+
+    def family_solution(self, order: int, name: str) -> PeriodicSolution:
+        """The solution of the family ``name`` at ``order``.
+
+        Raises :class:`~perturb.errors.UnknownNameError` (listing the known names) for an unknown
+        name. A continuum whose free amplitude is not a parameter of this problem gives a solution
+        with status ``UNDETERMINED`` that says so.
+        """
+        family = self.families(order).get(name)
+        solution = family.solution
+        own = set(self.system().parameters)
+        open_ = [p.name for p in solution.system.parameters if p not in own]
+        if open_ and solution.success:
+            return attrs.evolve(
+                solution,
+                status=Status.UNDETERMINED,
+                message=(
+                    f"family {name!r} is a continuum in {open_}, which {self.name} does not fix "
+                    f"(its parameters: {sorted(s.name for s in self.parameter_specs)}); "
+                    "solve the system from Python with a value for it"
+                ),
+            )
+        return solution
+
+    def solve(self, order: int = 1, family: str | None = None) -> PeriodicSolution:
+        """The symbolic periodic solution (cached per class, order and method options).
+
+        ``family`` (or the problem's :attr:`family`) names a family of :meth:`families` to follow
+        instead of the one :meth:`method_options` selects.
+        """
+        name = family if family is not None else self.family
+        if name is not None:
+            return self.family_solution(order, name)
         options = self.method_options()
         key = (type(self).__module__, type(self).__qualname__, order, repr(sorted(options.items())))
         if key not in _SOLUTION_CACHE:

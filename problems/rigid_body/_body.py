@@ -200,6 +200,20 @@ class FastSpinBody(Problem):
             return self.specialised_reduction_for(order, self.exact_values())
         return self.reduction_for(order)
 
+    def _frame(self, order: int) -> tuple:
+        """The reduction, its system, the method options and the exact values put in (if any)."""
+        reduction = self._solving_reduction(order)
+        options = {
+            "amplitudes": {"G": geometric_constraint(reduction)},
+            **self._selection_options(),
+        }
+        return reduction, reduction.system, options, dict(reduction.values)
+
+    def family_options(self, order: int) -> tuple:
+        """The frame of :meth:`families`: the reduced system and options of :meth:`solve`."""
+        _, system, options, _ = self._frame(order)
+        return system, {k: v for k, v in options.items() if k != "branch"}
+
     def solve(self, order: int = 1) -> PeriodicSolution:
         """The periodic solution of ``order`` (cached; higher orders use a longer reduction).
 
@@ -209,13 +223,9 @@ class FastSpinBody(Problem):
         in before the reduction (:func:`~problems.rigid_body.reduction.specialised_disk_reduction`),
         which gives the same system as putting them into the symbolic one, much faster.
         """
-        reduction = self._solving_reduction(order)
-        system = reduction.system
-        values = dict(reduction.values)
-        options = {
-            "amplitudes": {"G": geometric_constraint(reduction)},
-            **self._selection_options(),
-        }
+        if self.family is not None:
+            return self.family_solution(order, self.family)
+        reduction, system, options, values = self._frame(order)
         key = (
             type(self).__module__,
             type(self).__qualname__,

@@ -1,0 +1,194 @@
+"""Every solution of the amplitude equations: isolated roots and positive-dimensional components.
+
+sympy's ``solve`` loses components of under-determined polynomial systems (on
+``[Ω₁a, Ω₁c, Ω₁d]`` it returns only ``a = c = d = 0``, not the plane ``Ω₁ = 0``), which hides the
+continuous families of conservative systems. This module splits the solution set first:
+
+1. a Groebner basis of the equations; any basis polynomial that factors splits the set into one
+   part per factor (recursively), so each part is given by irreducible polynomials;
+2. parts contained in another part are dropped (ideal membership);
+3. each part's dimension and free amplitudes come from a maximal independent set of the
+   generating amplitudes (no polynomial of the part's ideal involves only them), chosen in the
+   caller's order of preference;
+4. the part is solved by sympy ``solve`` for the other unknowns, the free ones kept as parameters
+   (within a time budget); every root is checked against the original equations.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import sympy as sp
+from attrs import frozen
+
+from perturb._defaults import NUMERIC_ZERO, PROBE_DIGITS
+from perturb.method.conditions import solve_bounded
+from perturb.method.exact import probe_values, vanishes
+
+__all__ = ["Component", "solution_components"]
+
+
+@frozen
+class Component:
+    """One root of the amplitude equations: values of the solved unknowns, the free amplitudes.
+
+    Parameters
+    ----------
+    values : dict
+        ``{unknown: value}``; values may depend on the ``free`` symbols and on unknowns the
+        equations leave to later orders.
+    free : tuple of sympy.Symbol
+        The generating amplitudes the root leaves free (empty: an isolated root).
+    """
+
+    values: dict
+    free: tuple
+
+
+def _factors(poly: sp.Expr, unknowns: Sequence[sp.Symbol]) -> list[sp.Expr]:
+    """The distinct non-constant irreducible factors of ``poly`` in ``unknowns``."""
+    _, factors = sp.factor_list(poly, *unknowns)
+    wanted = set(unknowns)
+    return [f for f, _ in factors if f.free_symbols & wanted]
+
+
+def _split(eqs: list, unknowns: list, depth: int = 0) -> list[list]:
+    """Generators of the irreducible parts of ``eqs = 0`` (possibly with redundant parts)."""
+    basis = sp.groebner(eqs, *unknowns, order="grevlex")
+    if list(basis.exprs) == [1]:
+        return []
+    generators = list(basis.exprs)
+    for index, poly in enumerate(generators):
+        factors = _factors(poly, unknowns)
+        if len(factors) > 1 and depth < len(unknowns) * 4:
+            parts = []
+            for factor in factors:
+                parts.extend(_split([*generators, factor], unknowns, depth + 1))
+            return parts
+        if len(factors) == 1 and sp.expand(factors[0] - poly) != 0:
+            generators[index] = factors[0]  # the radical: drop constants and multiplicities
+    return [generators]
+
+
+def _contains(outer: list, inner_basis, unknowns) -> bool:
+    """Whether the variety of ``inner_basis`` lies inside the variety of ``outer``."""
+    inner = list(inner_basis.exprs)
+    return all(sp.expand(sp.reduced(g, inner, *unknowns, order="grevlex")[1]) == 0 for g in outer)
+
+
+def _independent(basis_exprs: list, unknowns: list, subset: list) -> bool:
+    """No polynomial of the ideal involves only ``subset`` (lex elimination with subset last)."""
+    rest = [u for u in unknowns if u not in subset]
+    lex = sp.groebner(basis_exprs, *rest, *subset, order="lex")
+    chosen = set(subset)
+    return not any(
+        (sp.sympify(g).free_symbols & set(unknowns)) <= chosen
+        for g in lex.exprs
+        if sp.sympify(g) != 0
+    )
+
+
+def _is_real(value: sp.Expr) -> bool:
+    """Whether ``value`` is real at the generic point of :func:`probe_values` (30 digits)."""
+    value = sp.sympify(value)
+    if value.is_real:
+        return True
+    number = sp.N(value.xreplace(probe_values(value)), PROBE_DIGITS)
+    try:
+        return abs(complex(number).imag) <= NUMERIC_ZERO * max(1.0, abs(complex(number)))
+    except TypeError:  # a function sympy cannot evaluate: keep the root
+        return True
+
+
+def solution_components(
+    eqs: list, unknowns: list, preference: list, seconds: float
+) -> list[Component]:
+    """Every root of ``eqs = 0``: isolated ones and positive-dimensional parts.
+
+    Parameters
+    ----------
+    eqs : list of sympy expressions
+        Polynomials in ``unknowns`` (other symbols are parameters).
+    unknowns : list of sympy.Symbol
+        What to solve for.
+    preference : list of sympy.Symbol
+        The amplitudes that may stay free, most preferred first (a part of dimension d keeps the
+        first d of them that are independent on it).
+    seconds : float
+        Time budget of each sympy ``solve``.
+
+    Returns
+    -------
+    list of Component
+        Real roots (at generic positive parameter values) that satisfy every equation, in the
+        order found.
+
+    Raises
+    ------
+    TimeoutError
+        When sympy cannot solve a part within ``seconds``.
+    """
+    unknowns = list(unknowns)
+    polys, back = _polynomial_form(eqs, set(unknowns))
+    components = [
+        Component(
+            values={s: sp.sympify(v).xreplace(back) for s, v in c.values.items()}, free=c.free
+        )
+        for c in _components(polys, unknowns, preference, seconds)
+    ]
+    return [c for c in components if all(vanishes(sp.expand(e.xreplace(c.values))) for e in eqs)]
+
+
+def _polynomial_form(eqs: list, unknowns: set) -> tuple[list, dict]:
+    """Numerators of ``eqs`` with every non-polynomial constant (``sqrt(1 - g**2)``, ``pi``) named.
+
+    Groebner bases need polynomials over a field of rational functions of the parameters; radicals of
+    the parameters are replaced by new symbols (``back`` maps them back).
+    """
+    atoms = set()
+    for e in eqs:
+        for atom in sp.sympify(e).atoms(sp.Pow, sp.Function, sp.NumberSymbol):
+            if atom.free_symbols & unknowns:
+                continue
+            if atom.is_Pow and atom.exp.is_Integer:
+                continue
+            atoms.add(atom)
+    names = {atom: sp.Dummy(f"c{i}") for i, atom in enumerate(sorted(atoms, key=str))}
+    polys = []
+    for e in eqs:
+        numerator, _ = sp.fraction(sp.together(sp.sympify(e).xreplace(names)))
+        polys.append(sp.expand(numerator))
+    return polys, {d: atom for atom, d in names.items()}
+
+
+def _components(eqs, unknowns, preference, seconds) -> list[Component]:
+    parts = _split(eqs, unknowns)
+    unique: list[tuple[list, object]] = []
+    seen = set()
+    for basis in (sp.groebner(p, *unknowns, order="grevlex") for p in parts):
+        key = tuple(sorted(str(g) for g in basis.exprs))
+        if key not in seen:
+            seen.add(key)
+            unique.append((list(basis.exprs), basis))
+    maximal = [
+        (part, basis)
+        for i, (part, basis) in enumerate(unique)
+        if not any(
+            j != i and _contains(other, basis, unknowns) and not _contains(part, b2, unknowns)
+            for j, (other, b2) in enumerate(unique)
+        )
+    ]
+    components = []
+    for part, _ in maximal:
+        free: list = []
+        for candidate in preference:
+            if candidate in unknowns and _independent(part, unknowns, [*free, candidate]):
+                free.append(candidate)
+        targets = [u for u in unknowns if u not in free]
+        roots = solve_bounded(part, targets, seconds) if targets else [{}]
+        for root in roots:
+            root = {s: v for s, v in root.items() if s in targets}
+            if not all(_is_real(v) for v in root.values()):
+                continue
+            components.append(Component(values=root, free=tuple(free)))
+    return components

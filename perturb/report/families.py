@@ -1,0 +1,82 @@
+"""A :class:`~perturb.method.families.FamilyList` as JSON-ready data or as a text table.
+
+JSON contract (``perturb families PROBLEM --format json``)::
+
+    {"problem": str, "order": int,
+     "families": [{"name": str, "kind": "isolated" | "continuum",
+                   "amplitudes": {"a_x": value, "b_y": value, ...},
+                   "frequency": [Ω0, Ω1, ...],
+                   "status": "SUCCESS" | "INCONSISTENT" | "UNDETERMINED" | ...,
+                   "message": str}]}
+
+A value (amplitude or frequency coefficient) is a JSON number when it is a number (exact integers
+stay integers, other exact numbers such as 3/8 or √3/3 are given as the nearest double), else the
+string of the sympy expression (``"3*a_x**2/8"``: it depends on a free amplitude or a parameter).
+``frequency`` lists the coefficients Ω_k of Ω = Ω0 + εΩ1 + ε²Ω2 + … as far as they are determined.
+``status`` is the name of :class:`~perturb.solution.Status`; ``message`` says at which order and why
+a construction stopped (``INCONSISTENT``), which unknowns stay open (``UNDETERMINED``), or, on
+success, the status's own sentence.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+__all__ = ["as_dict", "as_table", "jsonable"]
+
+
+def jsonable(value) -> int | float | str:
+    """A number when ``value`` is one (int if integer), else the string of the expression."""
+    expr = sp.sympify(value)
+    if expr.is_Integer:
+        return int(expr)
+    if expr.is_number and expr.is_real is not False:
+        try:
+            return float(expr)
+        except TypeError:
+            pass
+    return str(expr)
+
+
+def as_dict(families, problem: str) -> dict:
+    """The JSON contract above for ``families`` (a FamilyList) of ``problem``."""
+    return {
+        "problem": problem,
+        "order": families.order,
+        "families": [
+            {
+                "name": f.name,
+                "kind": f.kind,
+                "amplitudes": {k: jsonable(v) for k, v in f.amplitudes.items()},
+                "frequency": [jsonable(w) for w in f.frequency],
+                "status": f.status.name,
+                "message": f.message,
+            }
+            for f in families
+        ],
+    }
+
+
+def as_table(families, problem: str) -> str:
+    """One block per family: name, kind (free amplitudes), amplitudes, frequency, status."""
+    count = len(families.families)
+    noun = "family" if count == 1 else "families"
+    head = f"# {problem}: {count} {noun}, carried to order {families.order}"
+    if families.family_order is not None:
+        head += f" (selected by the conditions of order {families.family_order})"
+    lines = [head]
+    if not families.families:
+        lines.append("no family: the amplitude equations have only the trivial root")
+    for f in families:
+        kind = f.kind + (f" in {', '.join(f.free)}" if f.free else "")
+        amplitudes = ", ".join(f"{k} = {v}" for k, v in f.amplitudes.items())
+        eps = sp.Symbol("epsilon")
+        omega = sp.Add(*(w * eps**k for k, w in enumerate(f.frequency)))
+        lines += [
+            "",
+            f"{f.name}  ({kind})",
+            f"  amplitudes: {amplitudes}",
+            f"  Omega = {omega}",
+            f"  status: {f.status.name}: {f.message}",
+        ]
+    return "\n".join(lines)
