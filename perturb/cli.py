@@ -397,7 +397,9 @@ def _cmd_work_precision(args) -> int:
     else:
         print(result.as_table())
     if args.plot is not None:
-        result.plot().savefig(args.plot)
+        from perturb.report.plots import plot_work_precision
+
+        plot_work_precision(result).savefig(args.plot)
     return EXIT_OK
 
 

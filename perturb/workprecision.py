@@ -124,7 +124,8 @@ class WorkPrecision:
         }
 
     def plot(self, ax=None):
-        """Work–precision diagram (log error against log seconds), one line per method.
+        """Work–precision diagram: kept for compatibility, drawn by
+        :func:`perturb.report.plots.plot_work_precision` (use that).
 
         Returns
         -------
@@ -132,29 +133,12 @@ class WorkPrecision:
 
         Raises
         ------
-        ImportError
-            If matplotlib is not installed (``pip install perturb[plot]``).
+        perturb.errors.MissingDependencyError
+            (an :class:`ImportError`) if matplotlib is not installed (``pip install perturb[plot]``).
         """
-        try:
-            import matplotlib.pyplot as plt
-        except ImportError as exc:  # pragma: no cover - depends on the environment
-            raise ImportError(
-                "the work-precision plot needs matplotlib: pip install 'perturb[plot]'"
-            ) from exc
-        if ax is None:
-            fig, ax = plt.subplots(figsize=(6, 4.5))
-        else:
-            fig = ax.figure
-        methods = dict.fromkeys(p.method for p in self.points if math.isfinite(p.error))
-        for method in methods:
-            pts = [p for p in self.points if p.method == method and math.isfinite(p.error)]
-            ax.loglog([p.seconds for p in pts], [p.error for p in pts], "o-", label=method)
-        ax.set_xlabel("wall time [s]")
-        ax.set_ylabel("max relative error")
-        ax.set_title(f"{self.problem}: {self.periods:g} periods")
-        ax.legend(fontsize="small")
-        ax.grid(True, which="both", alpha=0.3)
-        return fig
+        from perturb.report.plots import plot_work_precision  # lazy: formatting lives in report/
+
+        return plot_work_precision(self, ax=ax)
 
 
 def _median_time(fn: Callable[[], object], repeat: int):
@@ -223,7 +207,8 @@ def work_precision(
     Returns
     -------
     WorkPrecision
-        ``.as_csv()`` gives the ``method,setting,error,seconds`` table, ``.plot()`` a Figure.
+        ``.as_csv()`` gives the ``method,setting,error,seconds`` table;
+        :func:`perturb.report.plots.plot_work_precision` draws it.
 
     Raises
     ------
