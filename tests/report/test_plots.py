@@ -144,7 +144,7 @@ def test_time_series_holds_the_data_with_units(duffing, out_dir):
     assert axes[0].get_ylabel() == "$x$ [m]"
     assert axes[1].get_ylabel() == "$\\dot{x}$ [m/s]"
     assert axes[1].get_xlabel() == "$t$ [1]"
-    assert figure_legend_labels(fig) == ["analytic", "true (integrated)"]
+    assert labels_of(fig.axes[0]) == ["analytic", "true (integrated)"]
     save(fig, out_dir, "time_series.png")
 
 
@@ -152,7 +152,7 @@ def test_time_series_alone_has_no_legend_and_seconds_by_default(duffing):
     t, analytic, _ = duffing
     fig = plot_time_series(t, analytic, names=["x"], title="Duffing")
     (ax,) = fig.axes
-    assert len(ax.get_lines()) == 1 and not fig.legends
+    assert len(ax.get_lines()) == 1 and ax.get_legend() is None
     assert ax.get_ylabel() == "$x$ [1]" and ax.get_xlabel() == "$t$ [s]"
     assert fig.get_suptitle() == "Duffing"
 
@@ -189,7 +189,7 @@ def test_phase_portrait(duffing, out_dir):
     np.testing.assert_array_equal(analytic_line.get_ydata(), analytic["xdot"])
     np.testing.assert_array_equal(true_line.get_xdata(), true["x"])
     assert (ax.get_xlabel(), ax.get_ylabel()) == ("$x$ [1]", "$\\dot{x}$ [1]")
-    assert figure_legend_labels(fig) == ["analytic", "true (integrated)"]
+    assert labels_of(fig.axes[0]) == ["analytic", "true (integrated)"]
     save(fig, out_dir, "phase.png")
 
 
@@ -216,6 +216,8 @@ def test_convergence_fitted_and_expected_slopes(convergence, out_dir):
     assert ax.get_xlabel() == "$\\varepsilon$ [1]" and "[1]" in ax.get_ylabel()
     # the data are real: order 2 converges like eps^3
     assert abs(slope - (ORDER + 1)) < SLOPE_TOLERANCE
+    np.testing.assert_array_equal(ax.get_xticks(), eps)  # ticks at the measured eps, plain
+    assert [label.get_text() for label in ax.get_xticklabels()] == [f"{e:g}" for e in eps]
     save(fig, out_dir, "convergence.png")
 
 
@@ -254,6 +256,8 @@ def test_work_precision_one_line_per_method(table, out_dir):
     methods = list(dict.fromkeys(p.method for p in finite))
     assert "analytic derivation" not in methods  # its error is NaN: no place on the diagram
     assert labels_of(ax) == methods
+    analytic = [p.setting for p in finite if p.method == "analytic"]
+    assert [text.get_text() for text in ax.texts] == analytic  # "order 1", "order 2"
     for line, method in zip(ax.get_lines(), methods, strict=True):
         rows = [p for p in finite if p.method == method]
         np.testing.assert_array_equal(line.get_xdata(), [p.seconds for p in rows])
@@ -269,13 +273,16 @@ def test_work_precision_method_delegates(table):
     assert labels_of(fig.axes[0]) == labels_of(plot_work_precision(table).axes[0])
 
 
-def test_cli_plot_option(tmp_path, capsys):
+def test_cli_plot_option(table, tmp_path, capsys, monkeypatch):
+    """``perturb work-precision --plot`` draws with plot_work_precision (the run itself is the
+    fixture's: the CLI's own sweep is tested in tests/cli)."""
+    import perturb.workprecision
     from perturb.cli import main
 
+    monkeypatch.setattr(perturb.workprecision, "work_precision", lambda *a, **k: table)
     path = tmp_path / "wp.png"
-    argv = ["work-precision", "duffing", "--periods", "1", "--orders", "1", "--repeat", "1"]
-    assert main([*argv, "--plot", str(path)]) == 0
-    capsys.readouterr()
+    assert main(["work-precision", "duffing", "--repeat", "1", "--plot", str(path)]) == 0
+    assert table.reference in capsys.readouterr().out
     assert path.stat().st_size > 1000
 
 
@@ -324,25 +331,23 @@ def test_euler_angles_in_radians_with_true_angles(disk):
         analytic_line, true_line = ax.get_lines()
         np.testing.assert_array_equal(analytic_line.get_ydata(), angles[name])
         assert ax.get_ylabel().endswith("[rad]")
-    assert figure_legend_labels(fig) == ["analytic", "true (integrated)"]
+    assert labels_of(fig.axes[0]) == ["analytic", "true (integrated)"]
 
 
 def test_orientation_body_axes_and_spin_trace(disk, out_dir):
     t, angles = disk
-    instants = [t[0], t[120], t[-1]]  # sample times: no interpolation, exact frames
-    fig = plot_orientation(t, angles, instants, time_unit="")
+    indices = (0, 40, 80)  # a third of a period apart; sample times: exact, no interpolation
+    fig = plot_orientation(t, angles, t[list(indices)], time_unit="")
     assert len(fig.axes) == 3
     rotations = rotation_matrix(angles["psi"], angles["theta"], angles["phi"])
-    for ax, index in zip(fig.axes, (0, 120, 240), strict=True):
-        lines = ax.get_lines()
-        assert len(lines) == 4
-        for k in range(3):
-            x, y, z = lines[k].get_data_3d()
-            np.testing.assert_allclose(
-                np.array([x, y, z])[:, 1], rotations[index][:, k], atol=1e-12
-            )
-            np.testing.assert_array_equal(np.array([x, y, z])[:, 0], 0.0)
-        trace = np.array(lines[3].get_data_3d()).T
+    for ax, index in zip(fig.axes, indices, strict=True):
+        vertical, *body, trace = ax.get_lines()
+        np.testing.assert_array_equal(np.array(vertical.get_data_3d()), [[0, 0], [0, 0], [-1, 1]])
+        for k, line in enumerate(body):
+            segment = np.array(line.get_data_3d())
+            np.testing.assert_array_equal(segment[:, 0], 0.0)
+            np.testing.assert_allclose(segment[:, 1], rotations[index][:, k], atol=1e-12)
+        trace = np.array(trace.get_data_3d()).T
         np.testing.assert_allclose(trace, rotations[:, :, 2], atol=1e-15)
         np.testing.assert_allclose(np.linalg.norm(trace, axis=1), 1.0, atol=1e-12)
         assert ax.get_zlabel().startswith("$Z$") and "[1]" in ax.get_xlabel()
@@ -359,7 +364,7 @@ def test_orientation_body_axes_and_spin_trace(disk, out_dir):
 def test_orientation_without_trace_and_bad_instants(disk):
     t, angles = disk
     fig = plot_orientation(t, angles, [t[5]], spin_trace=False)
-    assert len(fig.axes[0].get_lines()) == 3
+    assert len(fig.axes[0].get_lines()) == 4  # the vertical and the three body axes
     for instants in ([t[-1] + 1.0], list(t[:7]), []):
         with pytest.raises(InvalidParameterError, match="`instants`"):
             plot_orientation(t, angles, instants)

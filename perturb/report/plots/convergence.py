@@ -41,6 +41,24 @@ def _slope_limits(slope_band, expected: float) -> tuple[float, float] | None:
     raise bad_value("slope_band", slope_band, fix)
 
 
+#: Up to this many distinct ε the horizontal ticks are the ε values themselves (plain numbers);
+#: beyond, the usual decades.  A grid of a few ε within one decade otherwise gets crowded
+#: "3×10⁻²"-style minor labels that overlap.
+MAX_EPSILON_TICKS = 8
+
+
+def _label_parameter_axis(ax, eps: np.ndarray) -> None:
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter, NullLocator
+
+    values = np.unique(eps)
+    if values.size <= MAX_EPSILON_TICKS:
+        ax.xaxis.set_major_locator(FixedLocator(values))
+        ax.xaxis.set_major_formatter(FuncFormatter(lambda x, _: f"{x:g}"))
+        ax.xaxis.set_minor_locator(NullLocator())
+    else:
+        ax.xaxis.set_minor_formatter(NullFormatter())
+
+
 def plot_convergence(
     epsilons,
     errors,
@@ -142,6 +160,7 @@ def plot_convergence(
                 )
         ax.set_xscale("log")
         ax.set_yscale("log", nonpositive="mask")
+        _label_parameter_axis(ax, eps)
         ax.set_xlabel(f"${parameter}$ [1]")
         ax.set_ylabel(error_label)
         ax.legend(loc="upper left")

@@ -24,7 +24,7 @@ import numpy as np
 
 from perturb.errors import bad_value
 from perturb.report.plots._inputs import as_series, as_times
-from perturb.report.plots.style import axis_label, new_figure, publication_style
+from perturb.report.plots.style import axis_label, legend_above, new_figure, publication_style
 
 __all__ = [
     "EULER_NAMES",
@@ -158,8 +158,7 @@ def plot_euler_angles(
         axes[-1, 0].set_xlim(times[0], times[-1])
         fig.align_ylabels(axes[:, 0])
         if reference is not None:
-            handles, labels = axes[0, 0].get_legend_handles_labels()
-            fig.legend(handles, labels, loc="outside upper center", ncols=2)
+            legend_above(axes[0, 0])
         if title:
             fig.suptitle(title)
     return fig
@@ -195,17 +194,22 @@ def _draw_sphere(ax) -> None:
 
 
 def _setup_3d(ax) -> None:
+    """Unit cube view of the unit sphere: no tick labels (the sphere is the scale), light panes."""
     ax.set_xlim(-1, 1)
     ax.set_ylim(-1, 1)
     ax.set_zlim(-1, 1)
     ax.set_box_aspect((1, 1, 1))
+    ax.grid(False)
     for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
         axis.set_ticks([-1, 0, 1])
+        axis.set_ticklabels([])
         axis.pane.fill = False
-    ax.set_xlabel("$X$ [1]", labelpad=-8)
-    ax.set_ylabel("$Y$ [1]", labelpad=-8)
-    ax.set_zlabel("$Z$ (vertical) [1]", labelpad=-8)
-    ax.tick_params(pad=-2)
+        axis.pane.set_edgecolor("0.8")
+    ax.set_xlabel("$X$ [1]", labelpad=-12)
+    ax.set_ylabel("$Y$ [1]", labelpad=-12)
+    ax.set_zlabel("$Z$ (vertical) [1]", labelpad=-12)
+    # the space vertical through the fixed point, for reference
+    ax.plot([0.0, 0.0], [0.0, 0.0], [-1.0, 1.0], color="0.5", lw=0.6, ls=":")
 
 
 def _draw_body(ax, rotation: np.ndarray) -> list:
@@ -272,8 +276,8 @@ def plot_orientation(
     Returns
     -------
     matplotlib.figure.Figure
-        Per panel, the lines are the body x, y, z axes (``[0, R[:, k]]``), then the trace
-        (``R[:, :, 2]`` at every ``t``).
+        Per panel, the lines are the space vertical (dotted), the body x, y, z axes
+        (``[0, R[:, k]]``), then the trace (``R[:, :, 2]`` at every ``t``).
     """
     times = as_times(t)
     series = _euler_series(angles, times.size, "angles")

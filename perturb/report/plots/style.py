@@ -21,6 +21,7 @@ __all__ = [
     "MISSING_MATPLOTLIB",
     "PUBLICATION_RC",
     "axis_label",
+    "legend_above",
     "display_name",
     "new_figure",
     "publication_style",
@@ -160,3 +161,17 @@ def axis_label(quantity: str, unit: str | None) -> str:
     if unit is None:
         return quantity
     return f"{quantity} [{unit or '1'}]"
+
+
+def legend_above(ax) -> None:
+    """The legend of ``ax`` in one row just above it: outside the data, below any suptitle
+    (a figure-level "outside" legend would collide with the suptitle)."""
+    handles, labels = ax.get_legend_handles_labels()
+    ax.legend(
+        handles,
+        labels,
+        loc="lower center",
+        bbox_to_anchor=(0.5, 1.02),
+        ncols=len(labels),
+        borderaxespad=0.0,
+    )

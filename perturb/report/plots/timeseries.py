@@ -13,7 +13,13 @@ import numpy as np
 
 from perturb.errors import bad_value
 from perturb.report.plots._inputs import as_series, as_times, pick_names, units_for
-from perturb.report.plots.style import axis_label, display_name, new_figure, publication_style
+from perturb.report.plots.style import (
+    axis_label,
+    display_name,
+    legend_above,
+    new_figure,
+    publication_style,
+)
 
 __all__ = ["plot_error", "plot_phase", "plot_time_series"]
 
@@ -28,12 +34,6 @@ def _draw_pair(ax, x, y, x_true=None, y_true=None):
     ax.plot(x, y, color="C0", lw=1.6, label=ANALYTIC_LABEL)
     if x_true is not None:
         ax.plot(x_true, y_true, color="k", lw=1.0, ls=(0, (4, 3)), label=TRUE_LABEL, zorder=3)
-
-
-def _legend_above(fig, ax) -> None:
-    """One legend for the whole figure, outside the axes (it can never cover data)."""
-    handles, labels = ax.get_legend_handles_labels()
-    fig.legend(handles, labels, loc="outside upper center", ncols=len(labels))
 
 
 def plot_time_series(
@@ -96,7 +96,7 @@ def plot_time_series(
         axes[-1, 0].set_xlim(times[0], times[-1])
         fig.align_ylabels(axes[:, 0])
         if reference is not None:
-            _legend_above(fig, axes[0, 0])
+            legend_above(axes[0, 0])
         if title:
             fig.suptitle(title)
     return fig
@@ -236,7 +236,7 @@ def plot_phase(
             ax.set_xlabel(axis_label(display_name(h), unit_of[h]))
             ax.set_ylabel(axis_label(display_name(v), unit_of[v]))
         if reference is not None:
-            _legend_above(fig, axes[0, 0])
+            legend_above(axes[0, 0])
         if title:
             fig.suptitle(title)
     return fig

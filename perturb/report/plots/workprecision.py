@@ -13,7 +13,9 @@ __all__ = ["plot_work_precision"]
 MARKERS = ("o", "s", "^", "v", "D", "P", "X", "<", ">", "*")
 
 
-def plot_work_precision(result, *, ax=None, title: str | None = None):
+def plot_work_precision(
+    result, *, ax=None, title: str | None = None, annotate: tuple[str, ...] = ("analytic",)
+):
     """Log–log diagram of the error against the wall time of every method of a work–precision run.
 
     Parameters
@@ -26,6 +28,9 @@ def plot_work_precision(result, *, ax=None, title: str | None = None):
         Draw into these axes (their figure is returned); default: a new figure.
     title : str, optional
         Default: the problem, the horizon in periods and the reference integrator.
+    annotate : tuple of str, optional
+        Methods whose points are labelled with their setting (default: the analytic orders, whose
+        cost need not grow with the order, so the line alone does not say which point is which).
 
     Returns
     -------
@@ -35,7 +40,7 @@ def plot_work_precision(result, *, ax=None, title: str | None = None):
     """
     points = getattr(result, "points", None)
     if points is None or not all(
-        hasattr(p, attr) for p in points for attr in ("method", "error", "seconds")
+        hasattr(p, attr) for p in points for attr in ("method", "setting", "error", "seconds")
     ):
         raise bad_value(
             "result", type(result).__name__, "pass the WorkPrecision of work_precision()"
@@ -58,6 +63,16 @@ def plot_work_precision(result, *, ax=None, title: str | None = None):
                 color=f"C{i % 10}",
                 label=method,
             )
+            if method in annotate:
+                for p in chosen:
+                    ax.annotate(
+                        p.setting,
+                        (p.seconds, p.error),
+                        xytext=(5, 4),
+                        textcoords="offset points",
+                        fontsize="small",
+                        color=f"C{i % 10}",
+                    )
         ax.set_xscale("log")
         ax.set_yscale("log", nonpositive="mask")
         ax.set_xlabel("wall time [s]")
