@@ -19,6 +19,7 @@ import sympy as sp
 matplotlib = pytest.importorskip("matplotlib")
 matplotlib.use("Agg")
 
+import matplotlib.pyplot  # noqa: E402  (only to check that no plot registers a figure with it)
 from matplotlib.figure import Figure  # noqa: E402
 
 from perturb._defaults import DEFAULT_RTOL  # noqa: E402
@@ -53,8 +54,7 @@ DISK = {"r0": 0.755155, "R": 0.123299, "gamma3_0": 0.25}
 def no_pyplot_figures():
     """No plot may register a figure with pyplot (it would leak memory in a long session)."""
     yield
-    if "matplotlib.pyplot" in sys.modules:
-        assert sys.modules["matplotlib.pyplot"].get_fignums() == []
+    assert matplotlib.pyplot.get_fignums() == []
 
 
 @pytest.fixture(scope="module")
@@ -146,6 +146,20 @@ def test_time_series_holds_the_data_with_units(duffing, out_dir):
     assert axes[1].get_xlabel() == "$t$ [1]"
     assert labels_of(fig.axes[0]) == ["analytic", "true (integrated)"]
     save(fig, out_dir, "time_series.png")
+
+
+def test_threads_and_global_rc_params_untouched(duffing):
+    """Figures built concurrently in threads all come out whole; the user's rcParams stay."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    t, analytic, true = duffing
+    before = dict(matplotlib.rcParams)
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        figures = list(pool.map(lambda _: plot_time_series(t, analytic, true), range(4)))
+    for fig in figures:
+        assert [len(ax.get_lines()) for ax in fig.axes] == [2, 2]
+        assert fig.dpi == 200 and fig.axes[0].spines["top"].get_visible() is False
+    assert dict(matplotlib.rcParams) == before
 
 
 def test_time_series_alone_has_no_legend_and_seconds_by_default(duffing):
@@ -381,6 +395,9 @@ def test_gif_has_the_requested_frames(disk, out_dir):
         assert gif.format == "GIF"
         assert gif.n_frames == 6
         assert gif.info["duration"] == 100  # ms per frame at 10 fps
+        first = np.asarray(gif.convert("RGB"))
+        gif.seek(3)
+        assert np.any(np.asarray(gif.convert("RGB")) != first)  # the body turns between frames
 
 
 def test_gif_bad_path(disk, tmp_path):
@@ -391,6 +408,25 @@ def test_gif_bad_path(disk, tmp_path):
         animate_orientation(t, angles, tmp_path / "missing" / "orientation.gif")
     with pytest.raises(InvalidParameterError, match="`frames`"):
         animate_orientation(t, angles, tmp_path / "o.gif", frames=0)
+
+
+@pytest.mark.parametrize(
+    "name, shown",
+    [
+        ("x", "$x$"),
+        ("xdot", "$\\dot{x}$"),
+        ("x2dot", "$\\dot{x}_{2}$"),
+        ("gamma1", "$\\gamma_{1}$"),
+        ("theta", "$\\theta$"),
+        ("eps", "$\\varepsilon$"),
+        ("amplitude", "amplitude"),
+        ("beta_1", "beta_1"),
+    ],
+)
+def test_display_names(name, shown):
+    from perturb.report.plots.style import display_name
+
+    assert display_name(name) == shown
 
 
 # ------------------------------------------------------------------------------ bad input

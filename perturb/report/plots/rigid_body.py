@@ -24,7 +24,14 @@ import numpy as np
 
 from perturb.errors import bad_value
 from perturb.report.plots._inputs import as_series, as_times
-from perturb.report.plots.style import axis_label, legend_above, new_figure, publication_style
+from perturb.report.plots.style import (
+    ANALYTIC_LABEL,
+    TRUE_LABEL,
+    axis_label,
+    legend_above,
+    new_figure,
+    publication_style,
+)
 
 __all__ = [
     "EULER_NAMES",
@@ -141,7 +148,11 @@ def plot_euler_angles(
         fig, axes = new_figure(3, 1, sharex=True, height=5.6)
         for ax, name in zip(axes[:, 0], EULER_NAMES, strict=True):
             ax.plot(
-                times, _shown(series[name], degrees, unwrap), color="C0", lw=1.6, label="analytic"
+                times,
+                _shown(series[name], degrees, unwrap),
+                color="C0",
+                lw=1.6,
+                label=ANALYTIC_LABEL,
             )
             if reference is not None:
                 ax.plot(
@@ -150,7 +161,7 @@ def plot_euler_angles(
                     color="k",
                     lw=1.0,
                     ls=(0, (4, 3)),
-                    label="true (integrated)",
+                    label=TRUE_LABEL,
                     zorder=3,
                 )
             ax.set_ylabel(axis_label(f"${_MATH[name]}$", unit))

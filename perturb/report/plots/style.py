@@ -13,13 +13,16 @@ from __future__ import annotations
 
 import contextlib
 import re
+import threading
 from collections.abc import Iterator
 
 from perturb.errors import MissingDependencyError
 
 __all__ = [
     "MISSING_MATPLOTLIB",
+    "ANALYTIC_LABEL",
     "PUBLICATION_RC",
+    "TRUE_LABEL",
     "axis_label",
     "legend_above",
     "display_name",
@@ -27,6 +30,10 @@ __all__ = [
     "publication_style",
     "require_matplotlib",
 ]
+
+#: The rc context changes matplotlib's global rcParams while it lasts: figures built at the same time
+#: in several threads take turns, so none sees another's restored defaults half-way.
+_STYLE_LOCK = threading.RLock()
 
 #: The message of the error raised when matplotlib is missing: what to install.
 MISSING_MATPLOTLIB = "plots need matplotlib: pip install 'perturb[plot]'"
@@ -40,7 +47,9 @@ PANEL_HEIGHT = 1.9
 
 #: The rc parameters in force while a figure is built: readable fonts at the printed size, thin
 #: frames, no top/right spines, frameless legends and no background grid (no chart junk),
-#: colour-blind safe colours (matplotlib's default "tab10" cycle) and 200 dpi PNGs.
+#: colour-blind safe colours (matplotlib's default "tab10" cycle) and 200 dpi (fixed on the figure
+#: when it is made, so ``savefig`` outside the context keeps it).  Saving options (``savefig.*``)
+#: are not set: the figure is saved after the context has ended.
 PUBLICATION_RC = {
     "font.size": 10,
     "axes.labelsize": 10,
@@ -58,10 +67,13 @@ PUBLICATION_RC = {
     "lines.markersize": 5,
     "legend.frameon": False,
     "figure.dpi": 200,
-    "savefig.dpi": 200,
-    "savefig.bbox": "tight",
     "mathtext.default": "regular",
 }
+
+#: Label of the analytic curves in every legend.
+ANALYTIC_LABEL = "analytic"
+#: Label of the reference curves: the integrated original equations.
+TRUE_LABEL = "true (integrated)"
 
 _GREEK = (
     "alpha beta gamma delta epsilon eps zeta eta theta iota kappa lambda mu nu xi pi rho sigma "
@@ -89,7 +101,7 @@ def require_matplotlib():
 def publication_style() -> Iterator[None]:
     """Context in which :data:`PUBLICATION_RC` is in force (the global rcParams are restored)."""
     matplotlib = require_matplotlib()
-    with matplotlib.rc_context(PUBLICATION_RC):
+    with _STYLE_LOCK, matplotlib.rc_context(PUBLICATION_RC):
         yield
 
 

@@ -14,6 +14,8 @@ import numpy as np
 from perturb.errors import bad_value
 from perturb.report.plots._inputs import as_series, as_times, pick_names, units_for
 from perturb.report.plots.style import (
+    ANALYTIC_LABEL,
+    TRUE_LABEL,
     axis_label,
     display_name,
     legend_above,
@@ -22,11 +24,6 @@ from perturb.report.plots.style import (
 )
 
 __all__ = ["plot_error", "plot_phase", "plot_time_series"]
-
-#: Label of the analytic curves in every legend.
-ANALYTIC_LABEL = "analytic"
-#: Label of the reference curves: the integrated original equations.
-TRUE_LABEL = "true (integrated)"
 
 
 def _draw_pair(ax, x, y, x_true=None, y_true=None):
@@ -193,8 +190,8 @@ def _length(values: Mapping, argument: str) -> int:
 def plot_phase(
     analytic: Mapping,
     true: Mapping | None = None,
-    *,
     pairs: Sequence[tuple[str, str]] = (("x", "xdot"),),
+    *,
     units: Mapping[str, str] | None = None,
     title: str | None = None,
 ):
