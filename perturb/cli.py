@@ -434,7 +434,9 @@ def _cmd_work_precision(args) -> int:
     else:
         print(work_precision_as_table(result))
     if args.plot is not None:
-        result.plot().savefig(args.plot)
+        from perturb.report.plots import plot_work_precision
+
+        plot_work_precision(result).savefig(args.plot)
     return EXIT_OK
 
 

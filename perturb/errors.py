@@ -13,6 +13,7 @@ __all__ = [
     "IntegrationError",
     "InvalidParameterError",
     "InvalidSystemError",
+    "MissingDependencyError",
     "PerturbError",
     "ProblemLoadError",
     "UnknownNameError",
@@ -72,3 +73,8 @@ class CacheWarning(UserWarning):
 class ProblemLoadError(PerturbError, ValueError):
     """A problem named by file or module (``path/to/file.py:Class``), or installed through an entry
     point, that cannot be loaded: missing file, syntax or import error, missing or incomplete class."""
+
+
+class MissingDependencyError(PerturbError, ImportError):
+    """An optional dependency (an extra such as ``perturb[plot]``) is not installed; the message
+    names the extra to install."""

@@ -96,39 +96,6 @@ class WorkPrecision:
     reference: str
     points: tuple
 
-    def plot(self, ax=None):
-        """Work–precision diagram (log error against log seconds), one line per method.
-
-        Returns
-        -------
-        matplotlib.figure.Figure
-
-        Raises
-        ------
-        ImportError
-            If matplotlib is not installed (``pip install perturb[plot]``).
-        """
-        try:
-            import matplotlib.pyplot as plt
-        except ImportError as exc:  # pragma: no cover - depends on the environment
-            raise ImportError(
-                "the work-precision plot needs matplotlib: pip install 'perturb[plot]'"
-            ) from exc
-        if ax is None:
-            fig, ax = plt.subplots(figsize=(6, 4.5))
-        else:
-            fig = ax.figure
-        methods = dict.fromkeys(p.method for p in self.points if math.isfinite(p.error))
-        for method in methods:
-            pts = [p for p in self.points if p.method == method and math.isfinite(p.error)]
-            ax.loglog([p.seconds for p in pts], [p.error for p in pts], "o-", label=method)
-        ax.set_xlabel("wall time [s]")
-        ax.set_ylabel("max relative error")
-        ax.set_title(f"{self.problem}: {self.periods:g} periods")
-        ax.legend(fontsize="small")
-        ax.grid(True, which="both", alpha=0.3)
-        return fig
-
 
 def _median_time(fn: Callable[[], object], repeat: int):
     times, result = [], None
@@ -194,7 +161,7 @@ def work_precision(
     -------
     WorkPrecision
         Data only: :mod:`perturb.report.workprecision` writes it as CSV (``method,setting,error,
-        seconds``), JSON or a text table.
+        seconds``), JSON or a text table; :func:`perturb.report.plots.plot_work_precision` draws it.
 
     Raises
     ------

@@ -1,5 +1,5 @@
-"""Formatting of result objects (JSON dictionaries, text tables): a leaf that only the CLI and the
-tests import; the result objects themselves stay data."""
+"""Formatting of result objects (JSON dictionaries, text tables, plots in :mod:`perturb.report.plots`):
+leaves that only the CLI and the tests import; the result objects themselves stay data."""
 
 from perturb.report.validation import validation_as_dict, validation_as_table
 from perturb.report.workprecision import (

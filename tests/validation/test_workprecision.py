@@ -41,13 +41,15 @@ def test_errors_decrease_with_effort(table):
 
 
 def test_plot_or_clear_import_error(table):
+    from perturb.report.plots import plot_work_precision
+
     try:
         import matplotlib  # noqa: F401
     except ImportError:
         with pytest.raises(ImportError, match="matplotlib"):
-            table.plot()
+            plot_work_precision(table)
     else:
-        assert table.plot() is not None
+        assert plot_work_precision(table) is not None
 
 
 @pytest.mark.parametrize(
