@@ -281,12 +281,6 @@ def test_work_precision_one_line_per_method(table, out_dir):
     save(fig, out_dir, "work_precision.png")
 
 
-def test_work_precision_method_delegates(table):
-    fig = table.plot()
-    assert isinstance(fig, Figure)
-    assert labels_of(fig.axes[0]) == labels_of(plot_work_precision(table).axes[0])
-
-
 def test_cli_plot_option(table, tmp_path, capsys, monkeypatch):
     """``perturb work-precision --plot`` draws with plot_work_precision (the run itself is the
     fixture's: the CLI's own sweep is tested in tests/cli)."""
