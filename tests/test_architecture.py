@@ -90,7 +90,7 @@ def test_the_scan_sees_imports_inside_functions(tmp_path):
 )
 def test_perturb_never_imports_problems(path):
     offending = [(line, name) for line, name in _imports(path) if _is_under(name, "problems")]
-    if _module_name(path) == "perturb.cli":  # the CLI is a leaf: it may use the problem registry
+    if _is_under(_module_name(path), "perturb.cli"):  # the CLI is a leaf: it may use problems
         offending = []
     assert not offending, f"{path.relative_to(ROOT)} imports problems at {offending}"
 

@@ -1,0 +1,236 @@
+"""The commands: each builds what it was asked for and prints it."""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+import warnings
+
+import numpy as np
+
+from perturb._defaults import DEFAULT_SAMPLES
+from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError
+from perturb.cli._values import _parse_order, _parse_positive, _parse_sets, _parse_times
+from perturb.domain import series_domain
+
+
+def _cmd_list() -> int:
+    from perturb.errors import ProblemLoadError
+    from problems import get_problem, problem_names
+
+    for name in problem_names():
+        try:
+            cls = get_problem(name)
+        except ProblemLoadError as exc:  # a broken installed package: say so, list the others
+            print(f"perturb: warning: {exc}", file=sys.stderr)
+            continue
+        print(f"{name:16s} {cls.summary}")
+        for spec in cls.parameter_specs:
+            print(f"    {spec.name:10s} default {spec.default:<12g} {spec.doc}")
+    return EXIT_OK
+
+
+def _cmd_solve(args) -> int:
+    from problems import load_problem
+
+    cls = load_problem(args.problem)
+    overrides = _parse_sets(args.sets)
+    order = _parse_order(args.order)
+    times = _parse_times(args.times)
+    problem = _select_family(cls.create(**overrides), args.family, order)
+    if args.euler and not hasattr(problem, "euler_angles"):
+        raise _UsageError(
+            f"--euler: problem {args.problem!r} has no Euler angles (rigid bodies only)"
+        )
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        solution = problem.solve(order)
+        domain = None
+        if solution.success:
+            domain = series_domain(solution, problem.parameter_value(), problem.symbol_values())
+    notes = [str(w.message) for w in caught]
+    if not solution.success or not domain.ok:
+        reason = (
+            f"{solution.status.value}: {solution.message}"
+            if not solution.success
+            else "the series is outside its domain: " + "; ".join(domain.reasons)
+        )
+        if args.format == "json":
+            failed = {"problem": args.problem, "status": "failed", "reason": reason}
+            print(json.dumps({**failed, "warnings": notes}, allow_nan=True))
+        print(f"perturb: {args.problem}: {reason}", file=sys.stderr)
+        return EXIT_FAILED
+    period = problem.period(solution)
+    if times is None:
+        times = np.linspace(0.0, period, DEFAULT_SAMPLES)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        state = problem.state(solution, times)
+        extras = {"euler": problem.euler_angles(solution, times)} if args.euler else {}
+    notes += [str(w.message) for w in caught if str(w.message) not in notes]
+    report = problem.report_extras() if hasattr(problem, "report_extras") else {}
+    payload = {
+        "problem": args.problem,
+        "parameters": problem.resolved_parameters(),
+        "epsilon": problem.epsilon(),
+        **report,
+        "order": order,
+        "period": period,
+        "t": times.tolist(),
+        "state": {k: np.asarray(v, dtype=float).tolist() for k, v in state.items()},
+        **{
+            k: {n: np.asarray(v, dtype=float).tolist() for n, v in d.items()}
+            for k, d in extras.items()
+        },
+        "warnings": notes,
+    }
+    if args.format != "json":
+        for note in notes:
+            print(f"perturb: warning: {note}", file=sys.stderr)
+    if args.latex:
+        payload["latex"] = solution.latex()
+    if args.steps:
+        payload["steps"] = [str(solution.generating), *(str(step) for step in solution.steps)]
+    _print(payload, args.format, [("state", state), *extras.items()])
+    if args.format == "table":
+        for key in ("steps", "latex"):
+            if key in payload:
+                text = payload[key] if isinstance(payload[key], str) else "\n".join(payload[key])
+                print(f"\n# {key}\n{text}")
+    return EXIT_OK
+
+
+def _cmd_validate(args) -> int:
+    from perturb.report import validation_as_dict, validation_as_table
+    from perturb.validation import DEFAULT_TOL, validate
+    from problems import load_problem
+
+    cls = load_problem(args.problem)
+    problem = _select_family(cls.create(**_parse_sets(args.sets)), args.family, args.order)
+    tol = DEFAULT_TOL if args.tol is None else _parse_positive("--tol", args.tol, float)
+    report = validate(
+        problem,
+        order=_parse_order(args.order),
+        integrator=args.integrator,
+        periods=_parse_positive("--periods", args.periods, float),
+        tol=tol,
+    )
+    if args.format == "json":
+        print(json.dumps(validation_as_dict(report), allow_nan=True))
+    else:
+        print(validation_as_table(report))
+    return EXIT_OK if report.completed else EXIT_FAILED
+
+
+def _cmd_work_precision(args) -> int:
+    from perturb.report import (
+        work_precision_as_csv,
+        work_precision_as_dict,
+        work_precision_as_table,
+    )
+    from perturb.workprecision import work_precision
+    from problems import load_problem
+
+    cls = load_problem(args.problem)
+    problem = cls.create(**_parse_sets(args.sets))
+    periods = _parse_positive("--periods", args.periods, float)
+    orders = _parse_positive("--orders", args.orders, int)
+    repeat = _parse_positive("--repeat", args.repeat, int)
+    if args.plot is not None:
+        try:
+            import matplotlib  # noqa: F401
+        except ImportError:
+            raise _UsageError(
+                "--plot needs matplotlib: pip install 'perturb[plot]', or drop --plot"
+            ) from None
+    result = work_precision(problem, periods=periods, orders=orders, repeat=repeat)
+    if args.format == "json":
+        print(json.dumps(work_precision_as_dict(result), allow_nan=True))
+    elif args.format == "csv":
+        print(work_precision_as_csv(result))
+    else:
+        print(work_precision_as_table(result))
+    if args.plot is not None:
+        from perturb.report.plots import plot_work_precision
+
+        plot_work_precision(result).savefig(args.plot)
+    return EXIT_OK
+
+
+def _cmd_reproduce(args) -> int:
+    from problems.reproductions import get_reproduction
+
+    reproduction = get_reproduction(args.paper)
+    report = reproduction.run(output=args.output)
+    if args.format == "json":
+        print(json.dumps(reproduction.as_dict(report), allow_nan=True))
+        return EXIT_OK
+    print(reproduction.summary(report))
+    if args.full:
+        print()
+        print(reproduction.full(report))
+    return EXIT_OK
+
+
+def _select_family(problem, name: str | None, order):
+    """The problem following family ``name`` (checked now: an unknown name exits 2 with the list)."""
+    if name is None:
+        return problem
+    problem.families(_parse_order(order) if isinstance(order, str) else order).get(name)
+    return problem.with_family(name)
+
+
+def _cmd_families(args) -> int:
+    from perturb.report.families import as_dict, as_table
+    from problems import load_problem
+
+    cls = load_problem(args.problem)
+    problem = cls.create(**_parse_sets(args.sets))
+    families = problem.families(_parse_order(args.order))
+    if args.format == "json":
+        print(json.dumps(as_dict(families, args.problem)))
+    else:
+        print(as_table(families, args.problem))
+    return EXIT_OK if len(families) else EXIT_FAILED
+
+
+def _non_finite(value) -> bool:
+    """Whether a number anywhere in a (nested) payload is NaN or infinite."""
+    if isinstance(value, dict):
+        return any(_non_finite(v) for v in value.values())
+    if isinstance(value, list | tuple):
+        return any(_non_finite(v) for v in value)
+    if isinstance(value, float | np.floating):
+        return not math.isfinite(value)
+    if isinstance(value, np.ndarray) and value.dtype.kind in "fc":
+        return not bool(np.all(np.isfinite(value)))
+    return False
+
+
+def _print(payload: dict, fmt: str, blocks) -> None:
+    numbers = {"period": payload.get("period"), "blocks": [dict(b) for _, b in blocks]}
+    if _non_finite(numbers):
+        raise _RunFailed(
+            "the solution is not finite at these parameters or times (NaN or inf); it is "
+            "outside the domain where the series holds"
+        )
+    if fmt == "json":
+        print(json.dumps(payload, allow_nan=True))
+        return
+    columns = {"t": np.asarray(payload["t"])}
+    for _, block in blocks:
+        columns.update({k: np.asarray(v, dtype=float) for k, v in block.items()})
+    names = list(columns)
+    if fmt == "csv":
+        print(",".join(names))
+        for row in zip(*columns.values(), strict=True):
+            print(",".join(repr(float(v)) for v in row))
+        return
+    head = f"# {payload['problem']}  order {payload['order']}  epsilon {payload['epsilon']:.6g}  period {payload['period']:.12g}"
+    params = "  ".join(f"{k}={v:g}" for k, v in payload["parameters"].items())
+    print(head)
+    print(f"# {params}")
+    print("".join(f"{n:>20s}" for n in names))
+    for row in zip(*columns.values(), strict=True):
+        print("".join(f"{float(v):20.12g}" for v in row))

@@ -1,0 +1,22 @@
+"""Errors the command line distinguishes: the user's input (exit 2) and a failed run (exit 1)."""
+
+from __future__ import annotations
+
+#: Exit codes: success, a valid run that failed (the reason is printed), bad input.
+EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
+
+_INPUT_ERRORS = (
+    "InvalidParameterError",
+    "InvalidSystemError",
+    "UnknownNameError",
+    "ProblemLoadError",
+    "SceneError",
+)
+
+
+class _UsageError(Exception):
+    pass
+
+
+class _RunFailed(Exception):
+    """A valid run that failed: exit 1 with the reason on one line."""

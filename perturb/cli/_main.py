@@ -1,0 +1,153 @@
+"""The entry point: run a command, map what went wrong to an exit code, draw progress."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import sys
+import warnings
+from collections.abc import Iterator, Sequence
+
+from perturb.cli._commands import (
+    _cmd_families,
+    _cmd_list,
+    _cmd_reproduce,
+    _cmd_solve,
+    _cmd_validate,
+    _cmd_work_precision,
+)
+from perturb.cli._errors import _INPUT_ERRORS, EXIT_FAILED, EXIT_USAGE, _RunFailed, _UsageError
+from perturb.cli._parser import _build_parser
+from perturb.errors import PerturbError
+from perturb.progress import listening
+
+
+def _format_warning(message, category, filename, lineno, line=None) -> str:
+    """Warnings on one line, as the CLI's errors are: ``perturb: warning: ...``."""
+    return f"perturb: warning: {message}\n"
+
+
+class _ProgressBar:
+    """A one-line bar on stderr, redrawn in place: ``perturb: work-precision [#####.....] 12/24``."""
+
+    WIDTH = 30
+
+    def __init__(self, stream):
+        self.stream = stream
+        self.drawn = False
+
+    def __call__(self, label: str, done: int, total: int | None) -> None:
+        if total:
+            filled = self.WIDTH * done // total
+            bar = f"[{'#' * filled}{'.' * (self.WIDTH - filled)}] {done}/{total}"
+        else:
+            bar = f"{done} done"
+        self.stream.write(f"\rperturb: {label} {bar}")
+        self.stream.flush()
+        self.drawn = True
+        if total and done >= total:
+            self.close()
+
+    def close(self) -> None:
+        if self.drawn:
+            self.stream.write("\n")
+            self.stream.flush()
+            self.drawn = False
+
+
+@contextlib.contextmanager
+def _progress(args) -> Iterator[None]:
+    """Show progress on stderr when it is a terminal and ``--quiet`` was not given."""
+    show = not getattr(args, "quiet", False) and sys.stderr.isatty()
+    bar = _ProgressBar(sys.stderr) if show else None
+    with listening(bar):
+        try:
+            yield
+        finally:
+            if bar is not None:
+                bar.close()
+
+
+_COMMANDS = {
+    "list": lambda args: _cmd_list(),
+    "solve": lambda args: _cmd_solve(args),
+    "validate": lambda args: _cmd_validate(args),
+    "reproduce": lambda args: _cmd_reproduce(args),
+    "work-precision": lambda args: _cmd_work_precision(args),
+    "families": lambda args: _cmd_families(args),
+}
+
+
+def _is_input_error(exc: BaseException) -> bool:
+    return isinstance(exc, PerturbError) and any(
+        cls.__name__ in _INPUT_ERRORS for cls in type(exc).__mro__
+    )
+
+
+def _one_line(exc: BaseException) -> str:
+    text = " ".join(str(exc).split())
+    return text or type(exc).__name__
+
+
+def _run(argv: Sequence[str] | None) -> int:
+    parser = _build_parser()
+    try:
+        args = parser.parse_args(argv)
+        if args.command is None:
+            parser.print_help()
+            return EXIT_USAGE
+        with _progress(args):
+            return _COMMANDS[args.command](args)
+    except _UsageError as exc:
+        print(f"perturb: error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_USAGE
+    except _RunFailed as exc:
+        print(f"perturb: failed: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_FAILED
+    except BrokenPipeError:
+        raise
+    except (OverflowError, FloatingPointError, ZeroDivisionError) as exc:
+        print(
+            f"perturb: failed: the computation overflowed or divided by zero at these parameters "
+            f"({_one_line(exc)}); try values closer to the problem's defaults",
+            file=sys.stderr,
+        )
+        return EXIT_FAILED
+    except Exception as exc:  # noqa: BLE001 - a run never ends in a traceback
+        if _is_input_error(exc):
+            print(f"perturb: error: {_one_line(exc)}", file=sys.stderr)
+            return EXIT_USAGE
+        print(
+            f"perturb: failed: internal error ({type(exc).__name__}: {_one_line(exc)}); please "
+            "report it with the command line",
+            file=sys.stderr,
+        )
+        return EXIT_FAILED
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``perturb`` command; returns the exit code.
+
+    A closed output pipe (``perturb solve ... | head``) ends the run quietly, as other Unix tools do.
+    """
+    warnings.formatwarning = _format_warning
+    try:
+        code = _run(argv)
+        sys.stdout.flush()
+        return code
+    except BrokenPipeError:
+        # Python's advice: point stdout at devnull so the interpreter's final flush cannot fail again.
+        with contextlib.suppress(OSError, ValueError):
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, sys.stdout.fileno())
+        return EXIT_FAILED
+    except KeyboardInterrupt:  # pragma: no cover
+        return 130
+
+
+def run() -> None:  # pragma: no cover - console entry
+    sys.exit(main())
+
+
+if __name__ == "__main__":  # pragma: no cover
+    run()

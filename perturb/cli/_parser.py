@@ -1,0 +1,188 @@
+"""The argument parser: commands, options and their help (never abbreviated)."""
+
+from __future__ import annotations
+
+import argparse
+
+from perturb.cli._errors import _UsageError
+
+_EPILOG = """examples:
+  perturb list
+  perturb solve duffing --set eps=0.05 --set amplitude=1.2 --order 2
+  perturb solve van-der-pol --order 3 --times 0,1,2,3 --format json
+  perturb solve disk --euler --format json
+  perturb solve my_oscillator.py:MyOscillator --set eps=0.05   (your own Problem subclass)
+  perturb validate duffing --set eps=0.05
+  perturb families resonant-pair --order 2
+  perturb solve resonant-pair --family anti-phase
+  perturb reproduce paper
+  perturb work-precision duffing --periods 10 --orders 3 --format csv
+"""
+
+
+#: Errors about the user's input (exit 2); every other exception inside a run is a failure (exit 1).
+
+
+class _Parser(argparse.ArgumentParser):
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)  # `--order` must never mean `--orders`
+        super().__init__(*args, **kwargs)
+
+    def error(self, message):  # one line, exit 2, no usage dump
+        raise _UsageError(message)
+
+
+def _add_problem_arguments(parser: argparse.ArgumentParser, *, order: bool = True) -> None:
+    """PROBLEM, --set (and --order): shared by every command that builds a problem's solution."""
+    parser.add_argument(
+        "problem",
+        help="problem name (see `perturb list`), path/to/file.py:Class or package.module:Class",
+    )
+    parser.add_argument(
+        "--set",
+        dest="sets",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="set a parameter (repeatable); unset parameters take their defaults",
+    )
+    if order:
+        parser.add_argument(
+            "--order",
+            default="1",
+            help="highest power of the small parameter kept (integer >= 1; default 1)",
+        )
+
+
+def _add_format(parser: argparse.ArgumentParser, choices: list[str]) -> None:
+    parser.add_argument(
+        "--format", default="table", choices=choices, help="output format (default table)"
+    )
+
+
+def _build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="perturb",
+        description="Periodic solutions of oscillating systems by Poincaré's method, checked against the true motion.",
+        epilog=_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub.add_parser("list", help="list the registered problems and their parameters")
+    solve = sub.add_parser(
+        "solve",
+        help="construct a problem's periodic solution and print its state",
+        description="Construct PROBLEM's periodic solution by Poincaré's method and print the state "
+        "at the requested times (default: one period, 101 samples from t = 0).",
+    )
+    _add_problem_arguments(solve)
+    solve.add_argument(
+        "--times",
+        default=None,
+        metavar="TIMES",
+        help="times (physical units): T1,T2,... or START:STOP:N (N evenly spaced, both ends "
+        "included) or @FILE (one value a line, or comma-separated; '#' starts a comment)",
+    )
+    _add_format(solve, ["table", "csv", "json"])
+    solve.add_argument(
+        "--euler", action="store_true", help="add the Euler angles (rigid bodies only)"
+    )
+    solve.add_argument(
+        "--latex",
+        action="store_true",
+        help="also print the symbolic solution (coordinates and period) as LaTeX",
+    )
+    solve.add_argument(
+        "--steps",
+        action="store_true",
+        help="also print the construction order by order (forcing, quadratures, conditions, solved)",
+    )
+    validate = sub.add_parser(
+        "validate",
+        help="check a problem's periodic solution against the true motion and give a verdict",
+        description="Integrate the original equations from the analytic initial state, find the true "
+        "periodic orbit by shooting, measure the errors and their slope in the expansion parameter, "
+        "and say whether the analytic solution is valid.",
+    )
+    _add_problem_arguments(validate)
+    validate.add_argument(
+        "--integrator",
+        default=None,
+        help="rk4, dop853, rk45, radau, lsoda or heyoka (default: heyoka if installed, else dop853)",
+    )
+    validate.add_argument(
+        "--periods",
+        default="10",
+        help="horizon of the trajectory comparison, in periods (default 10; information only)",
+    )
+    validate.add_argument(
+        "--tol",
+        default=None,
+        help="accuracy tolerance: largest relative distance of the analytic orbit and period from "
+        "the true ones (default 0.1)",
+    )
+    _add_format(validate, ["table", "json"])
+    work = sub.add_parser(
+        "work-precision",
+        help="error against run time: analytic orders 1..N, RK4, scipy and heyoka",
+        description="For PROBLEM over a horizon, measure the error against a reference trajectory and "
+        "the wall time (median of repeated runs) of the analytic solution at orders 1..N "
+        "(derivation and evaluation timed apart), RK4 at several steps, the scipy methods at "
+        "several tolerances and heyoka.",
+    )
+    _add_problem_arguments(work, order=False)
+    work.add_argument("--periods", default="10", help="horizon in periods (default 10)")
+    work.add_argument("--orders", default="3", help="analytic orders 1..N (default 3)")
+    work.add_argument("--repeat", default="3", help="runs per point, median reported (default 3)")
+    work.add_argument(
+        "--plot",
+        default=None,
+        metavar="FILE",
+        help="also save a work-precision plot (needs matplotlib)",
+    )
+    _add_format(work, ["table", "csv", "json"])
+    reproduce = sub.add_parser(
+        "reproduce",
+        help="reproduce a published paper's numbers beside the true motion",
+        description="Reproduce a paper's printed constants and tables, the corrected solution and the "
+        "true motion, and list its errata.",
+    )
+    reproduce.add_argument("paper", help="paper name (`paper`: the seed paper on the disk)")
+    _add_format(reproduce, ["table", "json"])
+    reproduce.add_argument(
+        "--full",
+        action="store_true",
+        help="print the full tables after the summary (json output is always complete)",
+    )
+    reproduce.add_argument(
+        "--output", default=None, metavar="DIR", help="also write the report files into DIR"
+    )
+    _add_family_arguments(sub, solve, validate)
+    for command in sub.choices.values():
+        command.add_argument(
+            "--quiet",
+            action="store_true",
+            help="no progress bar on stderr (it is shown only on a terminal anyway)",
+        )
+    return parser
+
+
+def _add_family_arguments(sub, solve, validate) -> None:
+    """``perturb families`` and the ``--family NAME`` option of ``solve`` and ``validate``."""
+    families = sub.add_parser(
+        "families",
+        help="every family of periodic solutions a problem admits, each carried to order N",
+        description="List every family of periodic solutions of PROBLEM that the first order "
+        "selecting the generating amplitudes admits (isolated roots and continua, with the free "
+        "amplitude named), each with its name, the amplitudes that select it, and its status "
+        "carried to --order. Select one in `solve`/`validate` with --family NAME.",
+    )
+    _add_problem_arguments(families)
+    _add_format(families, ["table", "json"])
+    for command in (solve, validate):
+        command.add_argument(
+            "--family",
+            default=None,
+            metavar="NAME",
+            help="follow the family NAME (see `perturb families PROBLEM`) instead of the default",
+        )
