@@ -32,7 +32,13 @@ from perturb.cache import bypassed
 from perturb.errors import bad_value
 from perturb.oracle import RK4, Heyoka, Scipy, choose, heyoka_available
 from perturb.progress import track
-from perturb.validation import AMPLITUDE_FLOOR, SAMPLES_PER_PERIOD, as_model, original_system
+from perturb.validation import (
+    AMPLITUDE_FLOOR,
+    MAX_OUTPUT_SAMPLES,
+    SAMPLES_PER_PERIOD,
+    as_model,
+    original_system,
+)
 
 __all__ = ["WorkPoint", "WorkPrecision", "work_precision"]
 
@@ -170,6 +176,13 @@ def work_precision(
     """
     if not (isinstance(periods, int | float) and math.isfinite(periods) and periods > 0):
         raise bad_value("periods", periods, "pass a positive number of periods")
+    if periods * samples_per_period > MAX_OUTPUT_SAMPLES:
+        raise bad_value(
+            "periods",
+            periods,
+            f"at most {MAX_OUTPUT_SAMPLES // samples_per_period} periods at "
+            f"{samples_per_period} samples per period",
+        )
     if not isinstance(repeat, int) or repeat < 1:
         raise bad_value("repeat", repeat, "pass an integer >= 1")
     for tol in tolerances:

@@ -11,7 +11,13 @@ import numpy as np
 
 from perturb._defaults import DEFAULT_SAMPLES
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError
-from perturb.cli._values import _parse_order, _parse_positive, _parse_sets, _parse_times
+from perturb.cli._values import (
+    _parse_order,
+    _parse_output,
+    _parse_positive,
+    _parse_sets,
+    _parse_times,
+)
 from perturb.domain import series_domain
 
 
@@ -162,7 +168,7 @@ def _cmd_reproduce(args) -> int:
     from problems.reproductions import get_reproduction
 
     reproduction = get_reproduction(args.paper)
-    report = reproduction.run(output=args.output)
+    report = reproduction.run(output=_parse_output("--output", args.output))
     if args.format == "json":
         print(json.dumps(reproduction.as_dict(report), allow_nan=True))
         return EXIT_OK

@@ -104,3 +104,15 @@ def _parse_positive(flag: str, text: str, kind=float):
     if not value > 0 or value != value or value == float("inf"):
         raise _UsageError(f"{flag} {text!r} is invalid: give a finite value > 0")
     return value
+
+
+def _parse_output(flag: str, text: str | None) -> Path | None:
+    """An output folder: a non-empty path that is not an existing file (created when written)."""
+    if text is None:
+        return None
+    if not text.strip():
+        raise _UsageError(f"{flag} {text!r}: name a folder, e.g. {flag} results")
+    path = Path(text)
+    if path.exists() and not path.is_dir():
+        raise _UsageError(f"{flag} {text!r} is an existing file: name a folder")
+    return path

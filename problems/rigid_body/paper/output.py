@@ -314,8 +314,10 @@ def prepare_output(output) -> Path:
     perturb.errors.InvalidParameterError
         If ``output`` cannot be created or written (the message names ``--output``).
     """
-    path = Path(output)
     fix = "give a directory you can write to, e.g. --output ./reproduction"
+    if not str(output).strip():  # Path("") is the current folder: never write there by accident
+        raise InvalidParameterError(f"`output` = {str(output)!r} is invalid: {fix}")
+    path = Path(output)
     try:
         path.mkdir(parents=True, exist_ok=True)
         with tempfile.TemporaryFile(dir=path):
