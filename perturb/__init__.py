@@ -1,7 +1,13 @@
 """perturb: periodic solutions of quasilinear oscillating systems by Poincaré's method.
 
-Nothing symbolic happens at import time: systems are derived and solved on demand.
+Nothing symbolic happens at import time: systems are derived and solved on demand. The public names
+are loaded on first use (PEP 562 module ``__getattr__``), so that ``import perturb`` — and the
+command line's ``--help`` — does not load sympy, numpy or the engine.
 """
+
+from __future__ import annotations
+
+import importlib
 
 from perturb.errors import (
     AccuracyWarning,
@@ -11,11 +17,20 @@ from perturb.errors import (
     PerturbError,
     UnknownNameError,
 )
-from perturb.method import PoincareMethod, solve
-from perturb.solution import PeriodicSolution, SolutionFailed, Status
-from perturb.system import EPS, QuasilinearSystem, Regime
 
 __version__ = "0.1.0"
+
+#: Public name -> the module that defines it (imported on first access).
+_LAZY = {
+    "PoincareMethod": "perturb.method",
+    "solve": "perturb.method",
+    "PeriodicSolution": "perturb.solution",
+    "SolutionFailed": "perturb.solution",
+    "Status": "perturb.solution",
+    "EPS": "perturb.system",
+    "QuasilinearSystem": "perturb.system",
+    "Regime": "perturb.system",
+}
 
 __all__ = [
     "EPS",
@@ -33,3 +48,16 @@ __all__ = [
     "UnknownNameError",
     "solve",
 ]
+
+
+def __getattr__(name: str):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'perturb' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value  # later lookups skip this hook
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

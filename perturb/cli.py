@@ -18,8 +18,6 @@ import warnings
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 
-import numpy as np
-
 from perturb._defaults import DEFAULT_SAMPLES, MAX_TIMES
 from perturb.errors import PerturbError
 from perturb.progress import listening
@@ -240,8 +238,10 @@ def _parse_number(flag: str, text: str, item: str) -> float:
     return value
 
 
-def _parse_times(text: str | None) -> np.ndarray | None:
+def _parse_times(text: str | None) -> np.ndarray | None:  # noqa: F821 - numpy is imported lazily
     """``--times``: ``T1,T2,...``, ``START:STOP:N`` or ``@FILE``."""
+    import numpy as np
+
     if text is None:
         return None
     spec = _read_times_file(text) if text.startswith("@") else text
@@ -283,6 +283,8 @@ def _cmd_list() -> int:
 
 
 def _cmd_solve(args) -> int:
+    import numpy as np
+
     from problems import get_problem
 
     cls = get_problem(args.problem)
@@ -409,6 +411,8 @@ def _cmd_reproduce(args) -> int:
 
 def _non_finite(value) -> bool:
     """Whether a number anywhere in a (nested) payload is NaN or infinite."""
+    import numpy as np
+
     if isinstance(value, dict):
         return any(_non_finite(v) for v in value.values())
     if isinstance(value, list | tuple):
@@ -421,6 +425,8 @@ def _non_finite(value) -> bool:
 
 
 def _print(payload: dict, fmt: str, blocks) -> None:
+    import numpy as np
+
     numbers = {"period": payload.get("period"), "blocks": [dict(b) for _, b in blocks]}
     if _non_finite(numbers):
         raise _RunFailed(
