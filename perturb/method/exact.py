@@ -11,7 +11,7 @@ import sympy as sp
 
 from perturb._defaults import NUMERIC_ZERO, PROBE_DIGITS, ROOT_MAX_DENOMINATOR, ROOT_RATIONAL_TOL
 from perturb.system import EPS
-from perturb.trig import TrigPoly
+from perturb.trig import SympyRing, TrigPoly
 
 __all__ = [
     "chop",
@@ -77,6 +77,8 @@ def vanishes(expr) -> bool:
 
 def chop(poly: TrigPoly) -> TrigPoly:
     """Drop floating-point round-off (|c| < NUMERIC_ZERO) from the coefficients of ``poly``."""
+    if poly.ring is not SympyRing:  # native coefficients: only float-free runs are native
+        return poly
 
     def chop_one(expr: sp.Expr) -> sp.Expr:
         floats = {f: 0 for f in expr.atoms(sp.Float) if abs(f) < NUMERIC_ZERO}
