@@ -58,12 +58,13 @@ class _Harmonics:
 
     def __init__(self, terms: Mapping[int, tuple] | None = None):
         ring = self.ring
+        coerce, zero = ring.coerce, ring.zero  # `!= zero`: 5x faster than `!= 0` on symengine
         clean: dict = {}
         for j, (c, s) in (terms or {}).items():
             if j < 0:
                 raise ValueError(f"harmonic {j} < 0: fold negative harmonics before building")
-            c, s = ring.coerce(c), (ring.zero if j == 0 else ring.coerce(s))
-            if c != 0 or s != 0:
+            c, s = coerce(c), (zero if j == 0 else coerce(s))
+            if c != zero or s != zero:
                 clean[j] = (c, s)
         self._terms = clean
 
@@ -126,7 +127,7 @@ class _Harmonics:
     def __add__(self, other: TrigPoly) -> TrigPoly:
         acc = dict(self.terms)
         for j, (c, s) in other.terms.items():
-            c0, s0 = acc.get(j, (0, 0))
+            c0, s0 = acc.get(j, (self.ring.zero, self.ring.zero))
             acc[j] = (c0 + c, s0 + s)
         return type(self)(acc)
 
@@ -138,31 +139,34 @@ class _Harmonics:
 
     def scale(self, factor) -> TrigPoly:
         factor = self.ring.coerce(factor)
-        if factor == 0:
+        if factor == self.ring.zero:
             return type(self)()
         return type(self)({j: (factor * c, factor * s) for j, (c, s) in self.terms.items()})
 
     def __mul__(self, other: TrigPoly) -> TrigPoly:
         """Product, linearised to a sum of harmonics, coefficients expanded."""
+        zero = self.ring.zero
         cos_acc: dict[int, list] = defaultdict(list)
         sin_acc: dict[int, list] = defaultdict(list)
         for i, (ci, si) in self.terms.items():
+            ci_nz, si_nz = ci != zero, si != zero
             for j, (cj, sj) in other.terms.items():
                 lo, hi = abs(i - j), i + j
                 sign = 1 if i >= j else -1  # sin((i-j)s) = sign * sin(|i-j| s)
-                if ci != 0 and cj != 0:
+                cj_nz, sj_nz = cj != zero, sj != zero
+                if ci_nz and cj_nz:
                     cc = ci * cj
                     cos_acc[lo].append(cc)
                     cos_acc[hi].append(cc)
-                if si != 0 and sj != 0:
+                if si_nz and sj_nz:
                     ss = si * sj
                     cos_acc[lo].append(ss)
                     cos_acc[hi].append(-ss)
-                if ci != 0 and sj != 0:  # cos(i) sin(j) = [sin(i+j) - sin(i-j)]/2
+                if ci_nz and sj_nz:  # cos(i) sin(j) = [sin(i+j) - sin(i-j)]/2
                     cs = ci * sj
                     sin_acc[hi].append(cs)
                     sin_acc[lo].append(-sign * cs)
-                if si != 0 and cj != 0:  # sin(i) cos(j) = [sin(i+j) + sin(i-j)]/2
+                if si_nz and cj_nz:  # sin(i) cos(j) = [sin(i+j) + sin(i-j)]/2
                     sc = si * cj
                     sin_acc[hi].append(sc)
                     sin_acc[lo].append(sign * sc)
