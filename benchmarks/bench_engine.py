@@ -112,18 +112,27 @@ def _median(runs: list[dict]) -> dict:
 
 
 # ---------------------------------------------------------------------------------- tables
-def measure(tree: Path, max_order: int, repeats: int, env_extra: dict | None = None) -> dict:
-    out: dict = {"help": _help_times(tree, env_extra), "derive": {}, "evaluate": {}}
+def measure(trees: dict[str, tuple[Path, dict]], max_order: int, repeats: int) -> dict:
+    """Every figure for every tree, the trees interleaved run by run (the machine's load then
+    weighs on all columns alike)."""
+    out = {label: {"help": None, "derive": {}, "evaluate": {}} for label in trees}
+
+    def each(args: list[str]) -> dict[str, dict]:
+        runs: dict[str, list] = {label: [] for label in trees}
+        for _ in range(repeats):
+            for label, (tree, env) in trees.items():
+                runs[label].append(_run_worker(tree, args, env))
+        return {label: _median(r) for label, r in runs.items()}
+
+    for label, (tree, env) in trees.items():
+        out[label]["help"] = _help_times(tree, env)
     for name in PROBLEMS:
         for order in range(1, max_order + 1):
-            runs = [
-                _run_worker(tree, ["derive", name, str(order)], env_extra) for _ in range(repeats)
-            ]
-            out["derive"][(name, order)] = _median(runs)
-            print(f"  {tree.name}: {name} order {order} done", file=sys.stderr)
-        out["evaluate"][name] = _median(
-            [_run_worker(tree, ["evaluate", name, "3"], env_extra) for _ in range(repeats)]
-        )
+            for label, value in each(["derive", name, str(order)]).items():
+                out[label]["derive"][(name, order)] = value
+            print(f"  {name} order {order} done", file=sys.stderr)
+        for label, value in each(["evaluate", name, "3"]).items():
+            out[label]["evaluate"][name] = value
     return out
 
 
@@ -173,18 +182,15 @@ def main(argv: list[str] | None = None) -> None:
         worker = _worker_derive if kind == "derive" else _worker_evaluate
         print(json.dumps(worker(name, int(order))))
         return
-    columns = {}
-    if args.before is not None:
-        columns[f"before ({args.before.name})"] = measure(
-            args.before.resolve(), args.max_order, args.repeats
-        )
-    from perturb.native import BACKEND  # noqa: PLC0415 - this tree's backend, for the label
+    from perturb.native import BACKEND  # this tree's backend, for the label
 
-    columns[f"this tree ({BACKEND})"] = measure(HERE, args.max_order, args.repeats)
+    trees: dict[str, tuple[Path, dict]] = {}
+    if args.before is not None:
+        trees[f"before ({args.before.name})"] = (args.before.resolve(), {})
+    trees[f"this tree ({BACKEND})"] = (HERE, {})
     if args.fallback:
-        columns["this tree (sympy)"] = measure(
-            HERE, args.max_order, args.repeats, {"PERTURB_BACKEND": "sympy"}
-        )
+        trees["this tree (sympy)"] = (HERE, {"PERTURB_BACKEND": "sympy"})
+    columns = measure(trees, args.max_order, args.repeats)
     _print_tables(columns, args.max_order)
 
 
