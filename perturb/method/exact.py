@@ -7,9 +7,12 @@ either case.
 
 from __future__ import annotations
 
+import math
+
 import sympy as sp
 
 from perturb._defaults import NUMERIC_ZERO, PROBE_DIGITS, ROOT_MAX_DENOMINATOR, ROOT_RATIONAL_TOL
+from perturb.native import Converter, ring_for
 from perturb.system import EPS
 from perturb.trig import SympyRing, TrigPoly
 
@@ -41,6 +44,14 @@ def taylor_coefficient(expr: sp.Expr, k: int) -> sp.Expr:
         return sp.expand(expr) if k == 0 else sp.S.Zero
     if expr.is_polynomial(EPS):
         return sp.expand(sp.expand(expr).coeff(EPS, k))
+    ring = ring_for(expr)
+    if ring is not SympyRing:  # the same k-fold derivative, on the native backend
+        conv = Converter(ring)
+        eps = conv.to_native(EPS)
+        value = conv.to_native(expr)
+        for _ in range(k):
+            value = value.diff(eps)
+        return conv.to_sympy(value.subs({eps: ring.zero}) / math.factorial(k))
     value = expr
     for _ in range(k):
         value = sp.diff(value, EPS)
