@@ -26,7 +26,7 @@ import sympy as sp
 
 from perturb.trig import SympyRing, TrigPoly, _Harmonics
 
-__all__ = ["BACKEND", "Converter", "NativeTrigPoly", "ring_for"]
+__all__ = ["BACKEND", "Converter", "NativeTrigPoly", "NotNative", "ring_for"]
 
 try:  # pragma: no branch - which branch runs depends on the installation
     import symengine as se
@@ -38,6 +38,10 @@ except ImportError:  # pragma: no cover - exercised where symengine is absent
 BACKEND = (
     "symengine" if se is not None and os.environ.get("PERTURB_BACKEND") != "sympy" else "sympy"
 )
+
+
+class NotNative(Exception):
+    """An expression the native backend cannot hold (e.g. sympy's ``CRootOf``): redo in sympy."""
 
 
 class SymengineRing:
@@ -122,7 +126,10 @@ class Converter:
         rename = {s: self._rename[s] for s in symbols if s in self._rename}
         if rename:
             expr = expr.xreplace(rename)
-        return se.sympify(expr)
+        try:
+            return se.sympify(expr)
+        except (se.SympifyError, TypeError, ValueError, RuntimeError) as exc:
+            raise NotNative(str(exc)) from None
 
     def to_sympy(self, value) -> sp.Expr:
         """A native expression as the sympy expression with the original symbols."""

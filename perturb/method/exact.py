@@ -12,7 +12,7 @@ import math
 import sympy as sp
 
 from perturb._defaults import NUMERIC_ZERO, PROBE_DIGITS, ROOT_MAX_DENOMINATOR, ROOT_RATIONAL_TOL
-from perturb.native import Converter, ring_for
+from perturb.native import Converter, NotNative, ring_for
 from perturb.system import EPS
 from perturb.trig import SympyRing, TrigPoly
 
@@ -47,11 +47,14 @@ def taylor_coefficient(expr: sp.Expr, k: int) -> sp.Expr:
     ring = ring_for(expr)
     if ring is not SympyRing:  # the same k-fold derivative, on the native backend
         conv = Converter(ring)
-        eps = conv.to_native(EPS)
-        value = conv.to_native(expr)
-        for _ in range(k):
-            value = value.diff(eps)
-        return conv.to_sympy(value.subs({eps: ring.zero}) / math.factorial(k))
+        try:
+            eps, value = conv.to_native(EPS), conv.to_native(expr)
+        except NotNative:
+            eps = None
+        if eps is not None:
+            for _ in range(k):
+                value = value.diff(eps)
+            return conv.to_sympy(value.subs({eps: ring.zero}) / math.factorial(k))
     value = expr
     for _ in range(k):
         value = sp.diff(value, EPS)

@@ -46,7 +46,7 @@ from perturb.method.conditions import ConditionSolver, OrderFailed
 from perturb.method.exact import vanishes
 from perturb.method.expansion import GivenInitialValues, NotPolynomial, forcing
 from perturb.method.steps import GeneratingSolution, OrderStep, PeriodicityCondition
-from perturb.native import Converter, ring_for
+from perturb.native import Converter, NotNative, ring_for
 from perturb.solution import PeriodicSolution, Status
 from perturb.system import EPS, QuasilinearSystem
 from perturb.trig import SympyRing, TrigPoly
@@ -130,10 +130,8 @@ class PoincareMethod:
         ``cache=False``.
         """
         if not self.cache:
-            return _OrderByOrder(self, system).run()
-        return cached(
-            "solution", self._cache_key(system), lambda: _OrderByOrder(self, system).run()
-        )
+            return _construct(self, system)
+        return cached("solution", self._cache_key(system), lambda: _construct(self, system))
 
     def _cache_key(self, system: QuasilinearSystem) -> tuple:
         def text(value):
@@ -178,6 +176,14 @@ def solve(system: QuasilinearSystem, order: int = 1, **options) -> PeriodicSolut
     return PoincareMethod(order=order, **options).solve(system)
 
 
+def _construct(method: PoincareMethod, system: QuasilinearSystem) -> PeriodicSolution:
+    """One run on the native backend; again on sympy if an expression cannot be held natively."""
+    try:
+        return _OrderByOrder(method, system).run()
+    except NotNative:
+        return _OrderByOrder(method, system, SympyRing).run()
+
+
 class _OrderByOrder:
     """The working state of one run: the template of :meth:`PoincareMethod.solve`.
 
@@ -191,13 +197,13 @@ class _OrderByOrder:
     3. stop once order ``method.order`` is reached and no unknown of it is open; pack the result.
     """
 
-    def __init__(self, method: PoincareMethod, system: QuasilinearSystem):
+    def __init__(self, method: PoincareMethod, system: QuasilinearSystem, ring: type | None = None):
         self.method = method
         self.system = system
         self.n = system.n
         self.names = [c.name for c in system.coordinates]
         self._setup_phase_and_harmonics()
-        self.conv = Converter(self._ring())
+        self.conv = Converter(ring or self._ring())
         self._setup_unknowns()
         self.solver = ConditionSolver(method.branch, method.solve_seconds, self.phase)
 

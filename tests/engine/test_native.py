@@ -122,3 +122,26 @@ def test_import_and_help_load_neither_sympy_nor_numpy():
     )
     imported = {line.split("|")[-1].strip() for line in help_run.stderr.splitlines()}
     assert not imported & {"sympy", "numpy", "symengine", "scipy"}
+
+
+@needs_symengine
+def test_what_symengine_cannot_hold_is_refused_and_the_run_redone_in_sympy(monkeypatch):
+    x = sp.Symbol("x")
+    with pytest.raises(native.NotNative):
+        native.Converter(native.SymengineRing).to_native(sp.CRootOf(x**5 - x - 1, 0))
+
+    problem = get_problem("resonant-pair").create()
+    method = PoincareMethod(order=3, cache=False, **problem.method_options())
+    expected = method.solve(problem.system())
+
+    plain_mapping = native.Converter.mapping
+
+    def refuse(self, mapping):  # as if a solver had returned a CRootOf
+        if self.native:
+            raise native.NotNative("CRootOf")
+        return plain_mapping(self, mapping)
+
+    monkeypatch.setattr(native.Converter, "mapping", refuse)
+    redone = method.solve(problem.system())
+    assert redone.success
+    assert _record(redone) == _record(expected)
