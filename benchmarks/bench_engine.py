@@ -5,6 +5,7 @@ Run::
     python benchmarks/bench_engine.py                       # this tree only
     python benchmarks/bench_engine.py --before /tmp/old     # side by side with another checkout
     python benchmarks/bench_engine.py --fallback            # also this tree on the sympy backend
+    python benchmarks/bench_engine.py --kernel              # single kernel operations, both backends
 
 (``git worktree add /tmp/old <commit>`` makes the other checkout.) Prints tables, asserts nothing.
 
@@ -17,6 +18,9 @@ median of ``--repeats`` runs:
 * ``perturb --help``: wall and CPU time of the whole process (median of 5);
 * evaluation: state points per second of ``PeriodicSolution.evaluate`` at 10**6 times (wall and
   process CPU).
+
+``--kernel`` prints instead the kernel's single operations (trigonometric-polynomial product,
+ε-series of a cubic, a Taylor coefficient, the conversion back) on sympy and on symengine.
 
 The machine is shared: run the trees back to back and compare the medians, not single runs.
 """
@@ -73,6 +77,74 @@ def _worker_evaluate(name: str, order: int) -> dict:
     solution.evaluate(t, eps, values)
     cpu, wall = time.process_time() - cpu, time.perf_counter() - wall
     return {"cpu": N_POINTS / cpu, "wall": N_POINTS / wall}
+
+
+def _best(fn, repeats: int = 5) -> float:
+    from sympy.core.cache import clear_cache
+
+    times = []
+    for _ in range(repeats):
+        clear_cache()  # sympy memoises: every run starts cold
+        start = time.process_time()
+        fn()
+        times.append(time.process_time() - start)
+    return statistics.median(times)
+
+
+def kernel_table() -> None:
+    """The kernel's operations on sympy and on the native backend, in this process (CPU s)."""
+    import sympy as sp
+
+    from perturb import EPS, PoincareMethod, native
+    from perturb.method.exact import taylor_coefficient
+    from perturb.series import TrigSeries, evaluate_polynomial
+    from perturb.trig import SympyRing
+    from problems import get_problem
+
+    if native.BACKEND != "symengine":
+        print("kernel table: symengine is not installed")
+        return
+    problem = get_problem("resonant-pair").create()
+    sol = PoincareMethod(order=6, cache=False, **problem.method_options()).solve(problem.system())
+    x_terms = [t for t in sol.terms[0]]
+    conv = native.Converter(native.SymengineRing)
+    nx = [conv.native_poly(t) for t in x_terms]
+    p, q = sol.steps[-1].forcing["x"], sol.steps[-2].forcing["y"]  # the largest polynomials
+    np_, nq = conv.native_poly(p), conv.native_poly(q)
+    x = sp.Symbol("x")
+    cubic = -(x**3)
+    series_s = {x: TrigSeries(x_terms)}
+    series_n = {x: TrigSeries(nx)}
+    g, c1, c2 = sp.symbols("gamma c1 c2")
+    root = sp.sqrt(1 - (g + EPS * c1 + EPS**2 * c2) ** 2) * (c1 + EPS * c2) / (1 + EPS * g)
+
+    def taylor_on(backend):
+        def run():
+            saved, native.BACKEND = native.BACKEND, backend
+            try:
+                taylor_coefficient(root, 4)
+            finally:
+                native.BACKEND = saved
+
+        return run
+
+    rows = [
+        ("TrigPoly product R_x,7 * R_y,6 (res. pair)", lambda: p * q, lambda: np_ * nq),
+        (
+            "eps-series of -x^3 to eps^6",
+            lambda: evaluate_polynomial(cubic, series_s, 6),
+            lambda: evaluate_polynomial(cubic, series_n, 6, conv.to_native),
+        ),
+        ("Taylor coefficient eps^4 of a root", taylor_on("sympy"), taylor_on("symengine")),
+    ]
+    print("kernel operations, CPU s (median of 5, in process): sympy / native / ratio")
+    for label, slow, fast in rows:
+        a, b = _best(slow), _best(fast)
+        print(f"{label:44s}{a:10.4f}{b:10.5f}{a / b:8.0f}x")
+    product = np_ * nq
+    back = _best(lambda: [conv.trig(product).terms])
+    print(f"{'converting that product back to sympy':44s}{back:10.4f}")
+    assert SympyRing is not native.SymengineRing
 
 
 def _run_worker(tree: Path, args: list[str], env_extra: dict | None = None) -> dict:
@@ -175,12 +247,16 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--fallback", action="store_true", help="also PERTURB_BACKEND=sympy")
     parser.add_argument("--max-order", type=int, default=12)
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--kernel", action="store_true", help="only the kernel operations table")
     parser.add_argument("--worker", nargs=3, help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.worker:
         kind, name, order = args.worker
         worker = _worker_derive if kind == "derive" else _worker_evaluate
         print(json.dumps(worker(name, int(order))))
+        return
+    if args.kernel:
+        kernel_table()
         return
     from perturb.native import BACKEND  # this tree's backend, for the label
 
