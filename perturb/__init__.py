@@ -1,7 +1,13 @@
 """perturb: periodic solutions of quasilinear oscillating systems by Poincaré's method.
 
-Nothing symbolic happens at import time: systems are derived and solved on demand.
+Nothing symbolic happens at import time: systems are derived and solved on demand. The public names
+are loaded on first use (PEP 562 module ``__getattr__``), so that ``import perturb`` — and the
+command line's ``--help`` — does not load sympy, numpy or the engine.
 """
+
+from __future__ import annotations
+
+import importlib
 
 from perturb.errors import (
     AccuracyWarning,
@@ -11,22 +17,24 @@ from perturb.errors import (
     PerturbError,
     UnknownNameError,
 )
-from perturb.method import PoincareMethod, solve
-from perturb.method.families import Family, FamilyList, find_families
-from perturb.solution import PeriodicSolution, SolutionFailed, Status
-from perturb.system import EPS, QuasilinearSystem, Regime
 
 __version__ = "0.1.0"
 
-
-def __getattr__(name: str):
-    """``perturb.validate``: imported on first use (it brings in the numerical oracle)."""
-    if name == "validate":
-        from perturb.validation import validate
-
-        return validate
-    raise AttributeError(f"module 'perturb' has no attribute {name!r}")
-
+#: Public name -> the module that defines it (imported on first access).
+_LAZY = {
+    "PoincareMethod": "perturb.method",
+    "solve": "perturb.method",
+    "PeriodicSolution": "perturb.solution",
+    "SolutionFailed": "perturb.solution",
+    "Status": "perturb.solution",
+    "EPS": "perturb.system",
+    "QuasilinearSystem": "perturb.system",
+    "Regime": "perturb.system",
+    "Family": "perturb.method.families",
+    "FamilyList": "perturb.method.families",
+    "find_families": "perturb.method.families",
+    "validate": "perturb.validation",
+}
 
 __all__ = [
     "EPS",
@@ -48,3 +56,16 @@ __all__ = [
     "solve",
     "validate",
 ]
+
+
+def __getattr__(name: str):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'perturb' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value  # later lookups skip this hook
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

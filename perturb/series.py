@@ -7,7 +7,7 @@ series for the state into a polynomial right-hand side gives the forcing of ever
 from __future__ import annotations
 
 import functools
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 
 import sympy as sp
 
@@ -19,47 +19,51 @@ __all__ = ["TrigSeries", "evaluate_polynomial"]
 class TrigSeries:
     """A power series in ε truncated after ``len(coefficients) - 1``."""
 
-    __slots__ = ("coefficients",)
+    __slots__ = ("coefficients", "poly")
 
-    def __init__(self, coefficients: Sequence[TrigPoly]):
+    def __init__(self, coefficients: Sequence[TrigPoly], poly: type | None = None):
         self.coefficients = list(coefficients)
+        # the class of the coefficients (TrigPoly, or the engine's native one): zeros are made of it
+        self.poly = poly or (type(self.coefficients[0]) if self.coefficients else TrigPoly)
 
     @property
     def order(self) -> int:
         return len(self.coefficients) - 1
 
     @classmethod
-    def constant(cls, value, order: int) -> TrigSeries:
-        return cls([TrigPoly.constant(value)] + [TrigPoly() for _ in range(order)])
+    def constant(cls, value, order: int, poly: type = TrigPoly) -> TrigSeries:
+        return cls([poly.constant(value)] + [poly() for _ in range(order)], poly)
 
     def truncate(self, order: int) -> TrigSeries:
         coeffs = self.coefficients[: order + 1]
-        coeffs += [TrigPoly() for _ in range(order + 1 - len(coeffs))]
-        return TrigSeries(coeffs)
+        coeffs += [self.poly() for _ in range(order + 1 - len(coeffs))]
+        return TrigSeries(coeffs, self.poly)
 
     def __add__(self, other: TrigSeries) -> TrigSeries:
         n = min(self.order, other.order)
-        return TrigSeries([self.coefficients[k] + other.coefficients[k] for k in range(n + 1)])
+        return TrigSeries(
+            [self.coefficients[k] + other.coefficients[k] for k in range(n + 1)], self.poly
+        )
 
     def scale(self, factor) -> TrigSeries:
-        return TrigSeries([c.scale(factor) for c in self.coefficients])
+        return TrigSeries([c.scale(factor) for c in self.coefficients], self.poly)
 
     def __mul__(self, other: TrigSeries) -> TrigSeries:
         n = min(self.order, other.order)
         out = []
         for k in range(n + 1):
-            acc = TrigPoly()
+            acc = self.poly()
             for j in range(k + 1):
                 a, b = self.coefficients[j], other.coefficients[k - j]
                 if a.is_zero() or b.is_zero():
                     continue
                 acc = acc + a * b
             out.append(acc)
-        return TrigSeries(out)
+        return TrigSeries(out, self.poly)
 
     def derivative(self) -> TrigSeries:
         """Term-by-term d/ds."""
-        return TrigSeries([c.derivative() for c in self.coefficients])
+        return TrigSeries([c.derivative() for c in self.coefficients], self.poly)
 
     def at_zero(self) -> list[sp.Expr]:
         return [c.at_zero() for c in self.coefficients]
@@ -75,21 +79,27 @@ def _polynomial_terms(expr: sp.Expr, syms: tuple) -> tuple:
 
 
 def evaluate_polynomial(
-    expr: sp.Expr, variables: Mapping[sp.Symbol, TrigSeries], order: int
+    expr: sp.Expr,
+    variables: Mapping[sp.Symbol, TrigSeries],
+    order: int,
+    convert: Callable | None = None,
 ) -> TrigSeries:
     """Substitute series for ``variables`` in the polynomial ``expr``, truncated at ``order``.
 
     Coefficients of ``expr`` may contain any other symbols (parameters); they must be polynomial in
-    ``variables``.
+    ``variables``. ``expr`` is a sympy expression; when the series have native coefficients
+    (:mod:`perturb.native`), ``convert`` carries the coefficients of ``expr`` over.
 
     Raises
     ------
     sympy.PolynomialError
         If ``expr`` is not polynomial in ``variables`` (the caller falls back to numeric quadrature).
     """
+    poly = next(iter(variables.values())).poly if variables else TrigPoly
+    convert = convert or sp.sympify
     syms = [v for v in variables if expr.has(v)]
     if not syms:
-        return TrigSeries.constant(sp.expand(expr), order)
+        return TrigSeries.constant(convert(sp.expand(expr)), order, poly)
     terms = _polynomial_terms(expr, tuple(syms))
     powers: dict[tuple[sp.Symbol, int], TrigSeries] = {}
 
@@ -101,9 +111,9 @@ def evaluate_polynomial(
             powers[key] = power(sym, e - 1) * variables[sym].truncate(order)
         return powers[key]
 
-    total = TrigSeries([TrigPoly() for _ in range(order + 1)])
+    total = TrigSeries([poly() for _ in range(order + 1)], poly)
     for monom, coeff in terms:
-        term = TrigSeries.constant(coeff, order)
+        term = TrigSeries.constant(convert(coeff), order, poly)
         for sym, e in zip(syms, monom, strict=True):
             if e:
                 term = term * power(sym, e)

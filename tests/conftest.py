@@ -3,6 +3,11 @@
 import os
 import tempfile
 
+# sympy picks its integer ground types at import: python-flint, when installed, switches them
+# silently (and gmpy2 too). Pin pure-Python ground types so the suite tests one behaviour everywhere
+# (tests/engine/test_native.py checks the pin took effect).
+os.environ["SYMPY_GROUND_TYPES"] = "python"
+
 from hypothesis import HealthCheck, settings
 
 # "ci": derandomized and without a database so every CI run draws the same examples;

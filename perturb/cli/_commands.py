@@ -21,7 +21,7 @@ from perturb.cli._values import (
 from perturb.domain import series_domain
 
 
-def _cmd_list() -> int:
+def _cmd_list(args=None) -> int:
     from perturb.errors import ProblemLoadError
     from problems import get_problem, problem_names
 

@@ -8,14 +8,6 @@ import sys
 import warnings
 from collections.abc import Iterator, Sequence
 
-from perturb.cli._commands import (
-    _cmd_families,
-    _cmd_list,
-    _cmd_reproduce,
-    _cmd_solve,
-    _cmd_validate,
-    _cmd_work_precision,
-)
 from perturb.cli._errors import _INPUT_ERRORS, EXIT_FAILED, EXIT_USAGE, _RunFailed, _UsageError
 from perturb.cli._parser import _build_parser
 from perturb.errors import PerturbError
@@ -68,13 +60,26 @@ def _progress(args) -> Iterator[None]:
                 bar.close()
 
 
+def _command(name: str):
+    """The command ``name`` of :mod:`perturb.cli._commands`, imported when it runs (``--help`` and
+    argument errors never load numpy, sympy or the engine)."""
+
+    def run(args):
+        from perturb.cli import _commands
+
+        return getattr(_commands, name)(args)
+
+    return run
+
+
+#: Command name -> its function (tests may patch an entry).
 _COMMANDS = {
-    "list": lambda args: _cmd_list(),
-    "solve": lambda args: _cmd_solve(args),
-    "validate": lambda args: _cmd_validate(args),
-    "reproduce": lambda args: _cmd_reproduce(args),
-    "work-precision": lambda args: _cmd_work_precision(args),
-    "families": lambda args: _cmd_families(args),
+    "list": _command("_cmd_list"),
+    "solve": _command("_cmd_solve"),
+    "validate": _command("_cmd_validate"),
+    "reproduce": _command("_cmd_reproduce"),
+    "work-precision": _command("_cmd_work_precision"),
+    "families": _command("_cmd_families"),
 }
 
 

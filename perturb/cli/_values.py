@@ -6,8 +6,6 @@ import math
 from collections.abc import Sequence
 from pathlib import Path
 
-import numpy as np
-
 from perturb._defaults import MAX_TIMES
 from perturb.cli._errors import _UsageError
 
@@ -63,8 +61,10 @@ def _parse_number(flag: str, text: str, item: str) -> float:
     return value
 
 
-def _parse_times(text: str | None) -> np.ndarray | None:
-    """``--times``: ``T1,T2,...``, ``START:STOP:N`` or ``@FILE``."""
+def _parse_times(text: str | None):
+    """``--times``: ``T1,T2,...``, ``START:STOP:N`` or ``@FILE`` (an array, or None)."""
+    import numpy as np  # lazily: `--help` and argument errors do not load numpy
+
     if text is None:
         return None
     spec = _read_times_file(text) if text.startswith("@") else text

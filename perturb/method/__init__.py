@@ -8,13 +8,20 @@
 * :mod:`perturb.method.exact` — zero tests and exact roots.
 """
 
-from perturb.method.poincare import PoincareMethod, solve
-from perturb.method.steps import (
-    Condition,
-    GeneratingSolution,
-    OrderStep,
-    PeriodicityCondition,
-)
+from __future__ import annotations
+
+import importlib
+
+#: Public name -> defining module, imported on first access (PEP 562): ``perturb.method.steps`` can
+#: then be imported (by :mod:`perturb.solution`) without loading the construction.
+_LAZY = {
+    "PoincareMethod": "perturb.method.poincare",
+    "solve": "perturb.method.poincare",
+    "Condition": "perturb.method.steps",
+    "GeneratingSolution": "perturb.method.steps",
+    "OrderStep": "perturb.method.steps",
+    "PeriodicityCondition": "perturb.method.steps",
+}
 
 __all__ = [
     "Condition",
@@ -24,3 +31,12 @@ __all__ = [
     "PoincareMethod",
     "solve",
 ]
+
+
+def __getattr__(name: str):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'perturb.method' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value

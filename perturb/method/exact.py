@@ -7,11 +7,14 @@ either case.
 
 from __future__ import annotations
 
+import math
+
 import sympy as sp
 
 from perturb._defaults import NUMERIC_ZERO, PROBE_DIGITS, ROOT_MAX_DENOMINATOR, ROOT_RATIONAL_TOL
+from perturb.native import Converter, NotNative, ring_for
 from perturb.system import EPS
-from perturb.trig import TrigPoly
+from perturb.trig import SympyRing, TrigPoly
 
 __all__ = [
     "chop",
@@ -41,6 +44,17 @@ def taylor_coefficient(expr: sp.Expr, k: int) -> sp.Expr:
         return sp.expand(expr) if k == 0 else sp.S.Zero
     if expr.is_polynomial(EPS):
         return sp.expand(sp.expand(expr).coeff(EPS, k))
+    ring = ring_for(expr)
+    if ring is not SympyRing:  # the same k-fold derivative, on the native backend
+        conv = Converter(ring)
+        try:
+            eps, value = conv.to_native(EPS), conv.to_native(expr)
+        except NotNative:
+            eps = None
+        if eps is not None:
+            for _ in range(k):
+                value = value.diff(eps)
+            return conv.to_sympy(value.subs({eps: ring.zero}) / math.factorial(k))
     value = expr
     for _ in range(k):
         value = sp.diff(value, EPS)
@@ -77,6 +91,8 @@ def vanishes(expr) -> bool:
 
 def chop(poly: TrigPoly) -> TrigPoly:
     """Drop floating-point round-off (|c| < NUMERIC_ZERO) from the coefficients of ``poly``."""
+    if poly.ring is not SympyRing:  # native coefficients: only float-free runs are native
+        return poly
 
     def chop_one(expr: sp.Expr) -> sp.Expr:
         floats = {f: 0 for f in expr.atoms(sp.Float) if abs(f) < NUMERIC_ZERO}

@@ -31,23 +31,28 @@ class NotPolynomial(Exception):
 
 
 def state_series(
-    system: QuasilinearSystem, x: Sequence[Sequence[TrigPoly]], omega: Sequence[sp.Expr], k: int
+    system: QuasilinearSystem,
+    x: Sequence[Sequence[TrigPoly]],
+    omega: Sequence[sp.Expr],
+    k: int,
+    poly: type = TrigPoly,
 ) -> dict[sp.Symbol, TrigSeries]:
     """Series (to order ``k - 1``, padded to ``k``) of the state and of the initial values.
 
     ``x[i][q]`` is :math:`x_{i,q}(s)`, ``omega[q]`` is :math:`\\Omega_q`; velocities are
-    :math:`\\Omega\\, dx/ds`.
+    :math:`\\Omega\\, dx/ds`. ``poly`` is the class of the ``x[i][q]`` (sympy's
+    :class:`TrigPoly` or the engine's native one) and the ``omega[q]`` are in its ring.
     """
     top = k - 1
     variables: dict[sp.Symbol, TrigSeries] = {}
-    omega_series = TrigSeries([TrigPoly.constant(w) for w in omega[: top + 1]]).truncate(top)
+    omega_series = TrigSeries([poly.constant(w) for w in omega[: top + 1]], poly).truncate(top)
     for i in range(system.n):
-        xs = TrigSeries(x[i][: top + 1]).truncate(top)
+        xs = TrigSeries(x[i][: top + 1], poly).truncate(top)
         variables[system.coordinates[i]] = xs
         variables[system.velocities[i]] = (omega_series * xs.derivative()).truncate(top)
     for j, sym in enumerate(system.initial_values):
         value = variables[system.state_symbols[j]]
-        variables[sym] = TrigSeries([TrigPoly.constant(c.at_zero()) for c in value.coefficients])
+        variables[sym] = TrigSeries([poly.constant(c.at_zero()) for c in value.coefficients], poly)
     return {sym: series.truncate(k) for sym, series in variables.items()}
 
 
@@ -58,6 +63,7 @@ def forcing(
     x: Sequence[Sequence[TrigPoly]],
     omega: Sequence[sp.Expr],
     quadrature: str,
+    converter=None,
 ) -> list[TrigPoly]:
     """:math:`R_{i,k}`: order-``k`` coefficient of :math:`f_i(x, \\Omega x') - (\\Omega^2 - \\omega_{ref}^2) x_i''`.
 
@@ -74,24 +80,29 @@ def forcing(
         :math:`\\Omega_0, \\dots, \\Omega_k` (the last one still an unknown).
     quadrature : {"auto", "exact", "numeric"}
         See :class:`~perturb.method.poincare.PoincareMethod`.
+    converter : perturb.native.Converter, optional
+        When given, ``x`` and ``omega`` (and the result) are in its native ring; ``expansion``
+        stays sympy.
 
     Raises
     ------
     NotPolynomial
         When a term can be expanded neither exactly nor numerically.
     """
-    variables = state_series(system, x, omega[:k], k)
+    poly = converter.poly if converter is not None else TrigPoly
+    ring = poly.ring
+    variables = state_series(system, x, omega[:k], k, poly)
     omega_sq = [
-        sp.expand(sp.Add(*(omega[a] * omega[q - a] for a in range(q + 1)))) for q in range(k + 1)
+        ring.expand(ring.add(omega[a] * omega[q - a] for a in range(q + 1))) for q in range(k + 1)
     ]
     out = []
     for i in range(system.n):
-        total = TrigPoly()
+        total = poly()
         for m in range(1, k + 1):
             f_m = expansion[i][m]
             if f_m == 0:
                 continue
-            value = _evaluate(f_m, variables, k - m, quadrature)
+            value = _evaluate(f_m, variables, k - m, quadrature, converter)
             total = total + value.coefficients[k - m]
         for q in range(1, k + 1):  # -(Omega^2)_q x_{i,k-q}''
             if k - q < len(x[i]) and omega_sq[q] != 0:
@@ -100,18 +111,28 @@ def forcing(
     return out
 
 
-def _evaluate(expr: sp.Expr, variables, order: int, quadrature: str) -> TrigSeries:
+def _evaluate(expr: sp.Expr, variables, order: int, quadrature: str, converter) -> TrigSeries:
     """Series of ``expr`` on the state series: exact for polynomials, else numeric quadrature."""
     if quadrature != "numeric":
         try:
-            return evaluate_polynomial(expr, variables, order)
+            convert = converter.to_native if converter is not None else None
+            return evaluate_polynomial(expr, variables, order, convert)
         except sp.PolynomialError as exc:
             if quadrature == "exact":
                 raise NotPolynomial(
                     f"{exc}; use quadrature='auto' with numeric parameters"
                 ) from None
     try:
-        return evaluate_analytic(expr, variables, order, FFT_POINTS, FFT_TRIM)
+        if converter is None or not converter.native:
+            return evaluate_analytic(expr, variables, order, FFT_POINTS, FFT_TRIM)
+        # the quadrature works on sympy coefficients: over and back (the engine runs numeric
+        # right-hand sides in sympy, see perturb.native.ring_for; this is the safety net)
+        plain = {
+            sym: TrigSeries([converter.trig(c) for c in series.coefficients], TrigPoly)
+            for sym, series in variables.items()
+        }
+        value = evaluate_analytic(expr, plain, order, FFT_POINTS, FFT_TRIM)
+        return TrigSeries([converter.native_poly(c) for c in value.coefficients], converter.poly)
     except NotNumeric as exc:
         raise NotPolynomial(str(exc)) from None
 

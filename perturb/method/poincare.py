@@ -46,9 +46,10 @@ from perturb.method.conditions import ConditionSolver, OrderFailed
 from perturb.method.exact import vanishes
 from perturb.method.expansion import GivenInitialValues, NotPolynomial, forcing
 from perturb.method.steps import GeneratingSolution, OrderStep, PeriodicityCondition
+from perturb.native import Converter, NotNative, ring_for
 from perturb.solution import PeriodicSolution, Status
 from perturb.system import EPS, QuasilinearSystem
-from perturb.trig import TrigPoly
+from perturb.trig import SympyRing, TrigPoly
 
 __all__ = ["PoincareMethod", "solve"]
 
@@ -129,10 +130,8 @@ class PoincareMethod:
         ``cache=False``.
         """
         if not self.cache:
-            return _OrderByOrder(self, system).run()
-        return cached(
-            "solution", self._cache_key(system), lambda: _OrderByOrder(self, system).run()
-        )
+            return _construct(self, system)
+        return cached("solution", self._cache_key(system), lambda: _construct(self, system))
 
     def _cache_key(self, system: QuasilinearSystem) -> tuple:
         def text(value):
@@ -177,6 +176,14 @@ def solve(system: QuasilinearSystem, order: int = 1, **options) -> PeriodicSolut
     return PoincareMethod(order=order, **options).solve(system)
 
 
+def _construct(method: PoincareMethod, system: QuasilinearSystem) -> PeriodicSolution:
+    """One run on the native backend; again on sympy if an expression cannot be held natively."""
+    try:
+        return _OrderByOrder(method, system).run()
+    except NotNative:
+        return _OrderByOrder(method, system, SympyRing).run()
+
+
 class _OrderByOrder:
     """The working state of one run: the template of :meth:`PoincareMethod.solve`.
 
@@ -190,12 +197,13 @@ class _OrderByOrder:
     3. stop once order ``method.order`` is reached and no unknown of it is open; pack the result.
     """
 
-    def __init__(self, method: PoincareMethod, system: QuasilinearSystem):
+    def __init__(self, method: PoincareMethod, system: QuasilinearSystem, ring: type | None = None):
         self.method = method
         self.system = system
         self.n = system.n
         self.names = [c.name for c in system.coordinates]
         self._setup_phase_and_harmonics()
+        self.conv = Converter(ring or self._ring())
         self._setup_unknowns()
         self.solver = ConditionSolver(method.branch, method.solve_seconds, self.phase)
 
@@ -237,6 +245,19 @@ class _OrderByOrder:
                     InvalidSystemError,
                 )
 
+    def _ring(self) -> type:
+        """The coefficient ring of this run (:mod:`perturb.native`): native unless the right-hand
+        side needs the numeric quadrature or an input holds a float (then sympy, as always)."""
+        system = self.system
+        variables = (*system.state_symbols, *system.initial_values)
+        if self.method.quadrature == "numeric" or not all(
+            sp.sympify(f).is_polynomial(*variables) for f in system.rhs
+        ):
+            return SympyRing
+        return ring_for(
+            *system.rhs, *system.frequencies, *map(sp.sympify, self.method.amplitudes.values())
+        )
+
     def _setup_unknowns(self):
         self.unknowns: set[sp.Symbol] = set()
         given: dict[int, sp.Expr] = {}
@@ -255,13 +276,14 @@ class _OrderByOrder:
                 )
             given[i] = expr
         self.given = GivenInitialValues(self.system, given)
-        self.omega = [self.w_ref]
+        # Native (self.conv's ring): omega, x, init_cos, pending. sympy: solved, steps, dependent.
+        self.omega = [self.conv.to_native(self.w_ref)]
         # x_{i,k}(s) for each coordinate, order by order
-        self.x: list[list[TrigPoly]] = [[] for _ in range(self.n)]
-        self.init_cos: list[list[sp.Expr]] = [[] for _ in range(self.n)]
+        self.x: list[list] = [[] for _ in range(self.n)]
+        self.init_cos: list[list] = [[] for _ in range(self.n)]
         self.solved: dict[sp.Symbol, sp.Expr] = {}
         self.steps: list[OrderStep] = []
-        self.pending: list[sp.Expr] = []
+        self.pending: list = []
         self.dependent: list[PeriodicityCondition] = []
 
     def _new(self, label: str) -> sp.Symbol:
@@ -271,6 +293,7 @@ class _OrderByOrder:
 
     # ------------------------------------------------------------------ order 0
     def _generating(self) -> GeneratingSolution:
+        conv, poly = self.conv, self.conv.poly
         cos_amp, sin_amp = [], []
         for i, name in enumerate(self.names):
             m = self.harmonics[i]
@@ -281,7 +304,9 @@ class _OrderByOrder:
                 b = sp.S.Zero if i == self.phase else self._new(f"b_{name}0")
             cos_amp.append(a)
             sin_amp.append(b)
-            self.x[i].append(TrigPoly.harmonic(m, a, b) if m else TrigPoly())
+            self.x[i].append(
+                poly.harmonic(m, conv.to_native(a), conv.to_native(b)) if m else poly()
+            )
         return GeneratingSolution(
             coordinates=tuple(self.names),
             harmonics=tuple(self.harmonics),
@@ -297,25 +322,34 @@ class _OrderByOrder:
             value = self._new(f"a_{self.names[i]}{k}")
         else:
             value = self.given.coefficient(i, k, self._initial_value_series)
-        self.init_cos[i].append(value)
+        self.init_cos[i].append(self.conv.to_native(value))
         return value
 
     def _initial_value_series(self, j: int, k: int) -> sp.Expr:
         """x_i(0) or xdot_i(0) as a polynomial in ε through order ``k`` (using what is known)."""
         coord, is_velocity = j % self.n, j >= self.n
+        to_sympy = self.conv.to_sympy
         total = sp.S.Zero
         for order, term in enumerate(self.x[coord][: k + 1]):
             value = term.derivative().at_zero() if is_velocity else term.at_zero()
-            total += EPS**order * value
+            total += EPS**order * to_sympy(value)
         if is_velocity:
-            total = sp.expand(total * sp.Add(*(EPS**q * w for q, w in enumerate(self.omega))))
+            omega = sp.Add(*(EPS**q * to_sympy(w) for q, w in enumerate(self.omega)))
+            total = sp.expand(total * omega)
         return total
 
     # ------------------------------------------------------------------ order k
     def _forcing(self, k: int) -> list[TrigPoly]:
         omega_new = self._new(f"Omega{k}")
+        omega_new = self.conv.to_native(omega_new)
         result = forcing(
-            k, self.system, self.expansion, self.x, [*self.omega, omega_new], self.method.quadrature
+            k,
+            self.system,
+            self.expansion,
+            self.x,
+            [*self.omega, omega_new],
+            self.method.quadrature,
+            self.conv,
         )
         self.omega.append(omega_new)
         return result
@@ -324,7 +358,10 @@ class _OrderByOrder:
         self, k: int, forcing: list[TrigPoly]
     ) -> tuple[dict, list[PeriodicityCondition]]:
         """Quadratures and periodicity conditions of order k (conditions returned unsolved)."""
+        conv, poly = self.conv, self.conv.poly
+        expand = poly.ring.expand
         w2 = self.w_ref**2
+        w2_native, pi = conv.to_native(w2), conv.to_native(sp.pi)
         quadratures, conditions = {}, []
         for i, name in enumerate(self.names):
             r = forcing[i]
@@ -334,48 +371,55 @@ class _OrderByOrder:
             for j, (c, s) in r.terms.items():
                 if m is not None and j == m:
                     continue
-                den = wi2 - j**2 * w2
-                periodic[j] = (sp.expand(c / den), sp.expand(s / den))
-            part = TrigPoly(periodic)
+                den = conv.to_native(wi2 - j**2 * w2)
+                periodic[j] = (expand(c / den), expand(s / den))
+            part = poly(periodic)
             if m is None:
-                quadratures[name] = part
+                quadratures[name] = conv.trig(part)
                 self.x[i].append(part)
                 continue
             rc, rs = r.coefficient(m)
             # g(2 pi) and dg/ds(2 pi) of the quadrature with zero initial data (paper's (16) form)
-            conditions.append(
-                PeriodicityCondition(
+            for label, value, imposed in (
+                (
                     f"g_{name},{k}(2pi)",
-                    sp.expand(-sp.pi * rs / (m * w2)),
-                    imposed=not (i == self.phase and self.drop_phase_sine),
+                    expand(-pi * rs / (m * w2_native)),
+                    i != self.phase or not self.drop_phase_sine,
+                ),
+                (f"dg_{name},{k}/ds(2pi)", expand(pi * rc / w2_native), True),
+            ):
+                conditions.append(
+                    PeriodicityCondition(label, conv.to_sympy(value), imposed=imposed)
                 )
-            )
-            conditions.append(
-                PeriodicityCondition(f"dg_{name},{k}/ds(2pi)", sp.expand(sp.pi * rc / w2))
-            )
+                if imposed:
+                    self.pending.append(value)
             # zero initial data: subtract the periodic part's initial value and slope
             p0, dp0 = part.at_zero(), part.derivative().at_zero()
-            g = part + TrigPoly.harmonic(m, -p0, -dp0 / m)
-            quadratures[name] = g
-            a = self._initial_cos(i, k)
-            b = sp.S.Zero if i == self.phase else self._new(f"b_{name}{k}")
-            self.x[i].append((g + TrigPoly.harmonic(m, a, b)).expand())
+            g = part + poly.harmonic(m, -p0, -dp0 / m)
+            quadratures[name] = conv.trig(g)
+            self._initial_cos(i, k)
+            a = self.init_cos[i][-1]
+            b = conv.ring.zero if i == self.phase else conv.to_native(self._new(f"b_{name}{k}"))
+            self.x[i].append((g + poly.harmonic(m, a, b)).expand())
         return quadratures, conditions
 
     # ------------------------------------------------------------------ solving
     def _substitute(self, mapping: dict):
         if not mapping:
             return
-        self.x = [[t.subs(mapping) for t in row] for row in self.x]
-        self.omega = [sp.expand(w.xreplace(mapping)) for w in self.omega]
-        self.init_cos = [[sp.expand(v.xreplace(mapping)) for v in row] for row in self.init_cos]
+        native = self.conv.mapping(mapping)
+        expand = self.conv.ring.expand
+        self.x = [[t.subs(native) for t in row] for row in self.x]
+        self.omega = [expand(w.xreplace(native)) for w in self.omega]
+        self.init_cos = [[expand(v.xreplace(native)) for v in row] for row in self.init_cos]
         self.solved = {s: sp.expand(v.xreplace(mapping)) for s, v in self.solved.items()}
         self.solved.update(mapping)
-        self.pending = [sp.expand(e.xreplace(mapping)) for e in self.pending]
+        self.pending = [expand(e.xreplace(native)) for e in self.pending]
         self.unknowns -= set(mapping)
 
     def _solve_conditions(self, k: int, generating: GeneratingSolution) -> tuple[dict, tuple]:
-        eqs = [e for e in (sp.expand(e) for e in self.pending) if e != 0]
+        expand, to_sympy = self.conv.ring.expand, self.conv.to_sympy
+        eqs = [sp.expand(to_sympy(e)) for e in (expand(e) for e in self.pending) if e != 0]
         if not eqs:
             self.pending = []
             return {}, ()
@@ -387,9 +431,10 @@ class _OrderByOrder:
         pending = self.pending
         self._substitute(solution)
         for before, after in zip(pending, self.pending, strict=True):
-            if not vanishes(after):
+            if after != 0 and not vanishes(to_sympy(after)):
                 raise OrderFailed(
-                    Status.INCONSISTENT, f"order {k}: condition {before} = 0 cannot hold"
+                    Status.INCONSISTENT,
+                    f"order {k}: condition {to_sympy(before)} = 0 cannot hold",
                 )
         self.pending = []
         return solution, branches
@@ -413,14 +458,13 @@ class _OrderByOrder:
                         f"(unknowns still open: {sorted(map(str, self._open_unknowns(method.order)))})",
                     )
                 forcing_k = self._forcing(k)
-                quadratures, conditions = self._quadratures(k, forcing_k)
-                self.pending.extend(c.expression for c in conditions if c.imposed)
+                quadratures, conditions = self._quadratures(k, forcing_k)  # extends self.pending
                 self.dependent.extend(c for c in conditions if not c.imposed)
                 solved, branches = self._solve_conditions(k, generating)
                 self.steps.append(
                     OrderStep(
                         k,
-                        {n: f for n, f in zip(self.names, forcing_k, strict=True)},
+                        {n: self.conv.trig(f) for n, f in zip(self.names, forcing_k, strict=True)},
                         quadratures,
                         tuple(conditions),
                         dict(solved),
@@ -440,12 +484,13 @@ class _OrderByOrder:
         return self._result(generating, status, message)
 
     def _open_unknowns(self, order: int) -> set:
+        conv = self.conv
         syms = set()
         for row in self.x:
             for term in row[: order + 1]:
-                syms |= term.free_symbols()
+                syms |= conv.poly_symbols(term)
         for w in self.omega[: order + 1]:
-            syms |= w.free_symbols
+            syms |= conv.symbols(w)
         return syms & self.unknowns
 
     def _result(
@@ -464,10 +509,12 @@ class _OrderByOrder:
             phase_coordinate=generating.phase_coordinate,
             reference_frequency=generating.reference_frequency,
         )
-        terms = tuple(tuple(row[: order + 1]) for row in self.x)
+        conv = self.conv  # back to sympy: the result holds sympy expressions only
+        terms = tuple(tuple(conv.trig(t) for t in row[: order + 1]) for row in self.x)
+        omega_all = [conv.to_sympy(w) for w in self.omega]
         # keep every frequency coefficient that is fully determined
         frequency = []
-        for w in self.omega:
+        for w in omega_all:
             if w.free_symbols & self.unknowns:
                 break
             frequency.append(w)
@@ -478,7 +525,7 @@ class _OrderByOrder:
             values = [t.at_zero() for t in terms[i]]
             deviations[name] = tuple(values[1:])
             slopes = [t.derivative().at_zero() for t in terms[i]]
-            omega = self.omega[: len(frequency)]
+            omega = omega_all[: len(frequency)]
             velocity = [
                 sp.expand(sum(omega[a] * slopes[q - a] for a in range(q + 1) if a < len(omega)))
                 for q in range(len(slopes))
