@@ -122,21 +122,7 @@ def _python_files(folder: pathlib.Path):
     return sorted(folder.rglob("*.py"))
 
 
-def test_perturb_never_imports_problems():
-    offenders = []
-    for path in _python_files(ROOT):
-        for node in ast.walk(ast.parse(path.read_text())):
-            names = []
-            if isinstance(node, ast.Import):
-                names = [a.name for a in node.names]
-            elif isinstance(node, ast.ImportFrom) and node.module:
-                names = [node.module]
-            if any(n == "problems" or n.startswith("problems.") for n in names):
-                offenders.append(f"{path.relative_to(ROOT)}:{node.lineno}")
-    # the CLI is the front end that looks problems up by name; workprecision predates the Model
-    # protocol (it tells Problem.solve apart to time a cold derivation): tracked separately
-    exempt = ("cli.py", "workprecision.py")
-    assert [o for o in offenders if not o.startswith(exempt)] == []
+# perturb never importing problems is tests/test_architecture.py's rule (every module, every import).
 
 
 def test_validation_never_probes_attributes():
