@@ -32,6 +32,7 @@ def _cmd_list() -> int:
 
 
 def _cmd_solve(args) -> int:
+    from perturb.validation.model import has_euler_angles
     from problems import load_problem
 
     cls = load_problem(args.problem)
@@ -39,7 +40,7 @@ def _cmd_solve(args) -> int:
     order = _parse_order(args.order)
     times = _parse_times(args.times)
     problem = _select_family(cls.create(**overrides), args.family, order)
-    if args.euler and not hasattr(problem, "euler_angles"):
+    if args.euler and not has_euler_angles(problem):
         raise _UsageError(
             f"--euler: problem {args.problem!r} has no Euler angles (rigid bodies only)"
         )

@@ -18,6 +18,7 @@ from perturb.cli._commands import (
 )
 from perturb.cli._errors import _INPUT_ERRORS, EXIT_FAILED, EXIT_USAGE, _RunFailed, _UsageError
 from perturb.cli._parser import _build_parser
+from perturb.cli._report import _cmd_report
 from perturb.errors import PerturbError
 from perturb.progress import listening
 
@@ -75,6 +76,7 @@ _COMMANDS = {
     "reproduce": lambda args: _cmd_reproduce(args),
     "work-precision": lambda args: _cmd_work_precision(args),
     "families": lambda args: _cmd_families(args),
+    "report": lambda args: _cmd_report(args),
 }
 
 

@@ -17,6 +17,7 @@ _EPILOG = """examples:
   perturb solve resonant-pair --family anti-phase
   perturb reproduce paper
   perturb work-precision duffing --periods 10 --orders 3 --format csv
+  perturb report examples/scenes/disk-fast-spin.toml --output disk-report
 """
 
 
@@ -158,6 +159,17 @@ def _build_parser() -> argparse.ArgumentParser:
         "--output", default=None, metavar="DIR", help="also write the report files into DIR"
     )
     _add_family_arguments(sub, solve, validate)
+    report = sub.add_parser(
+        "report",
+        help="write a scene's report folder: only the tables, checks and plots it asks for",
+        description="Read SCENE (a TOML file: [problem], [parameters], [solve], [outputs], "
+        "[work_precision]), compute only what its [outputs] ask for and write it into DIR with a "
+        "copy of the scene and summary.md (the verdict), which is also printed.",
+    )
+    report.add_argument("scene", metavar="SCENE", help="the scene file (TOML)")
+    report.add_argument(
+        "--output", required=True, metavar="DIR", help="the report folder (created if missing)"
+    )
     for command in sub.choices.values():
         command.add_argument(
             "--quiet",
