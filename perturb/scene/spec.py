@@ -56,7 +56,15 @@ __all__ = [
 ]
 
 #: The plots a scene may ask for (``[outputs] plots``), each a function of perturb.report.plots.
-PLOT_NAMES = ("time_series", "error", "phase", "convergence", "work_precision", "euler", "orientation")
+PLOT_NAMES = (
+    "time_series",
+    "error",
+    "phase",
+    "convergence",
+    "work_precision",
+    "euler",
+    "orientation",
+)
 
 #: Plots drawn beside the true motion: they need an integration of the original equations (the
 #: convergence plot the validation's ε scan, the work-precision plot the integrator runs).
