@@ -37,7 +37,8 @@ def _load(scene):
 
 def _cmd_report(args) -> int:
     from perturb.report.scene_output import prepare_folder, write_report
-    from perturb.scene import read_scene, run_scene
+    from perturb.scene import read_scene
+    from perturb.scene.run import check_scene, run_scene
 
     scene = read_scene(args.scene)
     if scene.outputs.plots:
@@ -49,6 +50,7 @@ def _cmd_report(args) -> int:
                 "remove the plots"
             ) from None
     problem = _load(scene)
+    check_scene(scene, problem)
     prepare_folder(args.output)  # an unwritable folder fails now, before the computation
     result = run_scene(scene, problem)
     _, summary = write_report(result, args.output)

@@ -32,7 +32,7 @@ from perturb.scene.spec import Scene
 from perturb.solution import PeriodicSolution
 from perturb.validation.model import Model, as_model, has_euler_angles
 
-__all__ = ["SceneResult", "run_scene"]
+__all__ = ["SceneResult", "check_scene", "run_scene"]
 
 
 @frozen
@@ -125,6 +125,33 @@ def _truth(model: Model, solution, t: np.ndarray, integrator) -> tuple[dict, str
     return {n: y[i] for i, n in enumerate(names)}, traj.integrator or solver.name, note
 
 
+def check_scene(scene: Scene, problem) -> None:
+    """Raise if ``scene`` asks ``problem`` for what it cannot give, before anything is computed.
+
+    Raises
+    ------
+    perturb.errors.SceneError
+        Euler angles (``euler``, the ``euler``/``orientation`` plots) of a problem without them.
+    perturb.errors.UnknownNameError
+        An unknown ``[solve] integrator`` of a scene that integrates.
+    """
+    model = as_model(problem)
+    outputs = scene.outputs
+    if outputs.needs_euler and not has_euler_angles(model):
+        asked = ["euler = true"] if outputs.euler else []
+        asked += [f"plot {p!r}" for p in outputs.plots if p in ("euler", "orientation")]
+        raise scene.error(
+            f"[outputs] {' and '.join(asked)}: problem {model.label()!r} has no Euler angles "
+            "(rigid bodies only); remove it from [outputs]"
+        )
+    if scene.integrator is not None and (
+        outputs.needs_truth_trajectory or outputs.needs_validation
+    ):
+        from perturb.oracle import choose
+
+        choose(scene.integrator)  # an unknown name fails here, before any work
+
+
 def run_scene(scene: Scene, problem) -> SceneResult:
     """Compute what ``scene`` asks for, and nothing else (see the module docstring).
 
@@ -149,20 +176,8 @@ def run_scene(scene: Scene, problem) -> SceneResult:
         An unknown integrator name (from the oracle, before any integration).
     """
     model = as_model(problem)
+    check_scene(scene, model)
     outputs = scene.outputs
-    if outputs.needs_euler and not has_euler_angles(model):
-        asked = ["euler = true"] if outputs.euler else []
-        asked += [f"plot {p!r}" for p in outputs.plots if p in ("euler", "orientation")]
-        raise scene.error(
-            f"[outputs] {' and '.join(asked)}: problem {model.label()!r} has no Euler angles "
-            "(rigid bodies only); remove it from [outputs]"
-        )
-    if scene.integrator is not None and (
-        outputs.needs_truth_trajectory or outputs.needs_validation
-    ):
-        from perturb.oracle import choose
-
-        choose(scene.integrator)  # an unknown name fails here, before any work
 
     state: dict = {"notes": [], "computed": [], "seconds": {}}
     values: dict = {}
