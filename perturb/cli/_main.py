@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import contextlib
+import io
 import os
 import sys
 import warnings
 from collections.abc import Iterator, Sequence
+from pathlib import Path
 
 from perturb.cli._commands import (
     _cmd_families,
@@ -69,8 +71,45 @@ def _progress(args) -> Iterator[None]:
                 bar.close()
 
 
+#: Commands whose ``--output`` is a folder of report files (their own meaning, kept).
+_FOLDER_OUTPUT = ("reproduce", "report")
+
+
+def _output_file(path: str) -> Path:
+    """``--output PATH``: checked before the run (its folder exists, it is not a folder)."""
+    target = Path(path)
+    folder = target.parent if str(target.parent) else Path(".")
+    if target.is_dir() or not folder.is_dir() or not os.access(folder, os.W_OK):
+        raise _UsageError(
+            f"--output {path!r}: cannot write a file there (a folder, or a folder that does not "
+            "exist or is not writable); give a file path in a writable folder"
+        )
+    return target
+
+
+@contextlib.contextmanager
+def _to_file(args) -> Iterator[None]:
+    """With ``--output PATH`` (a file), what the command prints goes into PATH instead."""
+    path = getattr(args, "output", None)
+    if path is None or args.command in _FOLDER_OUTPUT:
+        yield
+        return
+    target = _output_file(path)
+    buffer = io.StringIO()
+    with contextlib.redirect_stdout(buffer):
+        try:
+            yield
+        finally:  # a failed run's output (e.g. its JSON failure record) is written too
+            try:
+                target.write_text(buffer.getvalue(), encoding="utf-8")
+            except OSError as exc:
+                raise _UsageError(
+                    f"--output {path!r}: cannot write ({exc.strerror or exc}); give a writable file"
+                ) from None
+
+
 _COMMANDS = {
-    "list": lambda args: _cmd_list(),
+    "list": lambda args: _cmd_list(args),
     "solve": lambda args: _cmd_solve(args),
     "validate": lambda args: _cmd_validate(args),
     "reproduce": lambda args: _cmd_reproduce(args),
@@ -98,7 +137,7 @@ def _run(argv: Sequence[str] | None) -> int:
         if args.command is None:
             parser.print_help()
             return EXIT_USAGE
-        with _progress(args):
+        with _progress(args), _to_file(args):
             return _COMMANDS[args.command](args)
     except _UsageError as exc:
         print(f"perturb: error: {_one_line(exc)}", file=sys.stderr)
