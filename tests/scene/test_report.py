@@ -181,7 +181,7 @@ def test_duffing_scene_end_to_end(capsys, tmp_path):
 
 def test_a_scene_naming_a_problem_file(capsys, tmp_path):
     (tmp_path / "quadratic.py").write_text(
-        textwrap.dedent('''
+        textwrap.dedent("""
         import sympy as sp
 
         from perturb import EPS, QuasilinearSystem
@@ -204,7 +204,7 @@ def test_a_scene_naming_a_problem_file(capsys, tmp_path):
 
             def method_options(self):
                 return {"amplitudes": {"x": A}}
-        '''),
+        """),
         encoding="utf-8",
     )
     base = f'[problem]\nname = "{tmp_path / "quadratic.py"}:Quadratic"\n[parameters]\neps = 0.05\n'
