@@ -73,7 +73,8 @@ def latex_table(header: Sequence[str], rows: Iterable[Sequence], caption: str = 
             return str(value)
         if isinstance(value, str):
             return latex_text(value)
-        return f"${latex_number(value)}$"
+        number = latex_number(value)
+        return number if number == "--" else f"${number}$"  # an en dash in text, not math
 
     lines = []
     if caption:
