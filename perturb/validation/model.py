@@ -280,10 +280,9 @@ class Model(ABC):
 
 
 def has_euler_angles(model) -> bool:
-    """Whether ``model`` gives Euler angles: it overrides :meth:`Model.euler_angles` (or, not
-    being a :class:`Model`, has a method of that name)."""
-    method = getattr(type(model), "euler_angles", None)
-    return callable(method) and method is not Model.euler_angles
+    """Whether ``model`` (a :class:`Model`) gives Euler angles: it overrides
+    :meth:`Model.euler_angles` (the typed hook; no attribute probing)."""
+    return isinstance(model, Model) and type(model).euler_angles is not Model.euler_angles
 
 
 _SOLUTIONS: dict[tuple, PeriodicSolution] = {}
