@@ -120,3 +120,27 @@ STIFF_RTOL = 1e-10
 #: size 2 (a family whose period varies along it) splits by ~sqrt(delta) under a perturbation delta
 #: of the monodromy: delta ~ 1e-13 from the integration gives ~3e-7; 1e-5 leaves a margin of 30.
 TRIVIAL_MULTIPLIER_TOL = 1e-5
+
+# ---------------------------------------------------------------------------------- scenes
+#: Default horizon of a scene, in periods: three periods show the motion repeating and let a
+#: trajectory error that grows secularly (a period error) become visible on the error plot.
+SCENE_PERIODS = 3
+
+#: Samples per period of a scene's tables and plots: 100 resolve a harmonic of order ~10 with
+#: ten points a wavelength, enough for a smooth curve in a publication figure.
+SCENE_SAMPLES_PER_PERIOD = 100
+
+#: Longest scene horizon, in periods: a report is files to read and figures to look at; beyond
+#: this the CSV grows past tens of MB and curves fill the plot (``perturb validate --periods``
+#: measures long horizons without writing them out).
+SCENE_MAX_PERIODS = 1000
+
+#: Most samples per period of a scene (with SCENE_MAX_PERIODS: at most 10^7 rows, MAX_TIMES).
+SCENE_MAX_SAMPLES_PER_PERIOD = 10_000
+
+#: Most repeated runs per work-precision point a scene may ask for (the median is reported; more
+#: than 100 buys no accuracy and multiplies the run time).
+SCENE_MAX_REPEAT = 100
+
+#: Closeness (difflib ratio) above which an unknown name in a scene gets a "did you mean".
+SCENE_SUGGESTION_CUTOFF = 0.6

@@ -16,6 +16,7 @@ __all__ = [
     "MissingDependencyError",
     "PerturbError",
     "ProblemLoadError",
+    "SceneError",
     "UnknownNameError",
 ]
 
@@ -78,3 +79,9 @@ class ProblemLoadError(PerturbError, ValueError):
 class MissingDependencyError(PerturbError, ImportError):
     """An optional dependency (an extra such as ``perturb[plot]``) is not installed; the message
     names the extra to install."""
+
+
+class SceneError(PerturbError, ValueError):
+    """A scene file (``perturb report SCENE.toml``) that cannot be used: malformed TOML (the line is
+    named), an unknown section, key, problem, parameter or plot name (the closest is suggested), a
+    value of the wrong type, or an output folder that cannot be written."""

@@ -177,6 +177,14 @@ class PeriodicSolution:
             )
         return " \\\\\n".join(lines)
 
+    def _repr_latex_(self) -> str | None:
+        """Jupyter's rendering: the coordinates and the period as aligned equations (as sympy
+        objects render), or None (plain text) for a failed construction."""
+        if not self.success:
+            return None
+        rows = [row.replace(" = ", " &= ", 1) for row in self.latex().split(" \\\\\n")]
+        return "$\\displaystyle \\begin{aligned}" + " \\\\ ".join(rows) + "\\end{aligned}$"
+
     def __str__(self) -> str:
         out = [f"PeriodicSolution of {self.system.name} to order {self.order}: {self.status.name}"]
         if self.message:

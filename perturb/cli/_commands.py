@@ -25,19 +25,39 @@ def _cmd_list(args=None) -> int:
     from perturb.errors import ProblemLoadError
     from problems import get_problem, problem_names
 
+    fmt = getattr(args, "format", "table")
+    entries = []
     for name in problem_names():
         try:
             cls = get_problem(name)
         except ProblemLoadError as exc:  # a broken installed package: say so, list the others
             print(f"perturb: warning: {exc}", file=sys.stderr)
             continue
-        print(f"{name:16s} {cls.summary}")
-        for spec in cls.parameter_specs:
-            print(f"    {spec.name:10s} default {spec.default:<12g} {spec.doc}")
+        entries.append((name, cls.summary, cls.parameter_specs))
+    if fmt == "json":
+        problems = [
+            {
+                "name": name,
+                "summary": summary,
+                "parameters": [{"name": p.name, "default": p.default, "doc": p.doc} for p in specs],
+            }
+            for name, summary, specs in entries
+        ]
+        print(json.dumps(problems, allow_nan=True))
+    elif fmt == "latex":
+        from perturb.report.latex import problems_latex
+
+        print(problems_latex(entries), end="")
+    else:
+        for name, summary, specs in entries:
+            print(f"{name:16s} {summary}")
+            for spec in specs:
+                print(f"    {spec.name:10s} default {spec.default:<12g} {spec.doc}")
     return EXIT_OK
 
 
 def _cmd_solve(args) -> int:
+    from perturb.validation.model import has_euler_angles
     from problems import load_problem
 
     cls = load_problem(args.problem)
@@ -45,7 +65,7 @@ def _cmd_solve(args) -> int:
     order = _parse_order(args.order)
     times = _parse_times(args.times)
     problem = _select_family(cls.create(**overrides), args.family, order)
-    if args.euler and not hasattr(problem, "euler_angles"):
+    if args.euler and not has_euler_angles(problem):
         raise _UsageError(
             f"--euler: problem {args.problem!r} has no Euler angles (rigid bodies only)"
         )
@@ -98,7 +118,12 @@ def _cmd_solve(args) -> int:
         payload["latex"] = solution.latex()
     if args.steps:
         payload["steps"] = [str(solution.generating), *(str(step) for step in solution.steps)]
-    _print(payload, args.format, [("state", state), *extras.items()])
+    formulas = ""
+    if args.format == "latex":
+        from perturb.report.latex import solution_document
+
+        formulas = solution_document(solution, args.problem)
+    _print(payload, args.format, [("state", state), *extras.items()], formulas)
     if args.format == "table":
         for key in ("steps", "latex"):
             if key in payload:
@@ -124,6 +149,10 @@ def _cmd_validate(args) -> int:
     )
     if args.format == "json":
         print(json.dumps(validation_as_dict(report), allow_nan=True))
+    elif args.format == "latex":
+        from perturb.report.latex import validation_latex
+
+        print(validation_latex(report), end="")
     else:
         print(validation_as_table(report))
     return EXIT_OK if report.completed else EXIT_FAILED
@@ -155,6 +184,10 @@ def _cmd_work_precision(args) -> int:
         print(json.dumps(work_precision_as_dict(result), allow_nan=True))
     elif args.format == "csv":
         print(work_precision_as_csv(result))
+    elif args.format == "latex":
+        from perturb.report.latex import work_precision_latex
+
+        print(work_precision_latex(result), end="")
     else:
         print(work_precision_as_table(result))
     if args.plot is not None:
@@ -196,6 +229,10 @@ def _cmd_families(args) -> int:
     families = problem.families(_parse_order(args.order))
     if args.format == "json":
         print(json.dumps(as_dict(families, args.problem)))
+    elif args.format == "latex":
+        from perturb.report.latex import families_latex
+
+        print(families_latex(families, args.problem), end="")
     else:
         print(as_table(families, args.problem))
     return EXIT_OK if len(families) else EXIT_FAILED
@@ -214,7 +251,7 @@ def _non_finite(value) -> bool:
     return False
 
 
-def _print(payload: dict, fmt: str, blocks) -> None:
+def _print(payload: dict, fmt: str, blocks, formulas: str = "") -> None:
     numbers = {"period": payload.get("period"), "blocks": [dict(b) for _, b in blocks]}
     if _non_finite(numbers):
         raise _RunFailed(
@@ -223,6 +260,11 @@ def _print(payload: dict, fmt: str, blocks) -> None:
         )
     if fmt == "json":
         print(json.dumps(payload, allow_nan=True))
+        return
+    if fmt == "latex":
+        from perturb.report.latex import state_latex
+
+        print(formulas + state_latex(payload, blocks), end="")
         return
     columns = {"t": np.asarray(payload["t"])}
     for _, block in blocks:

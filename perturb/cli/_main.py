@@ -3,10 +3,13 @@
 from __future__ import annotations
 
 import contextlib
+import importlib
+import io
 import os
 import sys
 import warnings
 from collections.abc import Iterator, Sequence
+from pathlib import Path
 
 from perturb.cli._errors import _INPUT_ERRORS, EXIT_FAILED, EXIT_USAGE, _RunFailed, _UsageError
 from perturb.cli._parser import _build_parser
@@ -60,14 +63,50 @@ def _progress(args) -> Iterator[None]:
                 bar.close()
 
 
-def _command(name: str):
-    """The command ``name`` of :mod:`perturb.cli._commands`, imported when it runs (``--help`` and
+#: Commands whose ``--output`` is a folder of report files (their own meaning, kept).
+_FOLDER_OUTPUT = ("reproduce", "report")
+
+
+def _output_file(path: str) -> Path:
+    """``--output PATH``: checked before the run (its folder exists, it is not a folder)."""
+    target = Path(path)
+    folder = target.parent if str(target.parent) else Path(".")
+    if target.is_dir() or not folder.is_dir() or not os.access(folder, os.W_OK):
+        raise _UsageError(
+            f"--output {path!r}: cannot write a file there (a folder, or a folder that does not "
+            "exist or is not writable); give a file path in a writable folder"
+        )
+    return target
+
+
+@contextlib.contextmanager
+def _to_file(args) -> Iterator[None]:
+    """With ``--output PATH`` (a file), what the command prints goes into PATH instead."""
+    path = getattr(args, "output", None)
+    if path is None or args.command in _FOLDER_OUTPUT:
+        yield
+        return
+    target = _output_file(path)
+    buffer = io.StringIO()
+    with contextlib.redirect_stdout(buffer):
+        try:
+            yield
+        finally:  # a failed run's output (e.g. its JSON failure record) is written too
+            try:
+                target.write_text(buffer.getvalue(), encoding="utf-8")
+            except OSError as exc:
+                raise _UsageError(
+                    f"--output {path!r}: cannot write ({exc.strerror or exc}); give a writable file"
+                ) from None
+
+
+def _command(name: str, module: str = "_commands"):
+    """The command ``name`` of :mod:`perturb.cli.<module>`, imported when it runs (``--help`` and
     argument errors never load numpy, sympy or the engine)."""
 
     def run(args):
-        from perturb.cli import _commands
-
-        return getattr(_commands, name)(args)
+        commands = importlib.import_module(f"perturb.cli.{module}")
+        return getattr(commands, name)(args)
 
     return run
 
@@ -80,6 +119,7 @@ _COMMANDS = {
     "reproduce": _command("_cmd_reproduce"),
     "work-precision": _command("_cmd_work_precision"),
     "families": _command("_cmd_families"),
+    "report": _command("_cmd_report", "_report"),
 }
 
 
@@ -101,7 +141,7 @@ def _run(argv: Sequence[str] | None) -> int:
         if args.command is None:
             parser.print_help()
             return EXIT_USAGE
-        with _progress(args):
+        with _progress(args), _to_file(args):
             return _COMMANDS[args.command](args)
     except _UsageError as exc:
         print(f"perturb: error: {_one_line(exc)}", file=sys.stderr)

@@ -1,6 +1,8 @@
-"""Formatting of result objects (JSON dictionaries, text tables, plots in :mod:`perturb.report.plots`):
-leaves that only the CLI and the tests import; the result objects themselves stay data."""
+"""Formatting of result objects (JSON dictionaries, text tables, LaTeX in :mod:`.latex`, plots in
+:mod:`perturb.report.plots`, HTML in notebooks by :mod:`.notebook`): leaves that only the CLI, the
+tests and a notebook (``%load_ext perturb.report``) import; the result objects themselves stay data."""
 
+from perturb.report.notebook import load_ipython_extension
 from perturb.report.validation import validation_as_dict, validation_as_table
 from perturb.report.workprecision import (
     work_precision_as_csv,
@@ -9,6 +11,7 @@ from perturb.report.workprecision import (
 )
 
 __all__ = [
+    "load_ipython_extension",
     "validation_as_dict",
     "validation_as_table",
     "work_precision_as_csv",

@@ -44,6 +44,7 @@ from perturb.validation.model import (
     ShootingSetup,
     SystemModel,
     as_model,
+    has_euler_angles,
 )
 from perturb.validation.report import (
     Check,
@@ -98,5 +99,6 @@ __all__ = [
     "as_model",
     "original_system",
     "stiffness_indicator",
+    "has_euler_angles",
     "validate",
 ]

@@ -27,7 +27,15 @@ from perturb.validation._quasilinear import (
 )
 from perturb.validation.report import Condition
 
-__all__ = ["Equations", "Integrals", "Model", "OrbitEstimate", "ShootingSetup", "SystemModel"]
+__all__ = [
+    "Equations",
+    "Integrals",
+    "Model",
+    "OrbitEstimate",
+    "ShootingSetup",
+    "SystemModel",
+    "has_euler_angles",
+]
 
 
 @frozen
@@ -163,7 +171,9 @@ class Model(ABC):
     6. optionally override :meth:`validity_estimates` (default: none), :meth:`true_orbit` (a
        model-specific true-orbit finder for near-degenerate cases, default: none),
        :meth:`shooting_setup` (default: derived), :meth:`method_options`, :meth:`label` and
-       :meth:`parameters_in_force` (for reports).
+       :meth:`parameters_in_force` (for reports);
+    7. optionally override :meth:`euler_angles` (rigid bodies: the angles along a solution;
+       default: None).
     """
 
     __slots__ = ()
@@ -256,8 +266,23 @@ class Model(ABC):
         """The shooting set-up (default: None, derived by validation)."""
         return None
 
+    def euler_angles(self, solution: PeriodicSolution, t) -> dict[str, np.ndarray] | None:
+        """The body's Euler angles (z-x-z: ``theta``, ``psi``, ``phi``) along ``solution`` at
+        physical times ``t``, by name (default: None, the model is not a rigid body).
+
+        Rigid-body problems override it; :func:`has_euler_angles` tells whether a model does,
+        without computing anything.
+        """
+        return None
+
     def _substitutions(self, y0) -> dict | None:
         return substitutions(self.system(), self.symbol_values(), self.parameter_value(), y0)
+
+
+def has_euler_angles(model) -> bool:
+    """Whether ``model`` (a :class:`Model`) gives Euler angles: it overrides
+    :meth:`Model.euler_angles` (the typed hook; no attribute probing)."""
+    return isinstance(model, Model) and type(model).euler_angles is not Model.euler_angles
 
 
 _SOLUTIONS: dict[tuple, PeriodicSolution] = {}

@@ -369,6 +369,16 @@ def test_orientation_body_axes_and_spin_trace(disk, out_dir):
     save(fig, out_dir, "orientation.png")
 
 
+def test_orientation_with_a_partly_filled_grid_can_be_saved(disk, tmp_path):
+    """Four instants on a 2 x 3 grid: the two unused 3-D axes are removed, not hidden (a hidden
+    3-D axes made the constrained layout fail on saving; found by the disk scene, issue 13)."""
+    t, angles = disk
+    fig = plot_orientation(t, angles, t[[0, 20, 40, 60]], time_unit="")
+    assert len(fig.axes) == 4
+    fig.savefig(tmp_path / "orientation.png")
+    assert (tmp_path / "orientation.png").stat().st_size > 0
+
+
 def test_orientation_without_trace_and_bad_instants(disk):
     t, angles = disk
     fig = plot_orientation(t, angles, [t[5]], spin_trace=False)

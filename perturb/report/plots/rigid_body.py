@@ -306,8 +306,8 @@ def plot_orientation(
             subplot_kw={"projection": "3d"},
         )
         for i, ax in enumerate(axes.flat):
-            if i >= chosen.size:
-                ax.set_visible(False)
+            if i >= chosen.size:  # removed, not hidden: a hidden 3-D axes breaks the layout
+                ax.remove()
                 continue
             _setup_3d(ax)
             _draw_sphere(ax)

@@ -1,0 +1,58 @@
+"""``perturb report SCENE.toml --output DIR``: a scene's report folder (the scene runner's front end).
+
+The CLI is the one place that knows both ``problems`` (to load the scene's problem) and the report
+leaves (to write the folder): it parses the scene (:mod:`perturb.scene.spec`), loads and checks the
+problem and its parameters, runs the lazy pipeline (:mod:`perturb.scene.run`) and writes the folder
+(:mod:`perturb.report.scene_output`).
+"""
+
+from __future__ import annotations
+
+from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _UsageError
+from perturb.errors import InvalidParameterError, ProblemLoadError, UnknownNameError
+
+
+def _load(scene):
+    """The scene's problem, created with its parameters and family (errors name the scene file)."""
+    from perturb.scene import check_parameter_names
+    from problems import load_problem
+
+    try:
+        cls = load_problem(scene.problem)
+    except (UnknownNameError, ProblemLoadError) as exc:
+        raise scene.error(f"[problem] name: {exc}") from None
+    check_parameter_names(scene, [s.name for s in cls.parameter_specs], cls.name)
+    try:
+        problem = cls.create(**scene.parameters)
+    except (InvalidParameterError, UnknownNameError) as exc:
+        raise scene.error(f"[parameters] {exc}") from None
+    if scene.family is not None:
+        try:
+            problem.families(scene.order).get(scene.family)
+        except UnknownNameError as exc:
+            raise scene.error(f"[problem] family: {exc}") from None
+        problem = problem.with_family(scene.family)
+    return problem
+
+
+def _cmd_report(args) -> int:
+    from perturb.report.scene_output import prepare_folder, write_report
+    from perturb.scene import read_scene
+    from perturb.scene.run import check_scene, run_scene
+
+    scene = read_scene(args.scene)
+    if scene.outputs.plots:
+        try:
+            import matplotlib  # noqa: F401
+        except ImportError:
+            raise _UsageError(
+                f"{args.scene}: [outputs] plots need matplotlib: pip install 'perturb[plot]', or "
+                "remove the plots"
+            ) from None
+    problem = _load(scene)
+    check_scene(scene, problem)
+    prepare_folder(args.output)  # an unwritable folder fails now, before the computation
+    result = run_scene(scene, problem)
+    _, summary = write_report(result, args.output)
+    print(summary, end="")
+    return EXIT_OK if result.success else EXIT_FAILED

@@ -1,0 +1,284 @@
+"""Writing a scene's report folder (``perturb report SCENE.toml --output DIR``).
+
+:func:`write_report` turns a :class:`perturb.scene.run.SceneResult` into exactly the files its
+scene asked for, plus ``scene.toml`` (the scene as written) and ``summary.md`` (the verdict):
+
+==========================  ==================================================
+file                        written when ``[outputs]`` has
+==========================  ==================================================
+``solution.csv``, ``.json`` ``table = true``
+``euler.csv``               ``euler = true``
+``validation.json``         ``validation = true``
+``work_precision.csv``      ``work_precision = true`` (``method,setting,error,seconds``)
+``solution.tex``            ``latex = true``
+``NAME.png`` (``.pdf``...)  ``plots = ["NAME", ...]`` (``formats``: png, pdf, svg)
+==========================  ==================================================
+
+matplotlib is imported only when a plot is asked for. Files of an earlier report in the same
+folder with these names, but not asked for this time, are removed, so that the folder holds only
+what the scene asks for; no other file is touched.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from perturb.errors import SceneError
+from perturb.report.latex import solution_document
+from perturb.report.validation import validation_as_dict
+from perturb.report.workprecision import work_precision_as_csv
+from perturb.scene.spec import PLOT_FORMATS, PLOT_NAMES
+
+__all__ = ["SUMMARY", "prepare_folder", "report_files", "summary_markdown", "write_report"]
+
+#: The summary's file name (also printed by the CLI).
+SUMMARY = "summary.md"
+
+_DATA_FILES = (
+    "solution.csv",
+    "solution.json",
+    "euler.csv",
+    "validation.json",
+    "work_precision.csv",
+    "solution.tex",
+)
+
+#: Instants of the orientation plot, as fractions of the first period (or the horizon if shorter).
+ORIENTATION_FRACTIONS = (0.0, 0.25, 0.5, 0.75)
+
+
+def prepare_folder(path) -> Path:
+    """Create the report folder ``path`` (and its parents) and check that it can be written.
+
+    Raises
+    ------
+    perturb.errors.SceneError
+        The folder cannot be created or written (one line: the path, the reason, the fix).
+    """
+    folder = Path(path)
+    probe = folder / ".perturb-write-test"
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        probe.write_bytes(b"")
+        probe.unlink()
+    except OSError as exc:
+        reason = exc.strerror or type(exc).__name__
+        raise SceneError(
+            f"--output {str(path)!r}: cannot write there ({reason}); choose a writable folder"
+        ) from None
+    return folder
+
+
+def report_files(scene) -> list[str]:
+    """The names of the files a report of ``scene`` consists of, in writing order."""
+    out = scene.outputs
+    names = ["scene.toml", SUMMARY]
+    if out.table:
+        names += ["solution.csv", "solution.json"]
+    names += [name for flag, name in ((out.euler, "euler.csv"),) if flag]
+    names += ["validation.json"] if out.validation else []
+    names += ["work_precision.csv"] if out.work_precision else []
+    names += ["solution.tex"] if out.latex else []
+    names += [f"{plot}.{fmt}" for plot in out.plots for fmt in out.formats]
+    return names
+
+
+def _columns_csv(t: np.ndarray, columns: dict) -> str:
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(["t", *columns])
+    for row in zip(t, *columns.values(), strict=True):
+        writer.writerow([repr(float(v)) for v in row])
+    return buffer.getvalue()
+
+
+def _solution_json(result) -> dict:
+    """The form of ``perturb solve --format json``."""
+    return {
+        "problem": result.scene.problem,
+        "parameters": result.parameters,
+        "epsilon": result.epsilon,
+        "order": result.scene.order,
+        "period": result.period,
+        "t": result.t.tolist(),
+        "state": {k: np.asarray(v, dtype=float).tolist() for k, v in result.state.items()},
+        "warnings": list(result.notes),
+    }
+
+
+def _phase_pairs(result) -> list[tuple[str, str]]:
+    """Coordinate against velocity for a quasilinear state, else consecutive components."""
+    names = list(result.state)
+    coordinates = list(result.solution.coordinates)
+    pairs = [(c, f"{c}dot") for c in coordinates if c in names and f"{c}dot" in names]
+    if not pairs:
+        pairs = [(names[i], names[i + 1]) for i in range(0, len(names) - 1, 2)]
+    return pairs[:3]
+
+
+def _draw(name: str, result, notes: list[str]):
+    """The figure of plot ``name``, or None (with a note) when its data is missing."""
+    from perturb.report import plots
+
+    t, state, truth = result.t, result.state, result.truth
+    if name in ("time_series", "error", "phase") and (t is None or state is None):
+        notes.append(f"plot {name!r} skipped: there is no analytic state ({result.failure})")
+        return None
+    if truth is not None:
+        n = min(len(v) for v in truth.values())
+        t_true, state_cut = t[:n], {k: np.asarray(v)[:n] for k, v in state.items()}
+    if name == "time_series":
+        return plots.plot_time_series(t, state, _full(truth, len(t)), time_unit="")
+    if name == "error":
+        if truth is None or n < 2:
+            notes.append("plot 'error' skipped: the true trajectory has fewer than two points")
+            return None
+        return plots.plot_error(t_true, state_cut, truth, time_unit="")
+    if name == "phase":
+        return plots.plot_phase(state, _full(truth, len(t)), pairs=_phase_pairs(result))
+    if name == "convergence":
+        fit = None if result.validation is None else result.validation.slope
+        if fit is None or sum(1 for e in fit.errors if math.isfinite(e) and e > 0) < 2:
+            notes.append("plot 'convergence' skipped: the validation measured no ε scan")
+            return None
+        return plots.plot_convergence(
+            np.abs(np.asarray(fit.epsilons, dtype=float)),
+            fit.errors,
+            order=result.scene.order,
+            slope=fit.slope if math.isfinite(fit.slope) else None,
+            slope_band=fit.band,
+        )
+    if name == "work_precision":
+        if result.work_precision is None:
+            notes.append("plot 'work_precision' skipped: no work-precision runs")
+            return None
+        return plots.plot_work_precision(result.work_precision)
+    if result.euler is None:
+        notes.append(f"plot {name!r} skipped: there are no Euler angles ({result.failure})")
+        return None
+    if name == "euler":
+        return plots.plot_euler_angles(t, result.euler, time_unit="")
+    span = min(result.period, float(t[-1]))
+    instants = [f * span for f in ORIENTATION_FRACTIONS]
+    return plots.plot_orientation(t, result.euler, instants, time_unit="")
+
+
+def _full(truth, n: int):
+    """The true trajectory when it covers the whole grid (else None: drawn without it)."""
+    if truth is None or min(len(v) for v in truth.values()) < n:
+        return None
+    return truth
+
+
+def summary_markdown(result, files: list[str]) -> str:
+    """``summary.md``: the problem, the verdict, the headline figures and the files written."""
+    scene = result.scene
+    lines = [f"# {result.label}: order {scene.order}", ""]
+    params = ", ".join(f"{k} = {v:g}" for k, v in result.parameters.items())
+    lines += [f"- parameters: {params}", f"- ε = {result.epsilon:.6g}"]
+    if result.failure:
+        lines += [f"- **construction failed**: {result.failure}"]
+    else:
+        lines += [f"- period T = {result.period:.12g} (physical time)"]
+    report = result.validation
+    if report is not None:
+        lines += [f"- **verdict: {report.outcome.name}** — {report.verdict}"]
+    elif not result.failure:
+        lines += ["- verdict: not validated (add `validation = true` to [outputs])"]
+    if result.work_precision is not None:
+        wp = result.work_precision
+        best = {}
+        for p in wp.points:
+            if math.isfinite(p.error) and (p.method not in best or p.error < best[p.method].error):
+                best[p.method] = p
+        lines += ["", f"## work–precision ({wp.periods:g} periods, reference {wp.reference})", ""]
+        lines += ["| method | best setting | error | seconds |", "|---|---|---|---|"]
+        lines += [
+            f"| {p.method} | {p.setting} | {p.error:.2e} | {p.seconds:.3g} |" for p in best.values()
+        ]
+    if result.notes:
+        lines += ["", "## notes", ""] + [f"- {note}" for note in result.notes]
+    timings = ", ".join(f"{k} {v:.2f} s" for k, v in result.seconds.items())
+    lines += ["", "## files", ""] + [f"- {name}" for name in files]
+    lines += ["", f"computed: {timings}"]
+    return "\n".join(lines) + "\n"
+
+
+def write_report(result, folder) -> tuple[list[str], str]:
+    """Write ``result``'s report into ``folder``; return the file names written and the summary.
+
+    Parameters
+    ----------
+    result : perturb.scene.run.SceneResult
+    folder : path
+        Created if missing (see :func:`prepare_folder`).
+
+    Returns
+    -------
+    (list of str, str)
+        The files written (in ``folder``) and the text of ``summary.md``.
+    """
+    folder = prepare_folder(folder)
+    scene, out = result.scene, result.scene.outputs
+    written: dict[str, bytes | str] = {"scene.toml": scene.text}
+    notes: list[str] = []
+    usable = not result.failure
+    if out.table and result.state is not None:
+        written["solution.csv"] = _columns_csv(result.t, dict(result.state))
+        written["solution.json"] = json.dumps(_solution_json(result), allow_nan=True) + "\n"
+    if out.euler and result.euler is not None:
+        written["euler.csv"] = _columns_csv(result.t, dict(result.euler))
+    if out.validation and result.validation is not None:
+        data = validation_as_dict(result.validation)
+        written["validation.json"] = json.dumps(data, allow_nan=True, indent=1) + "\n"
+    if out.work_precision and result.work_precision is not None:
+        written["work_precision.csv"] = work_precision_as_csv(result.work_precision) + "\n"
+    if out.latex and usable:
+        written["solution.tex"] = solution_document(result.solution, result.label)
+    figures = {}
+    if out.plots:
+        for name in out.plots:
+            figure = _draw(name, result, notes)
+            if figure is not None:
+                figures[name] = figure
+    files = ["scene.toml", SUMMARY, *[n for n in written if n != "scene.toml"]]
+    files += [f"{name}.{fmt}" for name in figures for fmt in out.formats]
+    if notes:
+        result = _with_notes(result, notes)
+    summary = summary_markdown(result, files)
+    written[SUMMARY] = summary
+    try:
+        _remove_stale(folder, set(files))
+        for name, content in written.items():
+            (folder / name).write_text(content, encoding="utf-8")
+        for name, figure in figures.items():
+            for fmt in out.formats:
+                figure.savefig(folder / f"{name}.{fmt}", format=fmt)
+    except OSError as exc:
+        raise SceneError(
+            f"--output {str(folder)!r}: cannot write there ({exc.strerror or exc}); choose a "
+            "writable folder"
+        ) from None
+    return files, summary
+
+
+def _with_notes(result, notes: list[str]):
+    from attrs import evolve
+
+    return evolve(result, notes=(*result.notes, *notes))
+
+
+def _remove_stale(folder: Path, keep: set[str]) -> None:
+    """Remove files of an earlier report (names this module writes) that this one does not."""
+    ours = {*_DATA_FILES, SUMMARY, "scene.toml"}
+    ours |= {f"{plot}.{fmt}" for plot in PLOT_NAMES for fmt in PLOT_FORMATS}
+    for name in sorted(ours - keep):
+        path = folder / name
+        if path.is_file():
+            path.unlink()

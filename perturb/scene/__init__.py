@@ -1,0 +1,45 @@
+"""Scenes: a TOML file naming a problem, its parameters and the outputs wanted
+(``perturb report SCENE.toml --output DIR``).
+
+Modules: :mod:`.spec` (the :class:`Scene` value object and its strict parser), :mod:`.run` (the
+lazy pipeline: computes only what the outputs need). Writing the folder is the report leaf
+:mod:`perturb.report.scene_output`, imported by the CLI only: a scene's results stay data.
+"""
+
+from perturb.scene.spec import (
+    EULER_PLOTS,
+    PLOT_FORMATS,
+    PLOT_NAMES,
+    TRUTH_PLOTS,
+    Outputs,
+    Scene,
+    WorkPrecisionSettings,
+    check_parameter_names,
+    parse_scene,
+    read_scene,
+)
+
+
+def __getattr__(name: str):
+    """``run_scene`` and ``SceneResult``: imported on first use (they bring in the oracle)."""
+    if name in ("run_scene", "SceneResult"):
+        from perturb.scene import run
+
+        return getattr(run, name)
+    raise AttributeError(f"module 'perturb.scene' has no attribute {name!r}")
+
+
+__all__ = [
+    "EULER_PLOTS",
+    "PLOT_FORMATS",
+    "PLOT_NAMES",
+    "TRUTH_PLOTS",
+    "Outputs",
+    "Scene",
+    "SceneResult",
+    "WorkPrecisionSettings",
+    "check_parameter_names",
+    "parse_scene",
+    "read_scene",
+    "run_scene",
+]

@@ -1,0 +1,272 @@
+"""The lazy pipeline of a scene: :func:`run_scene` computes only what the scene's outputs need.
+
+=======================================  =============================================
+computed                                 only when the scene asks for
+=======================================  =============================================
+the analytic solution                    always (the summary's first line)
+the analytic state over the horizon      ``table``, or a plot of the state
+the true trajectory (an integration)     the ``time_series``, ``error``, ``phase`` plots
+the validation (integrations, shooting)  ``validation``, the ``convergence`` plot
+the work–precision runs                  ``work_precision`` (table or plot)
+the Euler angles                         ``euler``, the ``euler``/``orientation`` plots
+=======================================  =============================================
+
+The problem comes in already loaded, as a :class:`perturb.validation.Model` (the CLI loads it with
+``problems.load_problem``: ``perturb`` never imports ``problems``). The result,
+:class:`SceneResult`, holds data only; :mod:`perturb.report.scene_output` writes it to a folder.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from collections.abc import Callable
+
+import numpy as np
+from attrs import field, frozen
+
+from perturb.domain import series_domain
+from perturb.progress import track
+from perturb.scene.spec import Scene
+from perturb.solution import PeriodicSolution
+from perturb.validation.model import Model, as_model, has_euler_angles
+
+__all__ = ["SceneResult", "check_scene", "run_scene"]
+
+
+@frozen
+class SceneResult:
+    """What a scene computed (data only; every entry not asked for is None).
+
+    Attributes
+    ----------
+    scene : Scene
+    label : str
+        The problem's name in reports.
+    parameters : dict
+        Every parameter value in force (defaults included).
+    epsilon : float
+    solution : PeriodicSolution
+    failure : str
+        Why the analytic solution cannot be used ("" when it can).
+    period : float
+        The analytic period in physical time (NaN on failure).
+    t : ndarray or None
+        The times of the tables and plots: ``scene.periods`` periods, ``scene.samples`` a period.
+    state : dict or None
+        The analytic state at ``t``, by name.
+    truth : dict or None
+        The true state at ``t`` (the original equations integrated from the analytic initial
+        state), by name; cut where the integration stopped.
+    truth_integrator : str
+        The integrator of ``truth``.
+    euler : dict or None
+        The Euler angles of the analytic solution at ``t``.
+    validation : perturb.validation.ValidationReport or None
+    work_precision : perturb.workprecision.WorkPrecision or None
+    notes : tuple of str
+        Warnings raised while computing, and steps skipped with the reason.
+    computed : tuple of str
+        The steps run, in order (``"solve"``, ``"state"``, ``"truth"``, ``"euler"``,
+        ``"validation"``, ``"work_precision"``).
+    seconds : dict
+        Wall time of each step.
+    """
+
+    scene: Scene
+    label: str
+    parameters: dict
+    epsilon: float
+    solution: PeriodicSolution
+    failure: str = ""
+    period: float = math.nan
+    t: np.ndarray | None = field(default=None, eq=False)
+    state: dict | None = field(default=None, eq=False)
+    truth: dict | None = field(default=None, eq=False)
+    truth_integrator: str = ""
+    euler: dict | None = field(default=None, eq=False)
+    validation: object | None = None
+    work_precision: object | None = None
+    notes: tuple = ()
+    computed: tuple = ()
+    seconds: dict = field(factory=dict, eq=False)
+
+    @property
+    def success(self) -> bool:
+        """Whether the analytic solution was constructed and, if validated, not found invalid."""
+        if self.failure:
+            return False
+        return self.validation is None or bool(self.validation.completed)
+
+
+def _truth(model: Model, solution, t: np.ndarray, integrator) -> tuple[dict, str, str]:
+    """The original equations integrated from the analytic initial state over ``t``."""
+    from perturb.oracle import choose
+    from perturb.validation import DEFAULT_RTOL, STIFFNESS_SAMPLES, stiffness_indicator
+    from perturb.validation.checks import analytic_states
+
+    names = tuple(model.state_names())
+    y0 = analytic_states(model, solution, np.zeros(1))[:, 0]
+    equations = model.original_equations(y0)
+    period = float(model.period(solution))
+    with np.errstate(all="ignore"):
+        samples = analytic_states(
+            model, solution, np.linspace(0.0, period, STIFFNESS_SAMPLES, endpoint=False)
+        )
+    stiff = stiffness_indicator(equations.rhs, samples, period).stiff
+    solver = choose(integrator, rtol=DEFAULT_RTOL, stiff=stiff, symbolic=equations.symbolic)
+    traj = solver.integrate(equations.rhs, (0.0, float(t[-1])), y0, t_eval=t)
+    y = np.asarray(traj.y, dtype=float)
+    note = "" if traj.success else (
+        f"the true trajectory stopped at t = {traj.t_reached:.6g} ({traj.message}); the plots "
+        "show it up to there"
+    )  # fmt: skip
+    return {n: y[i] for i, n in enumerate(names)}, traj.integrator or solver.name, note
+
+
+def check_scene(scene: Scene, problem) -> None:
+    """Raise if ``scene`` asks ``problem`` for what it cannot give, before anything is computed.
+
+    Raises
+    ------
+    perturb.errors.SceneError
+        Euler angles (``euler``, the ``euler``/``orientation`` plots) of a problem without them.
+    perturb.errors.UnknownNameError
+        An unknown ``[solve] integrator`` of a scene that integrates.
+    """
+    model = as_model(problem)
+    outputs = scene.outputs
+    if outputs.needs_euler and not has_euler_angles(model):
+        asked = ["euler = true"] if outputs.euler else []
+        asked += [f"plot {p!r}" for p in outputs.plots if p in ("euler", "orientation")]
+        raise scene.error(
+            f"[outputs] {' and '.join(asked)}: problem {model.label()!r} has no Euler angles "
+            "(rigid bodies only); remove it from [outputs]"
+        )
+    if scene.integrator is not None and (
+        outputs.needs_truth_trajectory or outputs.needs_validation
+    ):
+        from perturb.oracle import choose
+
+        choose(scene.integrator)  # an unknown name fails here, before any work
+
+
+def run_scene(scene: Scene, problem) -> SceneResult:
+    """Compute what ``scene`` asks for, and nothing else (see the module docstring).
+
+    Parameters
+    ----------
+    scene : Scene
+        The parsed scene (:func:`perturb.scene.read_scene`).
+    problem : perturb.validation.Model
+        The scene's problem, already created with the scene's parameters (and family).
+
+    Returns
+    -------
+    SceneResult
+        A failed construction is ``result.failure`` (never an exception); the validation's own
+        outcome is in ``result.validation``.
+
+    Raises
+    ------
+    perturb.errors.SceneError
+        Euler angles asked of a problem that has none (before anything is computed).
+    perturb.errors.UnknownNameError
+        An unknown integrator name (from the oracle, before any integration).
+    """
+    model = as_model(problem)
+    check_scene(scene, model)
+    outputs = scene.outputs
+
+    state: dict = {"notes": [], "computed": [], "seconds": {}}
+    values: dict = {}
+
+    def step(name: str, work: Callable[[], object]) -> None:
+        clock = time.perf_counter()
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            values[name] = work()
+        state["seconds"][name] = time.perf_counter() - clock
+        state["computed"].append(name)
+        for w in caught:
+            if str(w.message) not in state["notes"]:
+                state["notes"].append(str(w.message))
+
+    step("solve", lambda: model.solve(scene.order))
+    solution = values["solve"]
+    failure = ""
+    if not solution.success:
+        failure = f"{solution.status.value}: {solution.message}"
+    else:
+        domain = series_domain(solution, model.parameter_value(), model.symbol_values())
+        if not domain.ok:
+            failure = "the series is outside its domain: " + "; ".join(domain.reasons)
+    period = math.nan if failure else float(model.period(solution))
+
+    t = None
+    todo: list[tuple[str, Callable[[], object]]] = []
+    if not failure and (outputs.needs_state or outputs.needs_euler):
+        n = int(math.ceil(scene.periods * scene.samples)) + 1
+        t = np.linspace(0.0, scene.periods * period, n)
+        if outputs.needs_state:
+            todo.append(("state", lambda: model.state(solution, t)))
+        if outputs.needs_truth_trajectory:
+            todo.append(("truth", lambda: _truth(model, solution, t, scene.integrator)))
+        if outputs.needs_euler:
+            todo.append(("euler", lambda: model.euler_angles(solution, t)))
+    if outputs.needs_validation:  # also on a failed construction: it says why, with a verdict
+        todo.append(("validation", lambda: _validate(scene, model)))
+    if not failure and outputs.needs_work_precision:
+        todo.append(("work_precision", lambda: _work_precision(scene, model)))
+    for name, work in track(todo, label=f"report {model.label()}"):
+        step(name, work)
+
+    truth, truth_integrator = None, ""
+    if "truth" in values:
+        truth, truth_integrator, note = values["truth"]
+        if note:
+            state["notes"].append(note)
+    return SceneResult(
+        scene=scene,
+        label=model.label(),
+        parameters=dict(model.parameters_in_force()),
+        epsilon=float(model.epsilon()),
+        solution=solution,
+        failure=failure,
+        period=period,
+        t=t,
+        state=values.get("state"),
+        truth=truth,
+        truth_integrator=truth_integrator,
+        euler=values.get("euler"),
+        validation=values.get("validation"),
+        work_precision=values.get("work_precision"),
+        notes=tuple(state["notes"]),
+        computed=tuple(state["computed"]),
+        seconds=dict(state["seconds"]),
+    )
+
+
+def _validate(scene: Scene, model: Model):
+    from perturb.validation import DEFAULT_TOL, validate
+
+    return validate(
+        model,
+        order=scene.order,
+        integrator=scene.integrator,
+        periods=scene.periods,
+        tol=DEFAULT_TOL if scene.tol is None else scene.tol,
+    )
+
+
+def _work_precision(scene: Scene, model: Model):
+    from perturb.workprecision import work_precision
+
+    settings = scene.work_precision
+    return work_precision(
+        model,
+        periods=settings.periods or scene.periods,
+        orders=settings.orders or scene.order,
+        repeat=settings.repeat,
+    )

@@ -1,0 +1,428 @@
+"""A scene file and its strict parser: :class:`Scene`, :func:`parse_scene`, :func:`read_scene`.
+
+A scene is a TOML file naming a problem, its parameters, the solve settings and the outputs wanted
+(``perturb report SCENE.toml --output DIR``)::
+
+    [problem]
+    name = "disk"                 # a registered name, "path/to/file.py:Class" or "module:Class"
+    [parameters]                  # any problem parameter; the rest take the problem's defaults
+    r0 = 0.755155
+    [solve]
+    order = 1
+    periods = 3                   # horizon, in periods of the analytic solution
+    [outputs]                     # each false (empty) unless asked for
+    table = true
+    plots = ["time_series", "error"]
+
+The parser knows every section and key: an unknown one, a value of the wrong type or out of range
+and malformed TOML raise :class:`perturb.errors.SceneError` with one line naming the file, the line
+where it can be found, the value and the fix, and the closest known name (difflib). Problem and
+parameter names are checked later, against the problem (:func:`check_parameter_names`): this
+module does not know the problems (``perturb`` never imports ``problems``).
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+import tomllib
+from collections.abc import Callable, Iterable, Mapping
+
+from attrs import field, frozen
+
+from perturb._defaults import (
+    MAX_ORDER,
+    SCENE_MAX_PERIODS,
+    SCENE_MAX_REPEAT,
+    SCENE_MAX_SAMPLES_PER_PERIOD,
+    SCENE_PERIODS,
+    SCENE_SAMPLES_PER_PERIOD,
+    SCENE_SUGGESTION_CUTOFF,
+)
+from perturb.errors import SceneError
+
+__all__ = [
+    "EULER_PLOTS",
+    "PLOT_FORMATS",
+    "PLOT_NAMES",
+    "TRUTH_PLOTS",
+    "Outputs",
+    "Scene",
+    "WorkPrecisionSettings",
+    "check_parameter_names",
+    "parse_scene",
+    "read_scene",
+]
+
+#: The plots a scene may ask for (``[outputs] plots``), each a function of perturb.report.plots.
+PLOT_NAMES = (
+    "time_series",
+    "error",
+    "phase",
+    "convergence",
+    "work_precision",
+    "euler",
+    "orientation",
+)
+
+#: Plots drawn beside the true motion: they need an integration of the original equations (the
+#: convergence plot the validation's ε scan, the work-precision plot the integrator runs).
+TRUTH_PLOTS = frozenset({"time_series", "error", "phase", "convergence", "work_precision"})
+
+#: Plots of a rigid body's Euler angles: they need the angles (of the analytic solution only).
+EULER_PLOTS = frozenset({"euler", "orientation"})
+
+#: File formats of the plots: PNG always unless changed, PDF and SVG on request.
+PLOT_FORMATS = ("png", "pdf", "svg")
+
+
+def _close(name: str, names: Iterable[str]) -> str:
+    close = difflib.get_close_matches(name, list(names), n=1, cutoff=SCENE_SUGGESTION_CUTOFF)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+# ---------------------------------------------------------------------------------- value objects
+@frozen
+class Outputs:
+    """What a scene asks to be written; every entry is off unless asked for.
+
+    Attributes
+    ----------
+    table : bool
+        ``solution.csv`` and ``solution.json``: the analytic state over the horizon.
+    euler : bool
+        ``euler.csv``: the Euler angles of the analytic solution (rigid bodies only).
+    validation : bool
+        ``validation.json``: the check against the true motion and its verdict.
+    work_precision : bool
+        ``work_precision.csv``: error against run time of the analytic solution and integrators.
+    latex : bool
+        ``solution.tex``: the derived formulas as LaTeX.
+    plots : tuple of str
+        Names from :data:`PLOT_NAMES`.
+    formats : tuple of str
+        File formats of each plot, from :data:`PLOT_FORMATS` (default PNG only).
+    """
+
+    table: bool = False
+    euler: bool = False
+    validation: bool = False
+    work_precision: bool = False
+    latex: bool = False
+    plots: tuple = field(default=(), converter=tuple)
+    formats: tuple = field(default=("png",), converter=tuple)
+
+    @property
+    def needs_truth_trajectory(self) -> bool:
+        """Whether the original equations are integrated for the time-series, error or phase plots."""
+        return bool({"time_series", "error", "phase"} & set(self.plots))
+
+    @property
+    def needs_validation(self) -> bool:
+        return self.validation or "convergence" in self.plots
+
+    @property
+    def needs_work_precision(self) -> bool:
+        return self.work_precision or "work_precision" in self.plots
+
+    @property
+    def needs_euler(self) -> bool:
+        return self.euler or bool(EULER_PLOTS & set(self.plots))
+
+    @property
+    def needs_state(self) -> bool:
+        """Whether the analytic state is evaluated over the horizon (tables and state plots)."""
+        return self.table or self.needs_truth_trajectory
+
+
+@frozen
+class WorkPrecisionSettings:
+    """The ``[work_precision]`` section (defaults: the scene's horizon and order, one run a point)."""
+
+    periods: float | None = None
+    orders: int | None = None
+    repeat: int = 1
+
+
+@frozen
+class Scene:
+    """A parsed scene file (data only: :func:`perturb.scene.run.run_scene` computes it).
+
+    Attributes
+    ----------
+    problem : str
+        The problem: a registered name, ``path/to/file.py:Class`` or ``module:Class``.
+    family : str or None
+        The family of periodic solutions followed (``perturb families``), None for the default.
+    parameters : dict
+        Parameter values by name; the others take the problem's defaults.
+    order : int
+    periods : float
+        Horizon in periods of the analytic solution.
+    samples : int
+        Samples per period of the tables and plots.
+    integrator : str or None
+        The oracle's integrator (None: its default choice).
+    tol : float or None
+        The validation's accuracy tolerance (None: its default).
+    outputs : Outputs
+    work_precision : WorkPrecisionSettings
+    source : str
+        Where the scene was read from (shown in messages).
+    text : str
+        The scene file's text (copied into the report folder as written).
+    """
+
+    problem: str
+    family: str | None = None
+    parameters: dict = field(factory=dict, converter=dict)
+    order: int = 1
+    periods: float = float(SCENE_PERIODS)
+    samples: int = SCENE_SAMPLES_PER_PERIOD
+    integrator: str | None = None
+    tol: float | None = None
+    outputs: Outputs = field(factory=Outputs)
+    work_precision: WorkPrecisionSettings = field(factory=WorkPrecisionSettings)
+    source: str = "<scene>"
+    text: str = field(default="", repr=False)
+
+    def error(self, detail: str) -> SceneError:
+        """A :class:`SceneError` about this scene, prefixed with its source."""
+        return SceneError(f"{self.source}: {detail}")
+
+
+# ---------------------------------------------------------------------------------- the schema
+class _Checker:
+    """Type checks of one section's values; each returns the value converted or raises."""
+
+    def __init__(self, source: str, text: str, section: str):
+        self.source, self.text, self.section = source, text, section
+
+    def fail(self, key: str | None, value: object, fix: str) -> SceneError:
+        line = _line_of(self.text, self.section, key)
+        where = f"line {line}: " if line else ""
+        name = f"[{self.section}] {key}" if key else f"[{self.section}]"
+        shown = repr(value)
+        if len(shown) > 60:
+            shown = shown[:57] + "..."
+        return SceneError(f"{self.source}: {where}{name} = {shown} is invalid: {fix}")
+
+    def boolean(self, key: str, value: object) -> bool:
+        if not isinstance(value, bool):
+            raise self.fail(key, value, "write true or false")
+        return value
+
+    def string(self, key: str, value: object) -> str:
+        if not isinstance(value, str) or not value.strip():
+            raise self.fail(key, value, 'write a non-empty string in quotes, e.g. "disk"')
+        return value.strip()
+
+    def integer(self, key: str, value: object, low: int, high: int) -> int:
+        if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+            raise self.fail(key, value, f"write a whole number from {low} to {high}")
+        return value
+
+    def positive(self, key: str, value: object, high: float = math.inf) -> float:
+        ok = isinstance(value, int | float) and not isinstance(value, bool)
+        if not ok or not (math.isfinite(value) and 0 < value <= high):
+            limit = f" and at most {high:g}" if math.isfinite(high) else ""
+            raise self.fail(key, value, f"write a finite number > 0{limit}")
+        return float(value)
+
+    def names(self, key: str, value: object, known: tuple[str, ...]) -> tuple[str, ...]:
+        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+            raise self.fail(key, value, f"write a list of names in quotes, from {list(known)}")
+        for item in value:
+            if item not in known:
+                raise self.fail(
+                    key, item, f"unknown name{_close(item, known)}; choose from {list(known)}"
+                )
+        if len(set(value)) != len(value):
+            raise self.fail(key, value, "name each entry once")
+        return tuple(value)
+
+
+def _line_of(text: str, section: str, key: str | None) -> int | None:
+    """The line (1-based) of ``key`` in ``[section]`` (of the header if ``key`` is None), if found."""
+    current = None
+    header = re.compile(r"^\s*\[\s*([^\[\]]+?)\s*\]")
+    for number, line in enumerate(text.splitlines(), start=1):
+        match = header.match(line)
+        if match:
+            current = match.group(1).strip().strip("\"'")
+            if key is None and current == section:
+                return number
+            continue
+        if key is not None and current == section:
+            if re.match(rf"^\s*[\"']?{re.escape(key)}[\"']?\s*=", line):
+                return number
+    return None
+
+
+_SECTIONS = ("problem", "parameters", "solve", "outputs", "work_precision")
+_OUTPUT_FLAGS = ("table", "euler", "validation", "work_precision", "latex")
+
+
+def _keys(section: str) -> tuple[str, ...]:
+    return {
+        "problem": ("name", "family"),
+        "solve": ("order", "periods", "samples", "integrator", "tol"),
+        "outputs": (*_OUTPUT_FLAGS, "plots", "formats"),
+        "work_precision": ("periods", "orders", "repeat"),
+    }[section]
+
+
+def _section(data: Mapping, name: str, check: _Checker) -> dict:
+    """The table ``[name]`` (empty when absent), its keys checked against the schema."""
+    table = data.get(name, {})
+    if not isinstance(table, dict):
+        raise check.fail(None, table, f"[{name}] must be a table: write it as a [{name}] section")
+    if name == "parameters":
+        return table
+    known = _keys(name)
+    for key in table:
+        if key not in known:
+            raise SceneError(
+                f"{check.source}: "
+                + (f"line {line}: " if (line := _line_of(check.text, name, key)) else "")
+                + f"unknown key {key!r} in [{name}]{_close(key, known)}; the keys are "
+                f"{', '.join(known)}"
+            )
+    return table
+
+
+def _parse_data(data: Mapping, source: str, text: str) -> Scene:
+    for name in data:
+        if name not in _SECTIONS:
+            line = _line_of(text, name, None)
+            where = f"line {line}: " if line else ""
+            raise SceneError(
+                f"{source}: {where}unknown section [{name}]{_close(name, _SECTIONS)}; the sections "
+                f"are {', '.join(f'[{s}]' for s in _SECTIONS)}"
+            )
+    checkers: dict[str, _Checker] = {s: _Checker(source, text, s) for s in _SECTIONS}
+    tables = {s: _section(data, s, checkers[s]) for s in _SECTIONS}
+
+    problem, c = tables["problem"], checkers["problem"]
+    if "name" not in problem:
+        where = "add a [problem] section with " if "problem" not in data else "add "
+        raise SceneError(
+            f'{source}: the scene names no problem: {where}name = "duffing" (a name from '
+            "`perturb list`, path/to/file.py:Class or module:Class)"
+        )
+    fields: dict = {"problem": c.string("name", problem["name"])}
+    if "family" in problem:
+        fields["family"] = c.string("family", problem["family"])
+
+    parameters, c = {}, checkers["parameters"]
+    for key, value in tables["parameters"].items():
+        if isinstance(value, bool) or not isinstance(value, int | float) or math.isnan(value):
+            raise c.fail(key, value, "write a real number, e.g. 0.25")
+        parameters[key] = float(value)
+    fields["parameters"] = parameters
+
+    solve, c = tables["solve"], checkers["solve"]
+    readers: dict[str, Callable] = {
+        "order": lambda k, v: c.integer(k, v, 1, MAX_ORDER),
+        "periods": lambda k, v: c.positive(k, v, SCENE_MAX_PERIODS),
+        "samples": lambda k, v: c.integer(k, v, 4, SCENE_MAX_SAMPLES_PER_PERIOD),
+        "integrator": c.string,
+        "tol": c.positive,
+    }
+    fields.update({key: readers[key](key, value) for key, value in solve.items()})
+
+    out, c = tables["outputs"], checkers["outputs"]
+    flags = {key: c.boolean(key, out[key]) for key in _OUTPUT_FLAGS if key in out}
+    if "plots" in out:
+        flags["plots"] = c.names("plots", out["plots"], PLOT_NAMES)
+    if "formats" in out:
+        flags["formats"] = c.names("formats", out["formats"], PLOT_FORMATS)
+        if not flags["formats"]:
+            raise c.fail("formats", out["formats"], 'name at least one format, e.g. ["png"]')
+    fields["outputs"] = Outputs(**flags)
+
+    wp, c = tables["work_precision"], checkers["work_precision"]
+    settings = {}
+    if "periods" in wp:
+        settings["periods"] = c.positive("periods", wp["periods"], SCENE_MAX_PERIODS)
+    if "orders" in wp:
+        settings["orders"] = c.integer("orders", wp["orders"], 1, MAX_ORDER)
+    if "repeat" in wp:
+        settings["repeat"] = c.integer("repeat", wp["repeat"], 1, SCENE_MAX_REPEAT)
+    fields["work_precision"] = WorkPrecisionSettings(**settings)
+    return Scene(**fields, source=source, text=text)
+
+
+# ---------------------------------------------------------------------------------- front doors
+def parse_scene(text: str, source: str = "<scene>") -> Scene:
+    """The :class:`Scene` a TOML text describes.
+
+    Parameters
+    ----------
+    text : str
+        The scene file's content.
+    source : str, optional
+        Where it came from, shown at the start of every message.
+
+    Returns
+    -------
+    Scene
+
+    Raises
+    ------
+    perturb.errors.SceneError
+        Malformed TOML (with its line and column), an unknown section or key (with the closest
+        known one), a value of the wrong type or range, a missing problem name.
+
+    Examples
+    --------
+    >>> scene = parse_scene('[problem]\\nname = "duffing"\\n[outputs]\\ntable = true')
+    >>> scene.problem, scene.order, scene.outputs.table, scene.outputs.validation
+    ('duffing', 1, True, False)
+    """
+    if not isinstance(text, str):
+        raise SceneError(f"{source}: the scene must be text (TOML), got {type(text).__name__}")
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(f"{source}: malformed TOML: {' '.join(str(exc).split())}") from None
+    return _parse_data(data, source, text)
+
+
+def read_scene(path) -> Scene:
+    """The :class:`Scene` in the file ``path`` (UTF-8 TOML); see :func:`parse_scene`.
+
+    Raises
+    ------
+    perturb.errors.SceneError
+        The file cannot be read or decoded, or its content is not a valid scene.
+    """
+    from pathlib import Path
+
+    file = Path(path)
+    try:
+        text = file.read_bytes().decode("utf-8")
+    except OSError as exc:
+        raise SceneError(
+            f"{path}: cannot read the scene file ({exc.strerror or exc}); check the path"
+        ) from None
+    except UnicodeDecodeError:
+        raise SceneError(f"{path}: the scene file is not UTF-8 text; save it as UTF-8") from None
+    return parse_scene(text, str(path))
+
+
+def check_parameter_names(scene: Scene, known: Iterable[str], problem: str) -> None:
+    """Raise :class:`SceneError` unless every ``[parameters]`` key is one of ``known``.
+
+    The caller knows the problem (the CLI loads it); the message suggests the closest name.
+    """
+    known = list(known)
+    for name in scene.parameters:
+        if name not in known:
+            line = _line_of(scene.text, "parameters", name)
+            where = f"line {line}: " if line else ""
+            raise scene.error(
+                f"{where}unknown parameter {name!r} of {problem}{_close(name, known)}; the "
+                f"parameters are {', '.join(known)}"
+            )
