@@ -10,8 +10,7 @@ Modules: :mod:`.model` (the protocol), :mod:`.checks` and :mod:`.orbit` (the mea
 :mod:`.verdict` (the rule), :mod:`.report` (the result objects), :mod:`.validate` (orchestration).
 """
 
-from perturb.validation._compat import OriginalSystem, original_system
-from perturb.validation._constants import (
+from perturb._defaults import (
     AMPLITUDE_FLOOR,
     DEFAULT_PERIODS,
     DEFAULT_RTOL,
@@ -35,6 +34,7 @@ from perturb.validation._constants import (
     STIFFNESS_SAMPLES,
     STIFFNESS_THRESHOLD,
 )
+from perturb.validation._compat import OriginalSystem, original_system
 from perturb.validation.checks import stiffness_indicator
 from perturb.validation.model import (
     Equations,

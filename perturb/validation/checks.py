@@ -7,14 +7,14 @@ import math
 
 import numpy as np
 
-from perturb.errors import PerturbError
-from perturb.oracle import SymbolicRHS, finite_difference_jacobian
-from perturb.validation._constants import (
+from perturb._defaults import (
     ERROR_FLOOR,
     SAMPLES_PER_PERIOD,
     SLOPE_TOLERANCE,
     STIFFNESS_THRESHOLD,
 )
+from perturb.errors import PerturbError
+from perturb.oracle import SymbolicRHS, finite_difference_jacobian
 from perturb.validation.model import Integrals, Model
 from perturb.validation.report import InvariantDrift, SlopeFit, Stiffness
 from perturb.validation.setup import amplitudes, integrator_for

@@ -7,9 +7,7 @@ import math
 
 import numpy as np
 
-from perturb.errors import PerturbError
-from perturb.oracle import Scipy, find_periodic_orbit
-from perturb.validation._constants import (
+from perturb._defaults import (
     FLOQUET_TOL,
     MULTIPLIER_FLOOR,
     ORBIT_RESOLUTION_LIMIT,
@@ -20,6 +18,8 @@ from perturb.validation._constants import (
     STIFF_SHOOTING_RTOL,
     STIFF_SHOOTING_TOL,
 )
+from perturb.errors import PerturbError
+from perturb.oracle import Scipy, find_periodic_orbit
 from perturb.validation.checks import analytic_states, component_errors
 from perturb.validation.model import Equations, Model, OrbitEstimate, ShootingSetup
 from perturb.validation.report import OrbitCheck

@@ -6,9 +6,9 @@ import math
 
 import numpy as np
 
+from perturb._defaults import AMPLITUDE_FLOOR, SECTION_ZERO, SLOW_COMPONENT
 from perturb.errors import bad_value
 from perturb.oracle import Integrator, TrajectoryStatus, choose
-from perturb.validation._constants import AMPLITUDE_FLOOR, SECTION_ZERO, SLOW_COMPONENT
 from perturb.validation.model import Equations, Model, ShootingSetup
 
 __all__ = ["amplitudes", "check_positive", "derived_shooting_setup", "integrator_for"]

@@ -12,9 +12,7 @@ import numpy as np
 import sympy as sp
 from attrs import evolve
 
-from perturb.errors import PerturbError, bad_value
-from perturb.oracle import Integrator, Trajectory
-from perturb.validation._constants import (
+from perturb._defaults import (
     DEFAULT_PERIODS,
     DEFAULT_RTOL,
     DEFAULT_TOL,
@@ -24,6 +22,8 @@ from perturb.validation._constants import (
     SLOPE_FACTORS,
     STIFFNESS_SAMPLES,
 )
+from perturb.errors import PerturbError, bad_value
+from perturb.oracle import Integrator, Trajectory
 from perturb.validation.checks import (
     analytic_states,
     component_errors,
