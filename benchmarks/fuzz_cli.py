@@ -13,6 +13,7 @@ import argparse
 import collections
 import subprocess
 import sys
+import tempfile
 import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -24,13 +25,17 @@ from fuzz_corpus import corpus, judge  # noqa: E402
 def run_one(argv: list[str], seconds: float):
     start = time.perf_counter()
     try:
-        proc = subprocess.run(
-            [sys.executable, "-m", "perturb", *argv],
-            capture_output=True,
-            text=True,
-            timeout=seconds,
-            stdin=subprocess.DEVNULL,
-        )
+        with (
+            tempfile.TemporaryDirectory() as folder
+        ):  # whatever a call writes stays out of the tree
+            proc = subprocess.run(
+                [sys.executable, "-m", "perturb", *argv],
+                capture_output=True,
+                text=True,
+                timeout=seconds,
+                stdin=subprocess.DEVNULL,
+                cwd=folder,
+            )
         code, out, err = proc.returncode, proc.stdout, proc.stderr
     except subprocess.TimeoutExpired:
         code, out, err = None, "", ""
