@@ -44,7 +44,7 @@ def run_one(argv: list[str], seconds: float):
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--seconds", type=float, default=60.0, help="a call past this is a hang")
+    parser.add_argument("--seconds", type=float, default=120.0, help="a call past this is a hang")
     parser.add_argument("--jobs", type=int, default=2)
     args = parser.parse_args()
     cases = corpus()

@@ -51,12 +51,20 @@ OPTIONS = {
 }
 SET_NAMES = ("eps", "amplitude", "mu", "bogus", "", "eps=1")
 
+#: The valid command each hostile option is added to (a later option overrides an earlier one).
+#: work-precision runs a short, single-repeat sweep: the corpus tests option handling, and a full
+#: default sweep takes about a minute of CPU.
+BASES = {
+    "reproduce": ["reproduce", "paper"],
+    "work-precision": ["work-precision", "duffing", "--periods", "2", "--repeat", "1"],
+}
+
 
 def corpus() -> list[list[str]]:
     """Every invocation of the corpus, as argv lists (without the program name)."""
     cases: list[list[str]] = [[], ["list"], ["list", "extra"], ["nope"], ["--version"], ["solve"]]
     for command, options in OPTIONS.items():
-        base = ["reproduce", "paper"] if command == "reproduce" else [command, "duffing"]
+        base = BASES.get(command, [command, "duffing"])
         if command != "reproduce":
             cases.extend([[command, problem] for problem in PROBLEMS if problem != "duffing"])
             cases.extend(
