@@ -71,7 +71,7 @@ def as_real_array(argument: str, value, cls: type[ValueError] = InvalidParameter
         raise bad_value(argument, value, "give a finite real number or an array of them", cls)
     try:
         array = np.asarray(value)
-        if np.iscomplexobj(array):
+        if np.iscomplexobj(array) or array.dtype.kind == "b":  # a bool is no number here
             raise TypeError
         array = array.astype(float)
     except (TypeError, ValueError):

@@ -18,7 +18,7 @@ import attrs
 import sympy as sp
 from attrs import field, frozen
 
-from perturb._checks import as_mapping, check_count, known_keywords, real_number
+from perturb._checks import as_expression, as_mapping, check_count, known_keywords, real_number
 from perturb._defaults import MAX_ORDER
 from perturb.analytic import maclaurin_coefficients
 from perturb.errors import InvalidSystemError, bad_value
@@ -50,9 +50,10 @@ def _as_tuple_of_exprs(values, argument: str = "rhs") -> tuple[sp.Expr, ...]:
                 argument, values, "give a sequence of sympy expressions", InvalidSystemError
             )
         values = (values,)
+    # frequencies: finite here, positive and real in _check_frequencies (which says so)
+    check = as_expression if argument == "frequencies" else real_number
     return tuple(
-        _canonical(real_number(f"{argument}[{i}]", v, InvalidSystemError))
-        for i, v in enumerate(values)
+        _canonical(check(f"{argument}[{i}]", v, InvalidSystemError)) for i, v in enumerate(values)
     )
 
 
