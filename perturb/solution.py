@@ -238,19 +238,16 @@ class PeriodicSolution:
     def _params(self, values: Mapping | None) -> list:
         values = as_mapping("values", values)
         _, params, _ = self._compiled
-        known = {p.name for p in self.system.parameters} | set(self.system.parameters)
-        stray = [key for key in values if key not in known]
+        stray = [key for key in values if not isinstance(key, str | sp.Symbol)]
         if stray:
-            raise bad_value(
-                "values",
-                values,
-                f"{stray} are not parameters of the solution; give values for "
-                f"{[p.name for p in self.system.parameters]} only",
-            )
+            raise bad_value("values", values, "key it by parameter names (str) or symbols")
+        # Other names are ignored: callers pass every value of a problem, some of them already
+        # substituted into the system before solving; the result does not depend on them.
         missing = [p.name for p in params if p.name not in values and p not in values]
         if missing:
             raise InvalidParameterError(
                 f"`values` lacks {missing}: give a value for every free parameter of the solution"
+                + (f" (got {sorted(map(str, values))})" if values else "")
             )
         return [
             as_real_array(f"values[{p.name!r}]", values[p.name] if p.name in values else values[p])

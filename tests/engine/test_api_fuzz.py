@@ -97,6 +97,15 @@ def honest_solution(value) -> None:
     assert not omega.has(sp.I, sp.nan, sp.oo, sp.zoo, -sp.oo)
 
 
+def equals(reference: Callable[[], object]):
+    """The result must be exactly that of the clean call (extra `values` keys change nothing)."""
+
+    def check(value) -> None:
+        assert np.array_equal(np.asarray(value), np.asarray(reference()))
+
+    return check
+
+
 def finite_array(value) -> None:
     assert np.all(np.isfinite(np.asarray(value, dtype=float)))
 
@@ -444,7 +453,13 @@ CASES += [
     _c("evaluate eps=1j", lambda: _solution().evaluate(0.0, 1j), "epsilon"),
     _c("evaluate eps=str", lambda: _solution().evaluate(0.0, "a"), "epsilon"),
     _c("evaluate eps=None", lambda: _solution().evaluate(0.0, None), "epsilon"),
-    _c("evaluate values unknown key", lambda: _solution().evaluate(0.0, 0.1, {"zz": 1}), "values"),
+    _c(
+        "evaluate values unknown key",
+        lambda: _solution().evaluate(0.0, 0.1, {"zz": 1}),
+        "values",
+        equals(lambda: _solution().evaluate(0.0, 0.1)),
+    ),
+    _c("evaluate values int key", lambda: _solution_k().evaluate(0.0, 0.1, {1: 1}), "values"),
     _c("evaluate values=list", lambda: _solution().evaluate(0.0, 0.1, [1]), "values"),
     _c("evaluate values k=nan", lambda: _solution_k().evaluate(0.0, 0.1, {"k": NAN}), "values"),
     _c("evaluate values k=str", lambda: _solution_k().evaluate(0.0, 0.1, {"k": "a"}), "values"),
@@ -453,6 +468,7 @@ CASES += [
         "evaluate values extra key",
         lambda: _solution_k().evaluate(0.0, 0.1, {"k": 1, "q": 2}),
         "values",
+        equals(lambda: _solution_k().evaluate(0.0, 0.1, {"k": 1})),
     ),
     _c("evaluate values=None k missing", lambda: _solution_k().evaluate(0.0, 0.1), "values"),
     _c("evaluate 2-D t", lambda: _solution().evaluate([[0.0, 1.0]], 0.1), "t", finite_array),
@@ -460,9 +476,19 @@ CASES += [
     _c("period_at str", lambda: _solution().period_at("x"), "epsilon"),
     _c("period_at None", lambda: _solution().period_at(None), "epsilon"),
     _c("period_at 1j", lambda: _solution().period_at(1j), "epsilon"),
-    _c("period_at values unknown", lambda: _solution().period_at(0.1, {"zz": 1}), "values"),
+    _c(
+        "period_at values unknown",
+        lambda: _solution().period_at(0.1, {"zz": 1}),
+        "values",
+        equals(lambda: _solution().period_at(0.1)),
+    ),
     _c("initial_state inf", lambda: _solution().initial_state(INF), "epsilon"),
-    _c("initial_state values unknown", lambda: _solution().initial_state(0.1, {"zz": 1}), "values"),
+    _c(
+        "initial_state values unknown",
+        lambda: _solution().initial_state(0.1, {"zz": 1}),
+        "values",
+        equals(lambda: _solution().initial_state(0.1)),
+    ),
     _c("coefficients nan", lambda: _solution().coefficients(NAN), "epsilon"),
     _c("coordinate y", lambda: _solution().coordinate("y"), "name"),
     _c("coordinate 1", lambda: _solution().coordinate(1), "name"),
