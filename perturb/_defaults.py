@@ -17,6 +17,12 @@ ZERO_PROBES = 3
 #: perturbations; a power of two, enough for ~30 significant harmonics.
 FFT_POINTS = 256
 
+#: A pole or branch point of a non-polynomial right-hand side counts as reached by the generating
+#: solution when its companion (the base of sqrt, the argument of log...) comes within this relative
+#: distance of zero on the quadrature grid: the Taylor expansion about the orbit has no radius there,
+#: and a crossing between grid points shows up as a sign change (a value <= 0) anyway.
+SINGULARITY_MARGIN = 1e-8
+
 #: Fourier coefficients of the numeric fallback below this magnitude (relative to the largest) are dropped.
 FFT_TRIM = 1e-13
 

@@ -171,6 +171,8 @@ def evaluate_analytic(
     """
     import numpy as np
 
+    from perturb.analyticity import singularity
+
     syms = [v for v in variables if expr.has(v)]
     stray = expr.free_symbols - set(syms)
     if stray:
@@ -193,6 +195,9 @@ def evaluate_analytic(
             np.broadcast_to(sp.lambdify(s, v0.as_expr(s), "numpy")(grid), grid.shape).astype(float)
         )
         deltas.append(TrigSeries([TrigPoly(), *variables[sym].coefficients[1:]]).truncate(order))
+    reason = singularity(expr, syms, base)
+    if reason is not None:
+        raise NotNumeric(f"the numeric quadrature cannot expand {expr}: {reason}")
     total = TrigSeries([TrigPoly() for _ in range(order + 1)])
     for alpha in _multi_indices(len(syms), order):
         derivative = expr
@@ -201,8 +206,13 @@ def evaluate_analytic(
                 derivative = sp.diff(derivative, sym, a) / sp.factorial(a)
         if derivative == 0:
             continue
-        samples = sp.lambdify(syms, derivative, "numpy")(*base)
-        coeff = fourier_samples(np.broadcast_to(samples, grid.shape), trim)
+        samples = np.broadcast_to(sp.lambdify(syms, derivative, "numpy")(*base), grid.shape)
+        if np.iscomplexobj(samples) or not np.all(np.isfinite(samples)):  # the safety net
+            raise NotNumeric(
+                f"the numeric quadrature cannot expand {expr}: its derivative {derivative} is not "
+                "finite and real along the generating solution (a singularity on the orbit)"
+            )
+        coeff = fourier_samples(samples, trim)
         term = TrigSeries([coeff] + [TrigPoly() for _ in range(order)])
         for delta, a in zip(deltas, alpha, strict=True):
             for _ in range(a):

@@ -11,8 +11,9 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._checks import as_mapping, as_real_array
 from perturb._defaults import NEAR_RESONANCE
-from perturb.errors import AccuracyWarning, InvalidParameterError, PerturbError
+from perturb.errors import AccuracyWarning, InvalidParameterError, PerturbError, bad_value
 from perturb.method.steps import GeneratingSolution, OrderStep, S
 from perturb.system import EPS, QuasilinearSystem, Regime
 
@@ -199,6 +200,8 @@ class PeriodicSolution:
         return "\n".join(out)
 
     def _index(self, name: str) -> int:
+        if isinstance(name, sp.Symbol):
+            name = name.name
         try:
             return self.coordinates.index(name)
         except ValueError:
@@ -231,11 +234,7 @@ class PeriodicSolution:
         return fn, params, harmonics
 
     def _epsilon(self, value) -> np.ndarray:
-        value = np.asarray(value, dtype=float)
-        if not np.all(np.isfinite(value)):
-            raise InvalidParameterError(
-                f"`{self.parameter}` = {value} is not finite: give a finite value"
-            )
+        value = as_real_array(str(self.parameter), value)
         if self.system.regime is Regime.LARGE:
             if np.any(value == 0):
                 raise InvalidParameterError(
@@ -245,15 +244,21 @@ class PeriodicSolution:
         return value
 
     def _params(self, values: Mapping | None) -> list:
-        values = dict(values or {})
+        values = as_mapping("values", values)
         _, params, _ = self._compiled
+        stray = [key for key in values if not isinstance(key, str | sp.Symbol)]
+        if stray:
+            raise bad_value("values", values, "key it by parameter names (str) or symbols")
+        # Other names are ignored: callers pass every value of a problem, some of them already
+        # substituted into the system before solving; the result does not depend on them.
         missing = [p.name for p in params if p.name not in values and p not in values]
         if missing:
             raise InvalidParameterError(
                 f"`values` lacks {missing}: give a value for every free parameter of the solution"
+                + (f" (got {sorted(map(str, values))})" if values else "")
             )
         return [
-            np.asarray(values[p.name] if p.name in values else values[p], dtype=float)
+            as_real_array(f"values[{p.name!r}]", values[p.name] if p.name in values else values[p])
             for p in params
         ]
 
@@ -328,8 +333,8 @@ class PeriodicSolution:
         numpy.ndarray
             Shape ``(2n, *t.shape)`` for scalar parameters.
         """
+        t = as_real_array("t", t)
         omega, cos, sin = self.coefficients(parameter_value, values)
-        t = np.asarray(t, dtype=float)
         coeffs = cos - 1j * sin  # x = Re sum_j c_j exp(i j s)
         if omega.shape == ():
             return _evaluate_scalar(float(omega), coeffs, t)

@@ -18,9 +18,10 @@ import attrs
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._checks import as_expression, as_mapping, check_count, known_keywords, real_number
 from perturb._defaults import MAX_ORDER
 from perturb.analytic import maclaurin_coefficients
-from perturb.errors import InvalidSystemError
+from perturb.errors import InvalidSystemError, bad_value
 
 __all__ = ["QuasilinearSystem", "Regime"]
 
@@ -42,19 +43,74 @@ def _canonical(expr: sp.Expr) -> sp.Expr:
     return expr.xreplace(stray) if stray else expr
 
 
-def _as_tuple_of_exprs(values) -> tuple[sp.Expr, ...]:
+def _as_tuple_of_exprs(values, argument: str = "rhs") -> tuple[sp.Expr, ...]:
     if isinstance(values, (str, sp.Basic)) or not isinstance(values, Sequence):
+        if values is None or isinstance(values, Mapping | set):
+            raise bad_value(
+                argument, values, "give a sequence of sympy expressions", InvalidSystemError
+            )
         values = (values,)
-    return tuple(_canonical(sp.sympify(v)) for v in values)
+    # frequencies: finite here, positive and real in _check_frequencies (which says so)
+    check = as_expression if argument == "frequencies" else real_number
+    return tuple(
+        _canonical(check(f"{argument}[{i}]", v, InvalidSystemError)) for i, v in enumerate(values)
+    )
 
 
-def _as_tuple_of_symbols(values) -> tuple[sp.Symbol, ...]:
+def _as_symbol(argument: str, value) -> sp.Symbol:
+    if isinstance(value, str):
+        if not value or any(c.isspace() for c in value):
+            raise bad_value(
+                argument, value, "give a non-empty name without spaces", InvalidSystemError
+            )
+        value = sp.Symbol(value)
+    if not isinstance(value, sp.Symbol):
+        raise bad_value(argument, value, "give a sympy Symbol or a name", InvalidSystemError)
+    return EPS if value.name == EPS.name else value
+
+
+def _as_tuple_of_symbols(values, argument: str = "coordinates") -> tuple[sp.Symbol, ...]:
     if isinstance(values, (str, sp.Symbol)):
         values = (values,)
-    out = tuple(sp.Symbol(v) if isinstance(v, str) else v for v in values)
-    return tuple(EPS if s.name == EPS.name else s for s in out)
+    if not isinstance(values, Sequence):
+        raise bad_value(
+            argument, values, "give a sequence of sympy Symbols or names", InvalidSystemError
+        )
+    return tuple(_as_symbol(f"{argument}[{i}]", v) for i, v in enumerate(values))
 
 
+def _symbols_of(argument: str):
+    return lambda values: _as_tuple_of_symbols(values, argument)
+
+
+def _exprs_of(argument: str):
+    return lambda values: _as_tuple_of_exprs(values, argument)
+
+
+def _as_parameter(value) -> sp.Symbol:
+    if isinstance(value, Sequence) and not isinstance(value, str) and len(value) == 1:
+        value = value[0]
+    return _as_symbol("parameter", value)
+
+
+def _as_regime(value) -> Regime:
+    try:
+        return Regime(value)
+    except ValueError:
+        raise bad_value(
+            "regime",
+            value,
+            f"use one of {[r.value for r in Regime]} (or perturb.Regime)",
+            InvalidSystemError,
+        ) from None
+
+
+def _check_name(instance, attribute, value) -> None:
+    if not isinstance(value, str):
+        raise bad_value("name", value, "give a string label", InvalidSystemError)
+
+
+@known_keywords
 @frozen
 class QuasilinearSystem:
     """A quasilinear autonomous system of ``n`` coupled oscillators.
@@ -97,16 +153,18 @@ class QuasilinearSystem:
         right-hand side that does not vanish with the parameter.
     """
 
-    coordinates: tuple[sp.Symbol, ...] = field(converter=_as_tuple_of_symbols)
-    velocities: tuple[sp.Symbol, ...] = field(converter=_as_tuple_of_symbols)
-    frequencies: tuple[sp.Expr, ...] = field(converter=_as_tuple_of_exprs)
-    rhs: tuple[sp.Expr, ...] = field(converter=_as_tuple_of_exprs)
-    parameter: sp.Symbol = field(default="epsilon", converter=lambda s: _as_tuple_of_symbols(s)[0])
-    regime: Regime = field(default=Regime.SMALL, converter=Regime)
-    parameters: tuple[sp.Symbol, ...] = field(default=(), converter=_as_tuple_of_symbols)
-    initial_values: tuple[sp.Symbol, ...] = field(default=(), converter=_as_tuple_of_symbols)
-    first_integrals: tuple[sp.Expr, ...] = field(default=(), converter=_as_tuple_of_exprs)
-    name: str = "system"
+    coordinates: tuple[sp.Symbol, ...] = field(converter=_symbols_of("coordinates"))
+    velocities: tuple[sp.Symbol, ...] = field(converter=_symbols_of("velocities"))
+    frequencies: tuple[sp.Expr, ...] = field(converter=_exprs_of("frequencies"))
+    rhs: tuple[sp.Expr, ...] = field(converter=_exprs_of("rhs"))
+    parameter: sp.Symbol = field(default="epsilon", converter=_as_parameter)
+    regime: Regime = field(default=Regime.SMALL, converter=_as_regime)
+    parameters: tuple[sp.Symbol, ...] = field(default=(), converter=_symbols_of("parameters"))
+    initial_values: tuple[sp.Symbol, ...] = field(
+        default=(), converter=_symbols_of("initial_values")
+    )
+    first_integrals: tuple[sp.Expr, ...] = field(default=(), converter=_exprs_of("first_integrals"))
+    name: str = field(default="system", validator=_check_name)
     truncation: int | None = None
 
     def __attrs_post_init__(self):
@@ -127,12 +185,20 @@ class QuasilinearSystem:
                 f"`initial_values` has {len(self.initial_values)} symbols: give 2n = {2 * n} "
                 "(x_1(0)..x_n(0), xdot_1(0)..xdot_n(0)) or none"
             )
-        names = [s.name for s in self.state_symbols + self.parameters + self.initial_values]
-        names.append(self.parameter.name)
+        roles = [
+            *((s.name, "coordinates") for s in self.coordinates),
+            *((s.name, "velocities") for s in self.velocities),
+            (self.parameter.name, "parameter"),
+            *((s.name, "parameters") for s in self.parameters),
+            *((s.name, "initial_values") for s in self.initial_values),
+        ]
+        names = [name for name, _ in roles]
         duplicates = sorted({n_ for n_ in names if names.count(n_) > 1})
         if duplicates:
+            where = sorted({f"`{role}`" for name, role in roles if name in duplicates})
             raise InvalidSystemError(
-                f"symbol names {duplicates} are used twice: give each symbol one role"
+                f"symbol names {duplicates} are used twice (in {', '.join(where)}): give each "
+                "symbol one role"
             )
         if self.truncation is not None and (
             isinstance(self.truncation, bool)
@@ -145,6 +211,7 @@ class QuasilinearSystem:
             )
         self._check_frequencies()
         self._check_symbols()
+        self._check_real()
         self._check_vanishing()
 
     # ------------------------------------------------------------------ validation
@@ -159,7 +226,7 @@ class QuasilinearSystem:
                 )
             if w.is_number:
                 value = complex(w.evalf())
-                if abs(value.imag) > 0 or value.real <= 0:
+                if abs(value.imag) > 0 or not value.real > 0:
                     raise InvalidSystemError(
                         f"`frequencies[{i}]` = {w} is not a positive real number: give omega_{i + 1} > 0"
                     )
@@ -167,6 +234,21 @@ class QuasilinearSystem:
                 raise InvalidSystemError(
                     f"`frequencies[{i}]` = {w} cannot be positive: give a positive frequency"
                 )
+
+    def _check_real(self):
+        """A right-hand side holding the imaginary unit must still be real for real arguments."""
+        real = {s: sp.Dummy(s.name, real=True) for s in self._all_symbols()}
+        for i, f in enumerate(self.rhs):
+            if f.has(sp.I) and sp.simplify(sp.im(f.xreplace(real))) != 0:
+                raise bad_value(
+                    f"rhs[{i}]",
+                    f,
+                    "give a real right-hand side (it holds the imaginary unit)",
+                    InvalidSystemError,
+                )
+
+    def _all_symbols(self) -> set:
+        return {*self.state_symbols, *self.parameters, *self.initial_values, self.parameter}
 
     def _check_symbols(self):
         allowed = set(self.state_symbols) | set(self.parameters) | set(self.initial_values)
@@ -228,6 +310,7 @@ class QuasilinearSystem:
         InvalidSystemError
             When a right-hand side has no Maclaurin series in ε (a pole at ε = 0, a branch point).
         """
+        check_count("order", order, 0, InvalidSystemError)
         out = []
         for i, f in enumerate(self.rhs_in_epsilon):
             if i in self._analytic_rhs:
@@ -298,7 +381,11 @@ class QuasilinearSystem:
 
     def with_values(self, values: Mapping) -> QuasilinearSystem:
         """A copy with some declared parameters replaced by numbers (or expressions)."""
-        subs = {self._symbol(k): sp.sympify(v) for k, v in values.items()}
+        values = as_mapping("values", values, InvalidSystemError)
+        subs = {
+            self._symbol(k): real_number(f"values[{k!r}]", v, InvalidSystemError)
+            for k, v in values.items()
+        }
         return attrs.evolve(
             self,
             frequencies=tuple(w.subs(subs) for w in self.frequencies),
@@ -308,10 +395,8 @@ class QuasilinearSystem:
         )
 
     def _symbol(self, key) -> sp.Symbol:
-        if isinstance(key, sp.Symbol):
-            return key
         for p in self.parameters:
-            if p.name == key:
+            if p == key or p.name == key:
                 return p
         raise InvalidSystemError(
             f"`values` names {key!r}, which is not a declared parameter: choose from "
@@ -320,7 +405,15 @@ class QuasilinearSystem:
 
     def as_large_parameter(self, mu: str | sp.Symbol = "mu") -> QuasilinearSystem:
         """The same system written in the large parameter μ = 1/ε (regime ``LARGE``)."""
-        mu = _as_tuple_of_symbols(mu)[0]
+        mu = _as_symbol("mu", mu)
+        taken = {s.name for s in self._all_symbols() - {self.parameter}}
+        if mu.name in taken:
+            raise bad_value(
+                "mu",
+                mu,
+                f"it already names a symbol of the system; avoid {sorted(taken)}",
+                InvalidSystemError,
+            )
         return attrs.evolve(
             self,
             rhs=tuple(sp.expand(f.subs(EPS, 1 / mu)) for f in self.rhs_in_epsilon),
@@ -352,7 +445,14 @@ class QuasilinearSystem:
         """
         import numpy as np
 
-        values = dict(values or {})
+        from perturb._checks import as_real_array
+
+        values = as_mapping("values", values, InvalidSystemError)
+        parameter_value = float(as_real_array(self.parameter.name, parameter_value))
+        for key, value in values.items():
+            self._symbol(key)
+            values[key] = float(as_real_array(f"values[{key!r}]", value))
+        values = {getattr(k, "name", k): v for k, v in values.items()}
         subs = {p: values[p.name] for p in self.parameters if p.name in values}
         missing = [p.name for p in self.parameters if p.name not in values]
         if missing:

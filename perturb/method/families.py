@@ -47,6 +47,7 @@ from perturb.method.components import Component, solution_components
 from perturb.method.conditions import ConditionSolver, OrderFailed
 from perturb.method.exact import is_zero
 from perturb.method.family_names import name_families
+from perturb.method.options import check_system
 from perturb.method.poincare import PoincareMethod, _OrderByOrder
 from perturb.solution import PeriodicSolution, Status
 from perturb.system import QuasilinearSystem
@@ -415,6 +416,7 @@ def find_families(system: QuasilinearSystem, order: int = 1, **options) -> Famil
     InvalidSystemError
         On a bad option (as :class:`PoincareMethod` raises it), or when ``branch`` is given.
     """
+    check_system(system)
     if "branch" in options:
         raise bad_value(
             "branch",

@@ -37,14 +37,25 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 import sympy as sp
-from attrs import field, frozen, validators
+from attrs import field, frozen
 
-from perturb._defaults import MAX_ORDER, SOLVE_SECONDS
+from perturb._checks import known_keywords
+from perturb._defaults import SOLVE_SECONDS
 from perturb.cache import cached
 from perturb.errors import InvalidSystemError, bad_value
 from perturb.method.conditions import ConditionSolver, OrderFailed
 from perturb.method.exact import vanishes
 from perturb.method.expansion import GivenInitialValues, NotPolynomial, forcing
+from perturb.method.options import (
+    check_branch,
+    check_cache,
+    check_order,
+    check_phase,
+    check_seconds,
+    check_system,
+    one_of,
+    to_amplitudes,
+)
 from perturb.method.steps import GeneratingSolution, OrderStep, PeriodicityCondition
 from perturb.native import Converter, NotNative, ring_for
 from perturb.solution import PeriodicSolution, Status
@@ -54,17 +65,7 @@ from perturb.trig import SympyRing, TrigPoly
 __all__ = ["PoincareMethod", "solve"]
 
 
-def _check_order(instance, attribute, value):
-    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-        raise bad_value("order", value, "pass an integer >= 1", InvalidSystemError)
-    if value > MAX_ORDER:
-        raise bad_value("order", value, f"pass an integer <= {MAX_ORDER}", InvalidSystemError)
-
-
-def _as_mapping(value) -> dict:
-    return dict(value or {})
-
-
+@known_keywords
 @frozen
 class PoincareMethod:
     r"""Poincaré's method (small or large parameter) for a :class:`QuasilinearSystem`.
@@ -108,20 +109,18 @@ class PoincareMethod:
         ``solution.steps[k].branches``.  Default: the isolated root with the largest phase amplitude.
     """
 
-    order: int = field(default=1, validator=_check_order)
-    amplitudes: dict = field(factory=dict, converter=_as_mapping)
-    phase_coordinate: str | None = field(
-        default=None, validator=validators.optional(validators.instance_of(str))
+    order: int = field(default=1, validator=check_order)
+    amplitudes: dict = field(factory=dict, converter=to_amplitudes)
+    phase_coordinate: str | None = field(default=None, validator=check_phase)
+    branch: object = field(default=None, validator=check_branch)
+    quadrature: str = field(default="auto", validator=one_of("auto", "exact", "numeric"))
+    dependent_condition: str = field(default="auto", validator=one_of("auto", "phase-sine", "none"))
+    solve_seconds: float = field(
+        default=SOLVE_SECONDS, eq=False, repr=False, validator=check_seconds
     )
-    branch: object = None
-    quadrature: str = field(default="auto", validator=validators.in_(("auto", "exact", "numeric")))
-    dependent_condition: str = field(
-        default="auto", validator=validators.in_(("auto", "phase-sine", "none"))
-    )
-    solve_seconds: float = field(default=SOLVE_SECONDS, eq=False, repr=False)
 
     # ------------------------------------------------------------------ public
-    cache: bool = field(default=True, eq=False, repr=False)
+    cache: bool = field(default=True, eq=False, repr=False, validator=check_cache)
 
     def solve(self, system: QuasilinearSystem) -> PeriodicSolution:
         """Construct the periodic solution of ``system``; see the module docstring.
@@ -129,6 +128,7 @@ class PoincareMethod:
         The result is read from / written to the disk cache (:mod:`perturb.cache`) unless
         ``cache=False``.
         """
+        check_system(system)
         if not self.cache:
             return _construct(self, system)
         return cached("solution", self._cache_key(system), lambda: _construct(self, system))
@@ -260,6 +260,7 @@ class _OrderByOrder:
 
     def _setup_unknowns(self):
         self.unknowns: set[sp.Symbol] = set()
+        self.created: set[str] = set()  # names of every unknown introduced (for `branch` keys)
         given: dict[int, sp.Expr] = {}
         for name, value in self.method.amplitudes.items():
             i = self.names.index(name)
@@ -289,6 +290,7 @@ class _OrderByOrder:
     def _new(self, label: str) -> sp.Symbol:
         sym = sp.Symbol(label)
         self.unknowns.add(sym)
+        self.created.add(label)
         return sym
 
     # ------------------------------------------------------------------ order 0
@@ -478,6 +480,16 @@ class _OrderByOrder:
             status, message = Status.NOT_POLYNOMIAL, str(exc)
         except OrderFailed as exc:
             status, message = exc.status, exc.message
+        if status is Status.SUCCESS and isinstance(method.branch, Mapping):
+            stray = sorted({str(key) for key in method.branch} - self.created)
+            if stray:
+                raise bad_value(
+                    "branch",
+                    method.branch,
+                    f"{stray} are not unknowns of this construction; "
+                    f"name some of {sorted(self.created)}",
+                    InvalidSystemError,
+                )
         if status is Status.SUCCESS and self._open_unknowns(method.order):
             status = Status.UNDETERMINED
             message = f"unknowns {sorted(map(str, self._open_unknowns(method.order)))} are not fixed by orders up to {k_done}"

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 from attrs import frozen
 
+from perturb._checks import check_bool, check_count
 from perturb._defaults import DEFAULT_HEYOKA_TOL, HEYOKA_COMPACT_MODE_MIN_DIM, MAX_STEPS
 from perturb.errors import bad_value
 from perturb.oracle.base import IntegratorBase, Run, TrajectoryStatus, check_positive
@@ -134,8 +135,10 @@ class Heyoka(IntegratorBase):
             check_positive("tol", self.tol)
         if self.fp_type is not None and self.fp_type not in ("double", "long double", "real128"):
             raise bad_value("fp_type", self.fp_type, "use 'double', 'long double' or 'real128'")
-        if self.max_steps < 1:
-            raise bad_value("max_steps", self.max_steps, "pass an integer >= 1")
+        check_count("max_steps", self.max_steps)
+        check_bool("high_precision", self.high_precision)
+        if self.compact_mode is not None:
+            check_bool("compact_mode", self.compact_mode)
 
     @property
     def precision(self) -> str:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 from attrs import frozen
 
+from perturb._checks import check_count
 from perturb._defaults import DEFAULT_RK4_STEPS_PER_UNIT
 from perturb.errors import bad_value
 from perturb.oracle.base import RHS, IntegratorBase, Run, TrajectoryStatus, check_positive
@@ -55,8 +56,7 @@ class RK4(IntegratorBase):
         if self.steps_per_unit is not None:
             check_positive("steps_per_unit", self.steps_per_unit)
         if self.n_steps is not None:
-            if not isinstance(self.n_steps, int | np.integer) or self.n_steps < 1:
-                raise bad_value("n_steps", self.n_steps, "pass an integer >= 1")
+            check_count("n_steps", self.n_steps)
 
     @property
     def name(self) -> str:

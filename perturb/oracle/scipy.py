@@ -13,6 +13,7 @@ import numpy as np
 import scipy.integrate
 from attrs import field, frozen
 
+from perturb._checks import check_count
 from perturb._defaults import ATOL_FLOOR_FRACTION, DEFAULT_RTOL, MAX_STEPS
 from perturb.errors import UnknownNameError, bad_value
 from perturb.oracle.base import IntegratorBase, Run, TrajectoryStatus, check_positive
@@ -116,8 +117,7 @@ class Scipy(IntegratorBase):
             check_positive("atol", self.atol, "pass a positive number or array of positive numbers")
         if self.y_scale is not None:
             scaled_atol(self.y_scale, self.rtol)  # validates
-        if self.max_steps < 1:
-            raise bad_value("max_steps", self.max_steps, "pass an integer >= 1")
+        check_count("max_steps", self.max_steps)
 
     @property
     def name(self) -> str:

@@ -290,6 +290,8 @@ def find_periodic_orbit(
         raise bad_value("period_guess", period_guess, "pass a finite positive number")
     if period_guess <= 0:
         raise bad_value("period_guess", period_guess, "the period must be positive")
+    if isinstance(tol, bool) or not isinstance(tol, int | float | np.number):
+        raise bad_value("tol", tol, "pass a positive tolerance such as 1e-12")
     if not (tol > 0 and math.isfinite(tol)):
         raise bad_value("tol", tol, "pass a positive tolerance such as 1e-12")
     if not isinstance(max_iter, int | np.integer) or max_iter < 1:
