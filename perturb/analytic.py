@@ -17,8 +17,96 @@ import functools
 import sympy as sp
 
 from perturb.errors import InvalidSystemError
+from perturb.native import Converter, NotNative, SympyRing, ring_for
 
-__all__ = ["maclaurin_coefficients"]
+__all__ = ["maclaurin_coefficients", "polynomial_coefficients"]
+
+
+def polynomial_coefficients(expr: sp.Expr, eps: sp.Symbol) -> tuple[sp.Expr, ...] | None:
+    """The coefficients of ``expr`` as a polynomial in ``eps``, or None when it is not one.
+
+    ``result[k]`` multiplies ``eps**k`` (``sympy.expand``-ed, as ``Poly(expand(expr), eps)`` gives
+    them) through the degree; ``(0,)`` for zero. ``expr`` is a polynomial in ``eps`` when its
+    expanded terms hold ``eps`` only as non-negative integer powers; anything else (``x/(1 + eps)``,
+    ``sin(eps*x)``, ``sqrt(eps)``) gives None and is left to :func:`maclaurin_coefficients`.
+
+    The terms are sorted by their power of ``eps`` on the native backend (:mod:`perturb.native`)
+    when it holds the expression exactly (no floats): a large right-hand side (the disk's: hundreds
+    of terms) takes milliseconds there and about a third of a second through a sympy ``Poly``. Each
+    coefficient comes back with its original symbols and is expanded by sympy, so both routes
+    return the same expressions.
+    """
+    expr = sp.sympify(expr)
+    if not expr.has(eps):
+        return (sp.expand(expr),)
+    ring = ring_for(expr)
+    if ring is not SympyRing:
+        converter = Converter(ring)
+        try:
+            native = converter.to_native(expr)
+        except NotNative:
+            pass  # an object the native backend cannot hold: the sympy route below
+        else:
+            return _native_coefficients(native, converter.to_native(eps), converter)
+    try:
+        poly = sp.Poly(sp.expand(expr), eps)
+    except sp.PolynomialError:
+        return None
+    return tuple(sp.expand(poly.coeff_monomial(eps**k)) for k in range(poly.degree() + 1))
+
+
+def _native_coefficients(native, eps, converter: Converter) -> tuple[sp.Expr, ...] | None:
+    """:func:`polynomial_coefficients` of a native (symengine) expression."""
+    import symengine as se  # present: the converter is native
+
+    groups: dict[int, list] = {}
+    expanded = se.expand(native)
+    for term in expanded.args if isinstance(expanded, se.Add) else (expanded,):
+        power, rest = 0, []
+        for factor in term.args if isinstance(term, se.Mul) else (term,):
+            exponent = _power_of(factor, eps, se)
+            if exponent is None:
+                return None  # eps inside a function, a denominator or a fractional power
+            power += exponent
+            if not exponent:
+                rest.append(factor)
+        groups.setdefault(power, []).append(se.Mul(*rest))
+    return tuple(
+        _back(se.Add(*groups[k]), converter, se) if k in groups else sp.S.Zero
+        for k in range(max(groups) + 1)
+    )
+
+
+def _back(value, converter: Converter, se) -> sp.Expr:
+    """A native coefficient as the sympy expression ``sympy.expand`` gives.
+
+    A sum of monomials (numbers times integer powers of symbols) is already in that form once
+    converted: sympy's ``expand`` would walk it for nothing (the disk's right-hand side: 0.4 s).
+    """
+    expr = converter.to_sympy(value, expand=False)
+    return expr if _is_monomial_sum(value, se) else sp.expand(expr)
+
+
+def _is_monomial_sum(value, se) -> bool:
+    for term in value.args if isinstance(value, se.Add) else (value,):
+        for factor in term.args if isinstance(term, se.Mul) else (term,):
+            if isinstance(factor, se.Pow):
+                base, exponent = factor.args
+                if not (isinstance(base, se.Symbol) and isinstance(exponent, se.Integer)):
+                    return False
+            elif not isinstance(factor, (se.Symbol, se.Integer, se.Rational)):
+                return False
+    return True
+
+
+def _power_of(factor, eps, se) -> int | None:
+    """The power of ``eps`` a factor of a product is (0 when free of it), None if not a power."""
+    if factor == eps:
+        return 1
+    if isinstance(factor, se.Pow) and factor.args[0] == eps:
+        exponent = factor.args[1]
+        return int(exponent) if isinstance(exponent, se.Integer) and exponent > 0 else None
+    return None if factor.has(eps) else 0
 
 
 @functools.lru_cache(maxsize=512)

@@ -131,12 +131,15 @@ class Converter:
         except (se.SympifyError, TypeError, ValueError, RuntimeError) as exc:
             raise NotNative(str(exc)) from None
 
-    def to_sympy(self, value) -> sp.Expr:
-        """A native expression as the sympy expression with the original symbols."""
+    def to_sympy(self, value, expand: bool = True) -> sp.Expr:
+        """A native expression as the sympy expression with the original symbols.
+
+        Expanded by sympy unless ``expand`` is false (then as symengine holds it).
+        """
         if not self.native:
             return value
         expr = sp.sympify(value)
-        if not expr.is_Atom:
+        if expand and not expr.is_Atom:
             # sympy's expanded form (symengine keeps products in denominators): what the engine
             # always returned, and what sympy users expect to print
             expr = sp.expand(expr)

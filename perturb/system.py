@@ -20,7 +20,7 @@ from attrs import field, frozen
 
 from perturb._checks import as_expression, as_mapping, check_count, known_keywords, real_number
 from perturb._defaults import MAX_ORDER
-from perturb.analytic import maclaurin_coefficients
+from perturb.analytic import maclaurin_coefficients, polynomial_coefficients
 from perturb.errors import InvalidSystemError, bad_value
 
 __all__ = ["QuasilinearSystem", "Regime"]
@@ -262,12 +262,12 @@ class QuasilinearSystem:
                 )
 
     def _check_vanishing(self):
-        for i, f in enumerate(self.rhs_in_epsilon):
+        for i in range(self.n):
             if i in self._analytic_rhs:  # not polynomial in ε: its Maclaurin series (or a refusal)
                 lowest = self._analytic_leading_order(i)
                 at_zero = sp.simplify(self._maclaurin(i, 0)[0]) if lowest == 0 else sp.S.Zero
             else:
-                at_zero = sp.simplify(f.subs(EPS, 0)) if f.has(EPS) else sp.simplify(f)
+                at_zero = sp.simplify(self._polynomial_rhs[i][0])
             if at_zero != 0:
                 raise InvalidSystemError(
                     f"`rhs[{i}]` does not vanish as the expansion parameter tends to its limit "
@@ -312,12 +312,17 @@ class QuasilinearSystem:
         """
         check_count("order", order, 0, InvalidSystemError)
         out = []
-        for i, f in enumerate(self.rhs_in_epsilon):
+        for i in range(self.n):
             if i in self._analytic_rhs:
                 out.append(self._maclaurin(i, order))
                 continue
-            poly = sp.Poly(sp.expand(f), EPS)
-            out.append(tuple(sp.expand(poly.coeff_monomial(EPS**k)) for k in range(order + 1)))
+            coefficients = self._polynomial_rhs[i]
+            out.append(
+                tuple(
+                    coefficients[k] if k < len(coefficients) else sp.S.Zero
+                    for k in range(order + 1)
+                )
+            )
         return tuple(out)
 
     @cached_property
@@ -327,12 +332,20 @@ class QuasilinearSystem:
         Polynomial ones keep the fast path (coefficients read off a ``Poly``); these are expanded
         by :func:`perturb.analytic.maclaurin_coefficients` (memoised per expression and order).
         """
+        return {
+            i: sp.together(f) if self.regime is Regime.LARGE else f
+            for i, f in enumerate(self.rhs_in_epsilon)
+            if i not in self._polynomial_rhs
+        }
+
+    @cached_property
+    def _polynomial_rhs(self) -> dict[int, tuple[sp.Expr, ...]]:
+        """The right-hand sides polynomial in ε, by index: their coefficients (expanded) to the degree."""
         out = {}
         for i, f in enumerate(self.rhs_in_epsilon):
-            try:
-                sp.Poly(sp.expand(f), EPS)
-            except sp.PolynomialError:
-                out[i] = sp.together(f) if self.regime is Regime.LARGE else f
+            coefficients = polynomial_coefficients(f, EPS)
+            if coefficients is not None:
+                out[i] = coefficients
         return out
 
     def _maclaurin(self, i: int, order: int) -> tuple[sp.Expr, ...]:
@@ -347,16 +360,16 @@ class QuasilinearSystem:
     def leading_order(self) -> int:
         """The lowest power of ε present in any right-hand side (the first non-zero forcing)."""
         best = None
-        for i, f in enumerate(self.rhs_in_epsilon):
+        for i in range(self.n):
             if i in self._analytic_rhs:
                 k = self._analytic_leading_order(i)
                 if k is None:
                     continue
             else:
-                f = sp.expand(f)
-                if f == 0:
+                nonzero = [k for k, c in enumerate(self._polynomial_rhs[i]) if c != 0]
+                if not nonzero:
                     continue
-                k = min(m[0] for m in sp.Poly(f, EPS).monoms())
+                k = nonzero[0]
             best = k if best is None else min(best, k)
         return best if best is not None else 0
 
