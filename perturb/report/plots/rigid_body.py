@@ -28,7 +28,7 @@ from perturb.report.plots.style import (
     ANALYTIC_LABEL,
     TRUE_LABEL,
     axis_label,
-    legend_above,
+    finish_stack,
     new_figure,
     publication_style,
 )
@@ -165,13 +165,7 @@ def plot_euler_angles(
                     zorder=3,
                 )
             ax.set_ylabel(axis_label(f"${_MATH[name]}$", unit))
-        axes[-1, 0].set_xlabel(axis_label("$t$", time_unit))
-        axes[-1, 0].set_xlim(times[0], times[-1])
-        fig.align_ylabels(axes[:, 0])
-        if reference is not None:
-            legend_above(axes[0, 0])
-        if title:
-            fig.suptitle(title)
+        finish_stack(fig, axes, times, time_unit, reference is not None, title)
     return fig
 
 

@@ -25,6 +25,7 @@ __all__ = [
     "TRUE_LABEL",
     "axis_label",
     "legend_above",
+    "finish_stack",
     "display_name",
     "new_figure",
     "publication_style",
@@ -187,3 +188,15 @@ def legend_above(ax) -> None:
         ncols=len(labels),
         borderaxespad=0.0,
     )
+
+
+def finish_stack(fig, axes, times, time_unit: str | None, legend: bool, title: str | None) -> None:
+    """Close a column of panels sharing the time axis: its label and range, aligned y labels, the
+    legend above the top panel (when a reference curve is drawn) and the title."""
+    axes[-1, 0].set_xlabel(axis_label("$t$", time_unit))
+    axes[-1, 0].set_xlim(times[0], times[-1])
+    fig.align_ylabels(axes[:, 0])
+    if legend:
+        legend_above(axes[0, 0])
+    if title:
+        fig.suptitle(title)

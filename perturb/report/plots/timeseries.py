@@ -18,6 +18,7 @@ from perturb.report.plots.style import (
     TRUE_LABEL,
     axis_label,
     display_name,
+    finish_stack,
     legend_above,
     new_figure,
     publication_style,
@@ -89,13 +90,7 @@ def plot_time_series(
                 None if reference is None else reference[name],
             )
             ax.set_ylabel(axis_label(display_name(name), unit_of[name]))
-        axes[-1, 0].set_xlabel(axis_label("$t$", time_unit))
-        axes[-1, 0].set_xlim(times[0], times[-1])
-        fig.align_ylabels(axes[:, 0])
-        if reference is not None:
-            legend_above(axes[0, 0])
-        if title:
-            fig.suptitle(title)
+        finish_stack(fig, axes, times, time_unit, reference is not None, title)
     return fig
 
 
