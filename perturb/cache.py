@@ -57,7 +57,7 @@ from typing import TypeVar
 
 from perturb.errors import CacheWarning, bad_value
 
-__all__ = ["bypassed", "cache_dir", "cached", "key_file"]
+__all__ = ["active", "bypassed", "cache_dir", "cached", "key_file"]
 
 T = TypeVar("T")
 
@@ -373,6 +373,15 @@ def bypassed():
         yield
     finally:
         _BYPASS.reset(token)
+
+
+def active() -> bool:
+    """Whether :func:`cached` would use the disk now (a folder is set and it is not bypassed).
+
+    Callers whose cache key is costly to build (``sympy.srepr`` of a large system) check this
+    first, so that a run with the cache off does not pay for a key it never uses.
+    """
+    return cache_dir() is not None and not _BYPASS.get()
 
 
 def cached(kind: str, parts: tuple, compute: Callable[[], T]) -> T:

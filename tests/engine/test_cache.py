@@ -1,5 +1,7 @@
 """The disk cache returns what was computed, survives corrupt entries and can be switched off."""
 
+import contextlib
+
 import pytest
 import sympy as sp
 
@@ -56,3 +58,24 @@ def test_bypassed_computes_afresh_and_leaves_the_cache_alone(tmp_path, monkeypat
     assert calls == [1, 2]  # the bypassed call computed although an entry exists ...
     assert sorted(p.name for p in tmp_path.iterdir()) == entries  # ... and wrote nothing
     assert cached("demo", ("k",), lambda: "not called") == "stored"
+
+
+@pytest.mark.parametrize("setting", ["off", "bypassed"])
+def test_no_key_is_built_when_the_cache_is_not_used(tmp_path, monkeypatch, setting):
+    """The solution's key (srepr of the whole system) costs time; a run without the cache skips it."""
+    from perturb.cache import active, bypassed
+
+    monkeypatch.setenv("PERTURB_CACHE_DIR", "off" if setting == "off" else str(tmp_path))
+    keys = []
+    original = PoincareMethod._cache_key
+    monkeypatch.setattr(
+        PoincareMethod, "_cache_key", lambda self, s: keys.append(1) or original(self, s)
+    )
+    with bypassed() if setting == "bypassed" else contextlib.nullcontext():
+        assert not active()
+        assert PoincareMethod(order=1, amplitudes={"x": A}).solve(SYSTEM).success
+    assert keys == []
+    monkeypatch.setenv("PERTURB_CACHE_DIR", str(tmp_path))
+    assert active()
+    PoincareMethod(order=1, amplitudes={"x": A}).solve(SYSTEM)
+    assert keys == [1]  # the cache in use: the key is built
