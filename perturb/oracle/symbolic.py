@@ -16,6 +16,7 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._lambdify import numpy_lambdify
 from perturb.errors import bad_value
 
 __all__ = ["SymbolicRHS"]
@@ -90,7 +91,7 @@ class SymbolicRHS:
 
     @cached_property
     def _numeric(self) -> Callable[..., Any]:
-        return sp.lambdify(self.state, list(self.expressions), modules="numpy", cse=True)
+        return numpy_lambdify(self.state, list(self.expressions), cse=True)
 
     @cached_property
     def jacobian_expressions(self) -> sp.Matrix:
@@ -99,7 +100,7 @@ class SymbolicRHS:
 
     @cached_property
     def _numeric_jacobian(self) -> Callable[..., Any]:
-        return sp.lambdify(self.state, self.jacobian_expressions, modules="numpy", cse=True)
+        return numpy_lambdify(self.state, self.jacobian_expressions, cse=True)
 
     def __call__(self, y: Sequence[float]) -> np.ndarray:
         """Evaluate :math:`f(y)` for one state vector ``y`` of shape ``(n,)``."""

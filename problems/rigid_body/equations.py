@@ -31,6 +31,7 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._lambdify import numpy_lambdify
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.system import EPS
 
@@ -541,9 +542,9 @@ _INTEGRAL_NAMES = ("energy", "area", "geometric")
 
 
 def _lambdify_trio(state, args, rhs, jac, ints):
-    f = sp.lambdify((state, args), list(rhs), modules="numpy", cse=True)
-    jf = sp.lambdify((state, args), jac, modules="numpy", cse=True)
-    hf = sp.lambdify((state, args), ints, modules="numpy", cse=True)
+    f = numpy_lambdify((state, args), list(rhs), cse=True)
+    jf = numpy_lambdify((state, args), jac, cse=True)
+    hf = numpy_lambdify((state, args), ints, cse=True)
     return f, jf, hf
 
 
