@@ -24,7 +24,12 @@ from problems.base import _SOLUTION_CACHE, ParameterSpec, Problem, positive
 from problems.rigid_body import equations as eq
 from problems.rigid_body._stored import stored
 from problems.rigid_body.euler_angles import angles_from_state, precession_by_quadrature
-from problems.rigid_body.reduction import INITIAL_VALUES, Reduction, check_gamma3_0
+from problems.rigid_body.reduction import (
+    INITIAL_VALUES,
+    SPECIALISED_CACHE_SIZE,
+    Reduction,
+    check_gamma3_0,
+)
 
 __all__ = ["FastSpinBody", "INTEGRAL_NAMES", "STATE_NAMES", "geometric_constraint"]
 
@@ -84,6 +89,7 @@ def body_parameter_specs(
     )
 
 
+@lru_cache(maxsize=SPECIALISED_CACHE_SIZE)  # asked for by every solve and its frame
 def geometric_constraint(reduction: Reduction) -> sp.Expr:
     """G(0) from the geometric integral :math:`|\\gamma(0)|^2 = 1` (phase fixed by dG(0) = 0).
 
