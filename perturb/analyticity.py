@@ -16,6 +16,7 @@ import numpy as np
 import sympy as sp
 
 from perturb._defaults import SINGULARITY_MARGIN
+from perturb._lambdify import numpy_lambdify
 
 __all__ = ["singularity"]
 
@@ -68,7 +69,7 @@ def singularity(expr: sp.Expr, symbols, samples) -> str | None:
                 )
     for companion, positive, what in checks:
         values = np.broadcast_to(
-            np.asarray(sp.lambdify(symbols, companion, "numpy")(*samples), dtype=complex),
+            np.asarray(numpy_lambdify(symbols, companion)(*samples), dtype=complex),
             np.shape(samples[0]),
         )
         scale = max(1.0, float(np.max(np.abs(values))))

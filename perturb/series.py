@@ -11,6 +11,7 @@ from collections.abc import Callable, Mapping, Sequence
 
 import sympy as sp
 
+from perturb._lambdify import numpy_lambdify
 from perturb.trig import TrigPoly
 
 __all__ = ["TrigSeries", "evaluate_polynomial"]
@@ -192,7 +193,7 @@ def evaluate_analytic(
                 "(`amplitudes=`) and the parameter values"
             )
         base.append(
-            np.broadcast_to(sp.lambdify(s, v0.as_expr(s), "numpy")(grid), grid.shape).astype(float)
+            np.broadcast_to(numpy_lambdify(s, v0.as_expr(s))(grid), grid.shape).astype(float)
         )
         deltas.append(TrigSeries([TrigPoly(), *variables[sym].coefficients[1:]]).truncate(order))
     reason = singularity(expr, syms, base)
@@ -206,7 +207,7 @@ def evaluate_analytic(
                 derivative = sp.diff(derivative, sym, a) / sp.factorial(a)
         if derivative == 0:
             continue
-        samples = np.broadcast_to(sp.lambdify(syms, derivative, "numpy")(*base), grid.shape)
+        samples = np.broadcast_to(numpy_lambdify(syms, derivative)(*base), grid.shape)
         if np.iscomplexobj(samples) or not np.all(np.isfinite(samples)):  # the safety net
             raise NotNumeric(
                 f"the numeric quadrature cannot expand {expr}: its derivative {derivative} is not "

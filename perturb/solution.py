@@ -13,6 +13,7 @@ from attrs import field, frozen
 
 from perturb._checks import as_mapping, as_real_array
 from perturb._defaults import NEAR_RESONANCE
+from perturb._lambdify import numpy_lambdify
 from perturb.errors import AccuracyWarning, InvalidParameterError, PerturbError, bad_value
 from perturb.method.steps import GeneratingSolution, OrderStep, S
 from perturb.system import EPS, QuasilinearSystem, Regime
@@ -230,7 +231,7 @@ class PeriodicSolution:
                 ]
             )
         exprs = [self.frequency_expr, cos_rows, sin_rows]
-        fn = sp.lambdify([EPS, *params], exprs, modules="numpy", cse=True)
+        fn = numpy_lambdify([EPS, *params], exprs, cse=True)
         return fn, params, harmonics
 
     def _epsilon(self, value) -> np.ndarray:

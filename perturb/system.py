@@ -20,6 +20,7 @@ from attrs import field, frozen
 
 from perturb._checks import as_expression, as_mapping, check_count, known_keywords, real_number
 from perturb._defaults import MAX_ORDER
+from perturb._lambdify import numpy_lambdify
 from perturb.analytic import maclaurin_coefficients, polynomial_coefficients
 from perturb.errors import InvalidSystemError, bad_value
 
@@ -481,7 +482,7 @@ class QuasilinearSystem:
         subs[self.parameter] = parameter_value
         w2 = [float((w**2).subs(subs)) for w in self.frequencies]
         exprs = [f.subs(subs) for f in self.rhs]
-        fn = sp.lambdify([self.state_symbols], exprs, modules="numpy", cse=True)
+        fn = numpy_lambdify([self.state_symbols], exprs, cse=True)
         n = self.n
 
         def rhs(t, y):

@@ -3,8 +3,9 @@
 Three sources feed one table, in this order of precedence:
 
 1. **built-in problems** — the modules of the ``problems`` package whose classes carry
-   ``@register``.  They are found without importing them: :func:`builtin_index` walks the package
-   (:func:`pkgutil.walk_packages`) and reads each module's source with :mod:`ast`, taking the
+   ``@register``.  They are found without importing them: :func:`builtin_index` walks the package's
+   folders (not :func:`pkgutil.walk_packages`, which imports every sub-package) and reads each
+   module's source with :mod:`ast`, taking the
    ``name = "..."`` of every class decorated with ``@register``.  A module is imported only when one
    of its problems is asked for, so ``perturb list`` does not pay for the rigid-body machinery of
    a problem it does not print and a new built-in problem needs nothing but its decorator.
@@ -22,7 +23,6 @@ import difflib
 import functools
 import importlib
 import importlib.metadata
-import pkgutil
 import re
 import sys
 from collections.abc import Iterator, MutableMapping
@@ -145,13 +145,20 @@ def _registered_names(source: str) -> list[tuple[str, str | None]]:
     return found
 
 
-def _module_file(info: pkgutil.ModuleInfo) -> Path | None:
-    folder = getattr(info.module_finder, "path", None)
-    if folder is None:  # pragma: no cover - the package is always on the file system here
-        return None
-    tail = info.name.rpartition(".")[2]
-    path = Path(folder, tail, "__init__.py") if info.ispkg else Path(folder, f"{tail}.py")
-    return path if path.is_file() else None
+def _module_files(folder: Path, prefix: str) -> Iterator[tuple[str, Path]]:
+    """``(module name, source file)`` of every module of the package in ``folder``, recursively.
+
+    The walk of :func:`pkgutil.walk_packages`, on the file system only: that one imports each
+    sub-package to find its path (``problems.rigid_body.paper`` and all it imports).  Sub-packages
+    are the folders with an ``__init__.py``, as for the import system.
+    """
+    for path in sorted(folder.iterdir()):
+        if path.is_dir() and (path / "__init__.py").is_file() and path.name.isidentifier():
+            name = f"{prefix}{path.name}"
+            yield name, path / "__init__.py"
+            yield from _module_files(path, f"{name}.")
+        elif path.suffix == ".py" and path.stem != "__init__" and path.stem.isidentifier():
+            yield f"{prefix}{path.stem}", path
 
 
 @functools.cache
@@ -165,17 +172,16 @@ def builtin_index() -> dict[str, str]:
     import problems
 
     index: dict[str, str] = {}
-    for info in pkgutil.walk_packages(problems.__path__, "problems."):
-        path = _module_file(info)
-        if path is None:
-            continue
+    for module, path in (
+        found for folder in problems.__path__ for found in _module_files(Path(folder), "problems.")
+    ):
         source = path.read_text(encoding="utf-8")
         if not _DECORATOR_LINE.search(source):
             continue
         for class_name, name in _registered_names(source):
             if name is None:
-                name = getattr(importlib.import_module(info.name), class_name).name
-            index[name] = f"{info.name}:{class_name}"
+                name = getattr(importlib.import_module(module), class_name).name
+            index[name] = f"{module}:{class_name}"
     return index
 
 

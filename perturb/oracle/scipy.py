@@ -1,7 +1,8 @@
 """The adaptive integrators of :mod:`scipy.integrate` (DOP853, RK45, Radau, LSODA, ...).
 
 Per-component absolute tolerances come from :func:`scaled_atol`.  This is the only module of the
-oracle that imports :mod:`scipy.integrate`.
+oracle that imports :mod:`scipy.integrate`, and only when an integration runs (it takes a quarter
+of a second, more than a warm ``perturb validate`` integrating with heyoka spends on its work).
 """
 
 from __future__ import annotations
@@ -10,7 +11,6 @@ from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
-import scipy.integrate
 from attrs import field, frozen
 
 from perturb._checks import check_count
@@ -21,15 +21,8 @@ from perturb.oracle.symbolic import SymbolicRHS
 
 __all__ = ["Scipy", "scaled_atol"]
 
-#: scipy's OdeSolver classes by method name (these are public in scipy.integrate).
-_SCIPY_METHODS = {
-    "DOP853": scipy.integrate.DOP853,
-    "RK45": scipy.integrate.RK45,
-    "RK23": scipy.integrate.RK23,
-    "Radau": scipy.integrate.Radau,
-    "BDF": scipy.integrate.BDF,
-    "LSODA": scipy.integrate.LSODA,
-}
+#: The method names: each is the name of a public OdeSolver class of scipy.integrate.
+_SCIPY_METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA")
 _IMPLICIT = {"Radau", "BDF", "LSODA"}
 
 
@@ -147,7 +140,10 @@ class Scipy(IntegratorBase):
                 jac = rhs.jacobian
             if jac is not None:
                 options["jac"] = lambda t, y: jac(y)
-        solver = _SCIPY_METHODS[self.method](lambda t, y: rhs(y), t0, y0, t1, **options)
+        import scipy.integrate  # here, not at import time: see the module's docstring
+
+        solver_class = getattr(scipy.integrate, self.method)
+        solver = solver_class(lambda t, y: rhs(y), t0, y0, t1, **options)
 
         ts: list[float] = []
         ys: list[np.ndarray] = []

@@ -47,6 +47,7 @@ from perturb._defaults import (
     SHOOTING_TOL,
     TRIVIAL_MULTIPLIER_TOL,
 )
+from perturb._lambdify import numpy_lambdify
 from perturb.errors import bad_value
 from perturb.oracle.base import RHS, Integrator
 from perturb.oracle.floquet import count_near_one, expected_trivial_multipliers
@@ -163,8 +164,8 @@ def _integral_conditions(integrals, rhs, n: int) -> list[_Integral]:
                 raise bad_value(
                     "integrals", g, f"it depends on {sorted(map(str, stray))}, not state symbols"
                 )
-            value_fn = sp.lambdify(rhs.state, g, modules="numpy")
-            grad_fn = sp.lambdify(rhs.state, [sp.diff(g, x) for x in rhs.state], modules="numpy")
+            value_fn = numpy_lambdify(rhs.state, g)
+            grad_fn = numpy_lambdify(rhs.state, [sp.diff(g, x) for x in rhs.state])
             conditions.append(
                 _Integral(
                     value=lambda y, f=value_fn: float(f(*y)),

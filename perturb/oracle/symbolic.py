@@ -16,6 +16,8 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._lambdify import numpy_lambdify
+from perturb.cache import cached
 from perturb.errors import bad_value
 
 __all__ = ["SymbolicRHS"]
@@ -90,16 +92,27 @@ class SymbolicRHS:
 
     @cached_property
     def _numeric(self) -> Callable[..., Any]:
-        return sp.lambdify(self.state, list(self.expressions), modules="numpy", cse=True)
+        return numpy_lambdify(self.state, list(self.expressions), cse=True)
+
+    @cached_property
+    def _key(self) -> tuple:
+        """The disk-cache key of what is derived from this field: its exact state and expressions."""
+        return (tuple(map(sp.srepr, self.state)), tuple(map(sp.srepr, self.expressions)))
 
     @cached_property
     def jacobian_expressions(self) -> sp.Matrix:
-        """The symbolic Jacobian :math:`\\partial f_i / \\partial y_j` (n × n sympy Matrix)."""
+        """The symbolic Jacobian :math:`\\partial f_i / \\partial y_j` (n × n sympy Matrix).
+
+        Kept in memory and on disk (:func:`perturb.cache.cached`, kind ``jacobian``).
+        """
+        return cached("jacobian", self._key, self._derive_jacobian)
+
+    def _derive_jacobian(self) -> sp.Matrix:
         return sp.Matrix(self.expressions).jacobian(sp.Matrix(self.state))
 
     @cached_property
     def _numeric_jacobian(self) -> Callable[..., Any]:
-        return sp.lambdify(self.state, self.jacobian_expressions, modules="numpy", cse=True)
+        return numpy_lambdify(self.state, self.jacobian_expressions, cse=True)
 
     def __call__(self, y: Sequence[float]) -> np.ndarray:
         """Evaluate :math:`f(y)` for one state vector ``y`` of shape ``(n,)``."""
@@ -115,12 +128,14 @@ class SymbolicRHS:
 
         The augmented state is ``(y, Phi.ravel())`` with ``Phi`` the n × n state-transition matrix
         stored row-major, and :math:`\\dot\\Phi = J(y)\\,\\Phi`.  Integrating from ``Phi = I`` over a
-        period gives the monodromy matrix.
+        period gives the monodromy matrix.  Kept in memory and on disk (kind ``variational``;
+        the Jacobian's symbols ``Phi`` are :class:`sympy.Dummy`, read back as the same dummies).
         """
+        state, expressions = cached("variational", self._key, self._derive_variational)
+        return SymbolicRHS(state, expressions)
+
+    def _derive_variational(self) -> tuple[tuple, tuple]:
         n = self.n
         phi = sp.Matrix(n, n, lambda i, j: sp.Dummy(f"Phi{i}_{j}"))
         phi_dot = self.jacobian_expressions * phi
-        return SymbolicRHS(
-            self.state + tuple(phi),
-            self.expressions + tuple(phi_dot),
-        )
+        return self.state + tuple(phi), self.expressions + tuple(phi_dot)

@@ -12,6 +12,7 @@ from collections.abc import Callable, Mapping
 import numpy as np
 import sympy as sp
 
+from perturb._lambdify import numpy_lambdify
 from perturb.oracle import SymbolicRHS
 from perturb.system import QuasilinearSystem
 
@@ -76,7 +77,7 @@ def conservative_energy(system: QuasilinearSystem, subs: Mapping) -> sp.Expr | N
 
 def lambdify_integrals(state, exprs) -> Callable:
     """``y -> array`` of the expressions ``exprs`` of the state symbols ``state``."""
-    fn = sp.lambdify(state, list(exprs), modules="numpy", cse=True)
+    fn = numpy_lambdify(state, list(exprs), cse=True)
 
     def integrals(y):
         y = np.asarray(y, dtype=float)

@@ -22,8 +22,14 @@ from perturb.oracle import SymbolicRHS
 from perturb.validation import Condition, Equations, Integrals
 from problems.base import _SOLUTION_CACHE, ParameterSpec, Problem, positive
 from problems.rigid_body import equations as eq
+from problems.rigid_body._stored import stored
 from problems.rigid_body.euler_angles import angles_from_state, precession_by_quadrature
-from problems.rigid_body.reduction import INITIAL_VALUES, Reduction, check_gamma3_0
+from problems.rigid_body.reduction import (
+    INITIAL_VALUES,
+    SPECIALISED_CACHE_SIZE,
+    Reduction,
+    check_gamma3_0,
+)
 
 __all__ = ["FastSpinBody", "INTEGRAL_NAMES", "STATE_NAMES", "geometric_constraint"]
 
@@ -39,6 +45,8 @@ EPSILON_WARN = 0.1
 ORACLE_RTOL = 1e-12
 #: Periods followed by :meth:`FastSpinBody.true_motion_errors` by default.
 TRACK_PERIODS = 5
+#: The values the Euler–Poisson equations contain (the initial state's r0, gamma3_0 do not).
+_BODY_DATA = ("A", "B", "C", "M", "g", "R", "x0", "y0", "z0")
 
 
 def _direction_cosine(value: float) -> str | None:
@@ -81,6 +89,7 @@ def body_parameter_specs(
     )
 
 
+@lru_cache(maxsize=SPECIALISED_CACHE_SIZE)  # asked for by every solve and its frame
 def geometric_constraint(reduction: Reduction) -> sp.Expr:
     """G(0) from the geometric integral :math:`|\\gamma(0)|^2 = 1` (phase fixed by dG(0) = 0).
 
@@ -446,6 +455,14 @@ def _user_parameter(solution: PeriodicSolution, eps: float) -> float:
 
 @cache
 def _symbolic_rhs(items: tuple) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Expr, ...]]:
+    values = dict(items)
+    body = tuple((name, values[name]) for name in _BODY_DATA)  # r0 and gamma3_0 do not enter
+    rhs = stored("body-rhs", ("equations.py", "_body.py"), body, lambda: _numeric_rhs(body))
+    return eq.DIMENSIONAL_STATE, rhs
+
+
+def _numeric_rhs(items: tuple) -> tuple[sp.Expr, ...]:
+    """The Euler–Poisson right-hand sides with the values ``items`` (name, float) put in."""
     v = dict(items)
     distance = sp.oo if math.isinf(v["R"]) else v["R"]
     rhs = eq.euler_poisson_equations(distance)
@@ -455,4 +472,4 @@ def _symbolic_rhs(items: tuple) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Expr, .
     }  # fmt: skip
     if not math.isinf(v["R"]):
         subs[eq.R] = v["R"]
-    return eq.DIMENSIONAL_STATE, tuple(sp.expand(e.subs(subs)) for e in rhs)
+    return tuple(sp.expand(e.subs(subs)) for e in rhs)

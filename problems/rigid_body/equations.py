@@ -31,8 +31,10 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._lambdify import numpy_lambdify
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.system import EPS
+from problems.rigid_body._stored import stored
 
 __all__ = [
     "A",
@@ -133,6 +135,11 @@ def body_potential(order: int = 2) -> sp.Expr:
     """
     if order != 2:
         raise bad_value("order", order, "only the second-order expansion (order=2) is implemented")
+    # kept on disk: the series expansion is most of a warm run's symbolic work (0.14 s)
+    return stored("body-potential", ("equations.py",), (order,), lambda: _body_potential(order))
+
+
+def _body_potential(order: int) -> sp.Expr:
     body_point = sp.Matrix([_xb, _yb, _zb])
     # |R gamma - s r|^2 with |gamma| = 1; s counts powers of |r|/R.
     distance_sq = R**2 - 2 * R * _s * _GAMMA.dot(body_point) + _s**2 * body_point.dot(body_point)
@@ -521,30 +528,45 @@ _DIM_ARGS = (A, B, C, x0, y0, z0, M, g, _KAPPA)
 _NONDIM_ARGS = (a, b, k, x0p, y0p, z0p, EPS)
 
 
-@cache
-def _dimensional_functions():
-    rhs = euler_poisson_equations(R).subs(R, 3 * g / _KAPPA)
-    jac = rhs.jacobian(DIMENSIONAL_STATE)
-    ints = [first_integrals(R)[name].subs(R, 3 * g / _KAPPA) for name in _INTEGRAL_NAMES]
-    return _lambdify_trio(DIMENSIONAL_STATE, _DIM_ARGS, rhs, jac, ints)
-
-
-@cache
-def _nondimensional_functions():
-    rhs = nondimensional_equations(True, ratios=False)
-    jac = rhs.jacobian(NONDIMENSIONAL_STATE)
-    ints = [nondimensional_integrals(True)[name] for name in _INTEGRAL_NAMES]
-    return _lambdify_trio(NONDIMENSIONAL_STATE, _NONDIM_ARGS, rhs, jac, ints)
-
-
+#: Which of the three numeric functions: right-hand side, Jacobian, first integrals.
+_RHS, _JACOBIAN, _INTEGRALS = range(3)
 _INTEGRAL_NAMES = ("energy", "area", "geometric")
 
 
-def _lambdify_trio(state, args, rhs, jac, ints):
-    f = sp.lambdify((state, args), list(rhs), modules="numpy", cse=True)
-    jf = sp.lambdify((state, args), jac, modules="numpy", cse=True)
-    hf = sp.lambdify((state, args), ints, modules="numpy", cse=True)
-    return f, jf, hf
+@cache
+def _dimensional_expressions() -> tuple:
+    """(rhs list, Jacobian matrix, integrals list) with R = 3g/kappa (on disk: body-independent)."""
+    return stored("body-dimensional", ("equations.py",), (), _derive_dimensional)
+
+
+def _derive_dimensional() -> tuple:
+    rhs = euler_poisson_equations(R).subs(R, 3 * g / _KAPPA)
+    jac = rhs.jacobian(DIMENSIONAL_STATE)
+    ints = [first_integrals(R)[name].subs(R, 3 * g / _KAPPA) for name in _INTEGRAL_NAMES]
+    return list(rhs), jac, ints
+
+
+@cache
+def _nondimensional_expressions() -> tuple:
+    rhs = nondimensional_equations(True, ratios=False)
+    jac = rhs.jacobian(NONDIMENSIONAL_STATE)
+    ints = [nondimensional_integrals(True)[name] for name in _INTEGRAL_NAMES]
+    return list(rhs), jac, ints
+
+
+@cache
+def _dimensional_function(which: int) -> Callable:
+    """One of the numeric dimensional functions, compiled only when asked for."""
+    return numpy_lambdify(
+        (DIMENSIONAL_STATE, _DIM_ARGS), _dimensional_expressions()[which], cse=True
+    )
+
+
+@cache
+def _nondimensional_function(which: int) -> Callable:
+    """One of the numeric dimensionless functions, compiled only when asked for."""
+    expr = _nondimensional_expressions()[which]
+    return numpy_lambdify((NONDIMENSIONAL_STATE, _NONDIM_ARGS), expr, cse=True)
 
 
 def _dim_args(params: RigidBodyParameters) -> tuple[float, ...]:
@@ -574,21 +596,21 @@ def full_rhs(params: RigidBodyParameters) -> Callable[[float, np.ndarray], np.nd
 
     ``y = (p, q, r, gamma1, gamma2, gamma3)``; suitable for :func:`scipy.integrate.solve_ivp`.
     """
-    f = _dimensional_functions()[0]
+    f = _dimensional_function(_RHS)
     args = _dim_args(params)
     return lambda t_, y: np.array(f(y, args), dtype=float)
 
 
 def full_jacobian(params: RigidBodyParameters) -> Callable[[float, np.ndarray], np.ndarray]:
     """Numeric Jacobian ``J(t, y)`` (6x6) of :func:`full_rhs`."""
-    jf = _dimensional_functions()[1]
+    jf = _dimensional_function(_JACOBIAN)
     args = _dim_args(params)
     return lambda t_, y: np.array(jf(y, args), dtype=float)
 
 
 def integrals_function(params: RigidBodyParameters) -> Callable[[np.ndarray], np.ndarray]:
     """Numeric ``(energy, area, geometric)`` of a state ``y`` of shape (6,) or (6, n)."""
-    hf = _dimensional_functions()[2]
+    hf = _dimensional_function(_INTEGRALS)
     args = _dim_args(params)
     return lambda y: np.array(np.broadcast_arrays(*hf(np.asarray(y, dtype=float), args)))
 
@@ -597,7 +619,7 @@ def nondimensional_rhs(
     params: NondimensionalParameters,
 ) -> Callable[[float, np.ndarray], np.ndarray]:
     """Numeric ``f(tau, y)`` of the dimensionless system, ``y = (p1, q1, r1, gamma1..3)``."""
-    f = _nondimensional_functions()[0]
+    f = _nondimensional_function(_RHS)
     args = _nondim_args(params)
     return lambda t_, y: np.array(f(y, args), dtype=float)
 
@@ -606,7 +628,7 @@ def nondimensional_jacobian(
     params: NondimensionalParameters,
 ) -> Callable[[float, np.ndarray], np.ndarray]:
     """Numeric Jacobian of :func:`nondimensional_rhs`."""
-    jf = _nondimensional_functions()[1]
+    jf = _nondimensional_function(_JACOBIAN)
     args = _nondim_args(params)
     return lambda t_, y: np.array(jf(y, args), dtype=float)
 
@@ -615,6 +637,6 @@ def nondimensional_integrals_function(
     params: NondimensionalParameters,
 ) -> Callable[[np.ndarray], np.ndarray]:
     """Numeric dimensionless ``(energy, area, geometric)`` of ``y`` (shape (6,) or (6, n))."""
-    hf = _nondimensional_functions()[2]
+    hf = _nondimensional_function(_INTEGRALS)
     args = _nondim_args(params)
     return lambda y: np.array(np.broadcast_arrays(*hf(np.asarray(y, dtype=float), args)))

@@ -31,6 +31,7 @@ import numpy as np
 import sympy as sp
 from attrs import frozen
 
+from perturb._lambdify import numpy_lambdify
 from perturb.errors import InvalidParameterError
 
 __all__ = [
@@ -136,7 +137,7 @@ def euler_kinematics() -> EulerKinematics:
 @cache
 def _precession_rate_function() -> Callable:
     rate = euler_kinematics().precession_rate
-    return sp.lambdify((_p, _q, _g1, _g2), rate, modules="numpy")
+    return numpy_lambdify((_p, _q, _g1, _g2), rate)
 
 
 def angles_from_state(gamma1, gamma2, gamma3) -> tuple[np.ndarray, np.ndarray]:

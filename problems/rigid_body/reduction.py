@@ -55,6 +55,7 @@ import sympy as sp
 from attrs import field, frozen
 from sympy.polys.rings import PolyElement
 
+from perturb._lambdify import numpy_lambdify
 from perturb.cache import cached
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.system import EPS, QuasilinearSystem
@@ -79,6 +80,7 @@ from problems.rigid_body._elimination import (  # the symbols are public here
 )
 from problems.rigid_body._inverse_map import PolynomialMap, compile_polynomials
 from problems.rigid_body._series_ring import SeriesRing
+from problems.rigid_body._stored import stored
 from problems.rigid_body.equations import NONDIMENSIONAL_STATE, a, b, gamma1, p1
 
 __all__ = [
@@ -259,16 +261,19 @@ class Reduction:
         return out, eps
 
     def _lambdify(self, exprs, first, second, symbols) -> Callable:
-        return sp.lambdify((first, second, (*symbols, EPS)), list(exprs), "numpy", cse=True)
+        return numpy_lambdify((first, second, (*symbols, EPS)), list(exprs), cse=True)
 
     @cached_property
     def _forward_lambda(self) -> Callable:
-        return self._lambdify(
-            self.reduced_state + self.reduced_accelerations,
-            NONDIMENSIONAL_STATE,
-            (),
-            self.body_parameters,
+        # the exact forward map needs the body's equations: kept on disk, it spares a warm run
+        # (the true orbit's section) deriving them
+        exprs = stored(
+            "forward-map",
+            ("reduction.py", "_elimination.py", "equations.py"),
+            (self.kind,),
+            lambda: self.reduced_state + self.reduced_accelerations,
         )
+        return self._lambdify(exprs, NONDIMENSIONAL_STATE, (), self.body_parameters)
 
     @cached_property
     def _rhs_lambda(self) -> Callable:

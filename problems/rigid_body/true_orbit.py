@@ -38,6 +38,7 @@ from attrs import field, frozen
 
 from perturb.errors import PerturbError
 from perturb.oracle import Heyoka, SymbolicRHS, find_periodic_orbit, heyoka_available
+from problems.rigid_body._stored import stored
 from problems.rigid_body.exact_inputs import (
     FamilyMember,
     exact_epsilon,
@@ -72,6 +73,10 @@ MAX_CENTRINGS = 4
 #: 1e-14 puts the amplitudes' resolution at 1e-8 and stays above the float64 spacing (4.4e-16) of
 #: the O(1) components, which limits the residual when r0 = 1 (the time scale s_r = r0).
 FINE_TOL = 1e-14
+#: The conditioned state: u0..u5 for (p, q, r, gamma, gamma', gamma''), u6 the period component w.
+_CONDITIONED_STATE = sp.symbols("u0:7")
+#: The sources the conditioned equations are derived by (their edits invalidate the disk entries).
+_SOURCES = ("true_orbit.py", "exact_inputs.py", "equations.py")
 
 
 @frozen
@@ -167,19 +172,32 @@ def _conditioned_rhs(problem, ref, scales, lam, bits: int | None = None) -> Symb
     polynomial is an exact rational. With ``bits`` each is then rounded once to that precision
     (:func:`~problems.rigid_body.exact_inputs.round_coefficients`; heyoka then converts it
     exactly), else :func:`perturb.oracle.symbolic.to_heyoka` rounds ``p/q`` in the working type.
+    The expressions are kept on disk (kind ``true-orbit-rhs``), keyed by all these exact inputs.
     """
     values = exact_values(problem)
-    state, exprs = exact_equations(values)
-    u = sp.symbols("u0:7")
-    ref = [_exact(x) for x in ref]
-    scales = [_exact(x) for x in scales]
+    ref = tuple(_exact(x) for x in ref)
+    scales = tuple(_exact(x) for x in scales)
     lam = _exact(lam)
+    inputs = (tuple(sorted(values.items())), ref, scales, lam, bits)
+    body = stored(
+        "true-orbit-rhs",
+        _SOURCES,
+        inputs,
+        lambda: _conditioned_body(values, ref, scales, lam, bits),
+    )
+    return SymbolicRHS(_CONDITIONED_STATE, [*body, sp.Integer(0)])
+
+
+def _conditioned_body(values, ref, scales, lam, bits) -> tuple[sp.Expr, ...]:
+    """The six conditioned right-hand sides of :func:`_conditioned_rhs` (exact inputs)."""
+    state, exprs = exact_equations(values)
+    u = _CONDITIONED_STATE
     shift = {state[i]: ref[i] + scales[i] * u[i] for i in range(6)}
     rate = (1 + lam * u[6]) * lam / values["r0"]
     body = [sp.expand(e.xreplace(shift) * rate / scales[i]) for i, e in enumerate(exprs)]
     if bits is not None:
         body = [round_coefficients(e, bits) for e in body]
-    return SymbolicRHS(u, [*body, sp.Integer(0)])
+    return tuple(body)
 
 
 def _mp(value) -> mpmath.mpf:

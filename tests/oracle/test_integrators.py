@@ -349,3 +349,22 @@ def test_to_heyoka_rounds_rationals_in_the_target_precision():
     assert "0.333333333333333333" in str(third)  # 18+ digits: long double, not double
     with pytest.raises(InvalidParameterError, match="heyoka implements only"):
         to_heyoka(sp.besselj(0, x), {x: var})
+
+
+def test_scipy_integrate_is_imported_only_when_a_scipy_integrator_runs():
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    code = (
+        "import sys, numpy as np; import perturb.oracle, perturb.validation; "
+        "print('scipy.integrate' in sys.modules); "
+        "perturb.oracle.Scipy().integrate(lambda y: -y, (0.0, 1.0), np.ones(1)); "
+        "print('scipy.integrate' in sys.modules)"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=root,
+        env={"PYTHONPATH": str(root), "PATH": "", "PERTURB_CACHE_DIR": "off"},
+    ).stdout.split()  # fmt: skip
+    assert out == ["False", "True"]

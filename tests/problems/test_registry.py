@@ -7,6 +7,7 @@ import pkgutil
 import subprocess
 import sys
 import textwrap
+from pathlib import Path
 
 import pytest
 
@@ -46,6 +47,16 @@ def test_listing_names_imports_no_problem_module():
     count, modules = out.split(" ", 1)
     assert int(count) >= 6
     assert "problems.duffing" not in modules and "problems.rigid_body.disk" not in modules
+    assert "problems.rigid_body" not in modules  # no sub-package imported to walk it either
+
+
+def test_the_file_walk_finds_the_modules_pkgutil_finds():
+    from problems._registry import _module_files
+
+    walked = {info.name for info in pkgutil.walk_packages(problems.__path__, "problems.")}
+    found = {name for name, _ in _module_files(Path(problems.__path__[0]), "problems.")}
+    assert found == walked
+    assert "problems.rigid_body.paper.reproduction" in found
 
 
 def test_scan_reads_literal_names_and_both_decorator_spellings():
