@@ -203,15 +203,17 @@ class FastSpinBody(Problem):
         values = self.symbol_values()
         return dict(_exact(tuple((p, values[p.name]) for p in self.parameter_symbols)))
 
-    def _solving_reduction(self, order: int) -> Reduction:
-        """The reduction :meth:`solve` uses at ``order`` (specialised above SYMBOLIC_MAX_ORDER)."""
-        if order > self.SYMBOLIC_MAX_ORDER:
+    def _solving_reduction(self, order: int, symbolic: bool | None = None) -> Reduction:
+        """The reduction :meth:`solve` uses at ``order`` (see its ``symbolic``)."""
+        if symbolic is None:
+            symbolic = order <= self.SYMBOLIC_MAX_ORDER
+        if not symbolic:
             return self.specialised_reduction_for(order, self.exact_values())
         return self.reduction_for(order)
 
-    def _frame(self, order: int) -> tuple:
+    def _frame(self, order: int, symbolic: bool | None = None) -> tuple:
         """The reduction, its system, the method options and the exact values put in (if any)."""
-        reduction = self._solving_reduction(order)
+        reduction = self._solving_reduction(order, symbolic)
         options = {
             "amplitudes": {"G": geometric_constraint(reduction)},
             **self._selection_options(),
@@ -223,18 +225,33 @@ class FastSpinBody(Problem):
         _, system, options, _ = self._frame(order)
         return system, {k: v for k, v in options.items() if k != "branch"}
 
-    def solve(self, order: int = 1) -> PeriodicSolution:
+    def solve(self, order: int = 1, *, symbolic: bool | None = None) -> PeriodicSolution:
         """The periodic solution of ``order`` (cached; higher orders use a longer reduction).
 
-        Orders up to :attr:`SYMBOLIC_MAX_ORDER` are symbolic in the parameters; higher orders are
-        derived for this body's parameter values, converted to exact rationals (no rounding enters
-        the construction; the result is exact for the decimal values given). Those values are put
-        in before the reduction (:func:`~problems.rigid_body.reduction.specialised_disk_reduction`),
-        which gives the same system as putting them into the symbolic one, much faster.
+        Parameters
+        ----------
+        order : int
+            Order of the solution in epsilon.
+        symbolic : bool, optional
+            ``True``: the solution symbolic in the body's dimensionless parameters, derived once
+            and shared by every parameter set (memory and disk cache) — the route for a sweep
+            over parameters, and for formulas in the parameters (disk order 2 about 4 s, order 3
+            about 15 s of CPU, cold). ``False``: derived for this body's parameter values,
+            converted to exact rationals (no rounding enters the construction; the result is
+            exact for the decimal values given); the values are put in before the reduction
+            (:func:`~problems.rigid_body.reduction.specialised_disk_reduction`), which gives the
+            same system as putting them into the symbolic one, faster for one parameter set.
+            ``None`` (default): symbolic up to :attr:`SYMBOLIC_MAX_ORDER`, specialised above.
+            Either way :meth:`state` and :meth:`period` evaluate it at this body's values.
         """
+        if symbolic is not None and not isinstance(symbolic, bool):
+            raise InvalidParameterError(
+                f"`symbolic` = {symbolic!r} is invalid: pass True (symbolic in the body's "
+                "parameters), False (for this body's values) or None (the default choice)"
+            )
         if self.family is not None:
             return self.family_solution(order, self.family)
-        reduction, system, options, values = self._frame(order)
+        reduction, system, options, values = self._frame(order, symbolic)
         key = (
             type(self).__module__,
             type(self).__qualname__,

@@ -120,8 +120,8 @@ class DiskInNewtonianField(FastSpinBody):
     def _selection_options(self) -> dict:
         return {**super()._selection_options(), "branch": dict(BRANCH_M1_M2_ZERO)}
 
-    def solve(self, order: int = 1) -> PeriodicSolution:
-        solution = super().solve(order)
+    def solve(self, order: int = 1, *, symbolic: bool | None = None) -> PeriodicSolution:
+        solution = super().solve(order, symbolic=symbolic)
         if self.symbol_values()["k"] == 0:
             return attrs.evolve(
                 solution,
