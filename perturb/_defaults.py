@@ -44,6 +44,12 @@ PROBE_DIGITS = 30
 #: keep sympy busy for hours.
 SOLVE_SECONDS = 30.0
 
+#: Linear periodicity conditions with at most this many terms in all are solved by sympy's
+#: ``linsolve`` (toy systems: milliseconds, and their results stay the very expressions they always
+#: were); larger ones (the rigid body's, with rational-function coefficients in its parameters) on
+#: the native backend (:mod:`perturb.method.linear`), where sympy takes seconds to minutes an order.
+LINEAR_SYMPY_MAX_TERMS = 32
+
 #: Numeric roots of the amplitude equations (Groebner path): a root of the triangular system is
 #: accepted where every polynomial of its variable vanishes to this fraction of its coefficients'
 #: size (companion-matrix roots of well-scaled polynomials are good to ~1e-12).
