@@ -44,7 +44,7 @@ from perturb._defaults import SOLVE_SECONDS
 from perturb.cache import cached
 from perturb.errors import InvalidSystemError, bad_value
 from perturb.method.conditions import ConditionSolver, OrderFailed
-from perturb.method.exact import vanishes
+from perturb.method.exact import vanishes_native
 from perturb.method.expansion import GivenInitialValues, NotPolynomial, forcing
 from perturb.method.linear import solve_unique
 from perturb.method.options import (
@@ -437,7 +437,7 @@ class _OrderByOrder:
         pending = self.pending
         self._substitute(solution)
         for before, after in zip(pending, self.pending, strict=True):
-            if after != 0 and not vanishes(to_sympy(after)):
+            if after != 0 and not vanishes_native(after, self.conv):
                 raise OrderFailed(
                     Status.INCONSISTENT,
                     f"order {k}: condition {to_sympy(before)} = 0 cannot hold",
