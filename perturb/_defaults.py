@@ -38,11 +38,23 @@ NUMERIC_ZERO = 1e-12
 #: Digits of the evaluation at a generic point that confirms a condition vanishes once solved:
 #: far beyond double precision, so cancellation among large terms cannot fake a zero or a non-zero.
 PROBE_DIGITS = 30
+#: The same probe on the native backend (:func:`perturb.method.exact.vanishes_native`): 400 bits
+#: (120 digits) of fixed precision, so that cancellation among terms up to 10^80 leaves the value
+#: good to far below NUMERIC_ZERO; a value above PROBE_NONZERO is non-zero beyond doubt, anything
+#: nearer the threshold is left to the 30-digit adaptive evaluation of sympy.
+PROBE_BITS = 400
+PROBE_NONZERO = 1e-6
 
 #: Time budget (seconds) of sympy's solve on one order's nonlinear amplitude equations: the textbook
 #: and the disk's equations take well under a second; equations whose roots have no closed form can
 #: keep sympy busy for hours.
 SOLVE_SECONDS = 30.0
+
+#: Linear periodicity conditions with at most this many terms in all are solved by sympy's
+#: ``linsolve`` (toy systems: milliseconds, and their results stay the very expressions they always
+#: were); larger ones (the rigid body's, with rational-function coefficients in its parameters) on
+#: the native backend (:mod:`perturb.method.linear`), where sympy takes seconds to minutes an order.
+LINEAR_SYMPY_MAX_TERMS = 32
 
 #: Numeric roots of the amplitude equations (Groebner path): a root of the triangular system is
 #: accepted where every polynomial of its variable vanishes to this fraction of its coefficients'

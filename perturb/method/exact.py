@@ -11,8 +11,15 @@ import math
 
 import sympy as sp
 
-from perturb._defaults import NUMERIC_ZERO, PROBE_DIGITS, ROOT_MAX_DENOMINATOR, ROOT_RATIONAL_TOL
-from perturb.native import Converter, NotNative, ring_for
+from perturb._defaults import (
+    NUMERIC_ZERO,
+    PROBE_BITS,
+    PROBE_DIGITS,
+    PROBE_NONZERO,
+    ROOT_MAX_DENOMINATOR,
+    ROOT_RATIONAL_TOL,
+)
+from perturb.native import Converter, NotNative, ring_for, se
 from perturb.system import EPS
 from perturb.trig import SympyRing, TrigPoly
 
@@ -23,6 +30,7 @@ __all__ = [
     "probe_values",
     "taylor_coefficient",
     "vanishes",
+    "vanishes_native",
 ]
 
 
@@ -89,6 +97,37 @@ def vanishes(expr) -> bool:
     return magnitude < NUMERIC_ZERO
 
 
+def vanishes_native(value, conv: Converter) -> bool:
+    """:func:`vanishes` of a native expression, decided on the native backend where it is clear.
+
+    At the generic point of :func:`probe_values` the expression is evaluated exactly (rationals,
+    square roots of rationals, :math:`\\pi`): zero there is :func:`vanishes`' zero. Otherwise it is
+    evaluated to ``PROBE_BITS`` bits; a magnitude above ``PROBE_NONZERO`` is :func:`vanishes`'
+    non-zero (its 30-digit value is that far from ``NUMERIC_ZERO``). Anything else (a pole at the
+    point, a value near the threshold) is decided by :func:`vanishes` on the sympy expression.
+    Converting a large expression to sympy and evaluating it there takes seconds; this, milliseconds.
+    """
+    if not conv.native:
+        return vanishes(value)
+    if value == 0:
+        return True
+    point = {
+        conv.to_native(symbol): conv.to_native(number)
+        for symbol, number in _probe_point(conv.symbols(value)).items()
+    }
+    number = se.expand(value.xreplace(point))
+    if number == 0:
+        return True
+    if number.is_number:
+        try:
+            magnitude = abs(complex(number.evalf(PROBE_BITS, real=False)))
+        except (TypeError, ValueError, RuntimeError):
+            magnitude = None
+        if magnitude is not None and math.isfinite(magnitude) and magnitude > PROBE_NONZERO:
+            return False
+    return vanishes(conv.to_sympy(value))
+
+
 def chop(poly: TrigPoly) -> TrigPoly:
     """Drop floating-point round-off (|c| < NUMERIC_ZERO) from the coefficients of ``poly``."""
     if poly.ring is not SympyRing:  # native coefficients: only float-free runs are native
@@ -107,6 +146,10 @@ def probe_values(expr: sp.Expr) -> dict:
     Distinct rationals with unrelated denominators (so no accidental cancellation), below 1 so that
     the square roots of first-integral constraints such as sqrt(1 - gamma**2) stay real.
     """
-    symbols = sorted(expr.free_symbols, key=str)
+    return _probe_point(expr.free_symbols)
+
+
+def _probe_point(free_symbols) -> dict:
+    symbols = sorted(free_symbols, key=str)
     return {s: sp.Rational(1, 2) + sp.Rational(i + 1, 2 * (len(symbols) + 1)) - sp.Rational(1, 101 + 7 * i)
             for i, s in enumerate(symbols)}  # fmt: skip

@@ -45,8 +45,9 @@ from perturb.cache import active as cache_active
 from perturb.cache import cached
 from perturb.errors import InvalidSystemError, bad_value
 from perturb.method.conditions import ConditionSolver, OrderFailed
-from perturb.method.exact import vanishes
+from perturb.method.exact import vanishes_native
 from perturb.method.expansion import GivenInitialValues, NotPolynomial, forcing
+from perturb.method.linear import solve_unique
 from perturb.method.options import (
     check_branch,
     check_cache,
@@ -422,11 +423,14 @@ class _OrderByOrder:
 
     def _solve_conditions(self, k: int, generating: GeneratingSolution) -> tuple[dict, tuple]:
         expand, to_sympy = self.conv.ring.expand, self.conv.to_sympy
-        eqs = [sp.expand(to_sympy(e)) for e in (expand(e) for e in self.pending) if e != 0]
-        if not eqs:
+        native = [e for e in (expand(e) for e in self.pending) if e != 0]
+        if not native:
             self.pending = []
             return {}, ()
-        solution, branches = self.solver.solve(k, eqs, self.unknowns, generating, self.solved)
+        solution, branches = solve_unique(native, self.unknowns, self.conv), ()
+        if solution is None:  # small, nonlinear or not unique: sympy's route
+            eqs = [sp.expand(to_sympy(e)) for e in native]
+            solution, branches = self.solver.solve(k, eqs, self.unknowns, generating, self.solved)
         # The solvers return solutions of the whole system (the free unknowns of a family left as
         # parameters), so every pending condition now holds identically. Proving it symbolically
         # means cancelling large rational functions; a numerical probe at a generic point (30 digits)
@@ -434,7 +438,7 @@ class _OrderByOrder:
         pending = self.pending
         self._substitute(solution)
         for before, after in zip(pending, self.pending, strict=True):
-            if after != 0 and not vanishes(to_sympy(after)):
+            if after != 0 and not vanishes_native(after, self.conv):
                 raise OrderFailed(
                     Status.INCONSISTENT,
                     f"order {k}: condition {to_sympy(before)} = 0 cannot hold",
