@@ -235,8 +235,8 @@ class FastSpinBody(Problem):
         symbolic : bool, optional
             ``True``: the solution symbolic in the body's dimensionless parameters, derived once
             and shared by every parameter set (memory and disk cache) — the route for a sweep
-            over parameters, and for formulas in the parameters (disk order 2 about 4 s, order 3
-            about 15 s of CPU, cold). ``False``: derived for this body's parameter values,
+            over parameters, and for formulas in the parameters (disk order 2 about 3 s, order 3
+            about 13 s of CPU, cold). ``False``: derived for this body's parameter values,
             converted to exact rationals (no rounding enters the construction; the result is
             exact for the decimal values given); the values are put in before the reduction
             (:func:`~problems.rigid_body.reduction.specialised_disk_reduction`), which gives the
