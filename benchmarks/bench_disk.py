@@ -22,13 +22,14 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import resource
 import statistics
 import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
+
+from _tree import export, run_child
 
 ROOT = Path(__file__).resolve().parent.parent
 #: Fresh-process repetitions of each row (medians are reported).
@@ -78,19 +79,9 @@ print(json.dumps({"rate": t.size / best}))
 
 
 def _child(tree: Path, args: list[str], env: dict) -> tuple[float, str]:
-    """(CPU seconds of the child, its stdout)."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    out = subprocess.run(
-        [sys.executable, *args],
-        capture_output=True,
-        text=True,
-        check=True,
-        cwd=tree,
-        env={**os.environ, "PYTHONPATH": str(tree), **env},
-        timeout=ROW_TIMEOUT,
-    )
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    """(CPU seconds of the child, its stdout); CalledProcessError when it fails."""
+    cpu, out = run_child(tree, args, env, ROW_TIMEOUT)
+    out.check_returncode()
     return cpu, out.stdout
 
 
@@ -123,14 +114,6 @@ def measure(tree: Path, repeat: int, symbolic3: bool) -> dict[str, float | None]
     return rows
 
 
-def _export(rev: str, folder: str) -> Path:
-    archive = subprocess.run(
-        ["git", "-C", str(ROOT), "archive", rev], capture_output=True, check=True
-    ).stdout
-    subprocess.run(["tar", "-x", "-C", folder], input=archive, check=True)
-    return Path(folder)
-
-
 def _text(value: float | None) -> str:
     if value is None:
         return "-"
@@ -148,7 +131,7 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as folder:
         if args.before:
             columns[f"before ({args.before})"] = measure(
-                _export(args.before, folder), args.repeat, args.symbolic3
+                export(args.before, folder), args.repeat, args.symbolic3
             )
         columns["after (this tree)"] = measure(ROOT, args.repeat, args.symbolic3)
     labels = list(next(iter(columns.values())))

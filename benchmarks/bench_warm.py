@@ -21,17 +21,18 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import resource
 import statistics
-import subprocess
-import sys
 import tempfile
 import time
 from pathlib import Path
 
+from _tree import export, run_child
+
 ROOT = Path(__file__).resolve().parent.parent
 #: Fresh-process repetitions of each row (medians are reported).
 REPEATS = 5
+#: Give up a fresh-process run after this many seconds.
+CHILD_TIMEOUT = 600
 
 #: The CLI as a program, with CPU marks: the command's own start-up (where the tree has one), its
 #: imports, the command, and the end of ``main`` (what follows is the interpreter's exit).
@@ -51,20 +52,11 @@ sys.exit(code)
 
 
 def _child(tree: Path, args: list[str], env: dict) -> tuple[float, str]:
-    """(CPU seconds of the child, its stderr)."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    out = subprocess.run(
-        [sys.executable, *args],
-        capture_output=True,
-        text=True,
-        cwd=tree,
-        env={**os.environ, "PYTHONPATH": str(tree), **env},
-        timeout=600,
-    )
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    """(CPU seconds of the child, its stderr); exit codes 0 and 1 (a verdict) are runs."""
+    cpu, out = run_child(tree, args, env, CHILD_TIMEOUT)
     if out.returncode not in (0, 1):
         raise RuntimeError(f"{args}: exit {out.returncode}: {out.stderr[-500:]}")
-    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime), out.stderr
+    return cpu, out.stderr
 
 
 def measure(tree: Path, repeat: int) -> dict[str, float]:
@@ -102,14 +94,6 @@ def measure(tree: Path, repeat: int) -> dict[str, float]:
     return rows
 
 
-def _export(rev: str, folder: str) -> Path:
-    archive = subprocess.run(
-        ["git", "-C", str(ROOT), "archive", rev], capture_output=True, check=True
-    ).stdout
-    subprocess.run(["tar", "-x", "-C", folder], input=archive, check=True)
-    return Path(folder)
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--before", metavar="REV", help="also measure git revision REV first")
@@ -119,7 +103,7 @@ def main() -> None:
     columns = {}
     with tempfile.TemporaryDirectory() as folder:
         if args.before:
-            columns[f"before ({args.before})"] = measure(_export(args.before, folder), args.repeat)
+            columns[f"before ({args.before})"] = measure(export(args.before, folder), args.repeat)
         columns["after (this tree)"] = measure(ROOT, args.repeat)
     labels = list(next(iter(columns.values())))
     print(f"{'CPU seconds':<32}" + "".join(f"{name:>22}" for name in columns))

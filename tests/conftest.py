@@ -8,6 +8,7 @@ import tempfile
 # (tests/engine/test_native.py checks the pin took effect).
 os.environ["SYMPY_GROUND_TYPES"] = "python"
 
+import pytest
 from hypothesis import HealthCheck, settings
 
 # "ci": derandomized and without a database so every CI run draws the same examples;
@@ -29,3 +30,13 @@ os.environ["PERTURB_CACHE_DIR"] = tempfile.mkdtemp(prefix="perturb-test-cache-")
 os.environ["PERTURB_CACHE_KEY_FILE"] = os.path.join(
     tempfile.mkdtemp(prefix="perturb-test-key-"), "cache.key"
 )
+
+
+@pytest.fixture
+def cache_folder(tmp_path, monkeypatch):
+    """A fresh, empty disk-cache folder for one test, and cache warnings that fire again."""
+    import perturb.cache
+
+    monkeypatch.setenv("PERTURB_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(perturb.cache, "_WARNED", set())
+    return tmp_path

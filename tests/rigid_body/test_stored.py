@@ -19,16 +19,8 @@ PAPER = {
 }  # fmt: skip
 
 
-@pytest.fixture
-def folder(tmp_path, monkeypatch):
-    """A fresh cache folder, and warnings that fire again in each test."""
-    monkeypatch.setenv("PERTURB_CACHE_DIR", str(tmp_path))
-    monkeypatch.setattr(perturb.cache, "_WARNED", set())
-    return tmp_path
-
-
-def _entries(folder, kind):
-    return sorted(folder.glob(f"{kind}-*.pkl"))
+def _entries(cache_folder, kind):
+    return sorted(cache_folder.glob(f"{kind}-*.pkl"))
 
 
 def _rhs(values):
@@ -41,10 +33,10 @@ def _fresh_rhs(values):
         return _rhs(values)
 
 
-def test_a_body_reads_back_its_own_equations(folder, monkeypatch):
+def test_a_body_reads_back_its_own_equations(cache_folder, monkeypatch):
     first = _rhs(PAPER)
     fresh = _fresh_rhs(PAPER)
-    (entry,) = _entries(folder, "body-rhs")
+    (entry,) = _entries(cache_folder, "body-rhs")
     written = entry.stat().st_mtime_ns
 
     def not_again(items):
@@ -56,25 +48,25 @@ def test_a_body_reads_back_its_own_equations(folder, monkeypatch):
 
 
 @pytest.mark.parametrize("name", ["A", "B", "C", "M", "g", "R", "x0", "y0", "z0"])
-def test_another_body_parameter_is_another_entry(folder, name):
+def test_another_body_parameter_is_another_entry(cache_folder, name):
     _rhs(PAPER)
     other = {**PAPER, name: PAPER[name] + 0.5}
     assert _rhs(other) == _fresh_rhs(other) != _rhs(PAPER)
-    assert len(_entries(folder, "body-rhs")) == 2
+    assert len(_entries(cache_folder, "body-rhs")) == 2
 
 
-def test_the_initial_state_does_not_enter_the_equations_key(folder):
+def test_the_initial_state_does_not_enter_the_equations_key(cache_folder):
     _rhs(PAPER)
     assert _rhs({**PAPER, "r0": 30.2, "gamma3_0": 0.3}) == _rhs(PAPER)
-    assert len(_entries(folder, "body-rhs")) == 1
+    assert len(_entries(cache_folder, "body-rhs")) == 1
 
 
-def test_an_edited_derivation_does_not_read_older_entries(folder, monkeypatch):
+def test_an_edited_derivation_does_not_read_older_entries(cache_folder, monkeypatch):
     stored = _stored.stored("demo", ("equations.py",), (1,), lambda: "old")
     monkeypatch.setattr(_stored, "source_fingerprint", lambda names: "edited")
     assert stored == "old"
     assert _stored.stored("demo", ("equations.py",), (1,), lambda: "new") == "new"
-    assert len(_entries(folder, "demo")) == 2
+    assert len(_entries(cache_folder, "demo")) == 2
 
 
 def test_the_fingerprint_follows_the_sources():
@@ -84,9 +76,9 @@ def test_the_fingerprint_follows_the_sources():
 
 
 @pytest.mark.parametrize("damage", ["garbage", "truncated", "foreign"])
-def test_a_damaged_or_foreign_entry_is_refused_and_recomputed(folder, monkeypatch, damage):
+def test_a_damaged_or_foreign_entry_is_refused_and_recomputed(cache_folder, monkeypatch, damage):
     expected = _rhs(PAPER)
-    (entry,) = _entries(folder, "body-rhs")
+    (entry,) = _entries(cache_folder, "body-rhs")
     blob = entry.read_bytes()
     if damage == "garbage":
         entry.write_bytes(b"\x80\x04not a perturb entry")
@@ -101,10 +93,14 @@ def test_a_damaged_or_foreign_entry_is_refused_and_recomputed(folder, monkeypatc
         assert _rhs(PAPER) == expected
 
 
-def test_the_body_potential_and_dimensional_expressions_read_back_equal(folder):
+def test_the_body_potential_and_dimensional_expressions_read_back_equal(cache_folder):
     potential = equations.body_potential.__wrapped__(2)
     expressions = equations._dimensional_expressions.__wrapped__()
-    assert len(_entries(folder, "body-potential")) == len(_entries(folder, "body-dimensional")) == 1
+    assert (
+        len(_entries(cache_folder, "body-potential"))
+        == len(_entries(cache_folder, "body-dimensional"))
+        == 1
+    )
     assert equations.body_potential.__wrapped__(2) == potential == equations._body_potential(2)
     again = equations._dimensional_expressions.__wrapped__()
     assert again == expressions == equations._derive_dimensional()
@@ -115,12 +111,12 @@ def _conditioning():
     return (x, 2 * x, 30, 1, 0, sp.Rational(7, 10**6)), (1e-3, 1e-3, 30.2, 1, 1, 1), 1e-9
 
 
-def test_the_conditioned_equations_are_keyed_by_every_input(folder):
+def test_the_conditioned_equations_are_keyed_by_every_input(cache_folder):
     problem = get_problem("disk").create(r0=30.2)
     ref, scales, lam = _conditioning()
     first = true_orbit._conditioned_rhs(problem, ref, scales, lam, bits=113)
     assert true_orbit._conditioned_rhs(problem, ref, scales, lam, bits=113) == first
-    assert len(_entries(folder, "true-orbit-rhs")) == 1
+    assert len(_entries(cache_folder, "true-orbit-rhs")) == 1
     variants = [
         (problem, ref, scales, lam, 64),
         (problem, ref, scales, lam * 2, 113),
@@ -133,15 +129,15 @@ def test_the_conditioned_equations_are_keyed_by_every_input(folder):
         with bypassed():
             assert got == true_orbit._conditioned_rhs(prob, r, s, la, bits=bits)
         assert got != first
-        assert len(_entries(folder, "true-orbit-rhs")) == n
+        assert len(_entries(cache_folder, "true-orbit-rhs")) == n
 
 
-def test_the_forward_map_from_disk_computes_the_same_numbers(folder):
+def test_the_forward_map_from_disk_computes_the_same_numbers(cache_folder):
     values = {"a": 0.45, "b": 0.55, "k": 0.5, "x0p": 0.6, "y0p": 0.8, "gamma3_0": 0.3}
     y = np.array([[0.1, -0.2], [0.05, 0.3], [1.0, 0.99], [0.2, 0.4], [0.1, -0.1], [0.3, 0.31]])
     with bypassed():
         fresh = _reduce("disk", 1, ()).forward_function(values, 0.01)(y)
     _reduce("disk", 1, ()).forward_function(values, 0.01)  # writes the entry
-    assert len(_entries(folder, "forward-map")) == 1
+    assert len(_entries(cache_folder, "forward-map")) == 1
     stored = _reduce("disk", 1, ()).forward_function(values, 0.01)(y)  # reads it
     assert stored.tobytes() == fresh.tobytes()
