@@ -145,3 +145,21 @@ def test_what_symengine_cannot_hold_is_refused_and_the_run_redone_in_sympy(monke
     redone = method.solve(problem.system())
     assert redone.success
     assert _record(redone) == _record(expected)
+
+
+@needs_symengine
+@pytest.mark.parametrize(
+    ("expr", "floating"),
+    [
+        (sp.Float(1.5) * A, True),
+        (A + sp.Float(0.25), True),
+        (sp.sqrt(A) * sp.Float(2.0) * B**2, True),
+        (sp.Rational(3, 2) * A, False),
+        (sp.sqrt(2) * A + sp.pi, False),
+    ],
+)
+def test_both_rings_see_a_float_wherever_it_sits(expr, floating):
+    """Float inputs must be noticed (they keep a run on sympy's float arithmetic), exact ones not."""
+    conv = native.Converter(native.SymengineRing)
+    assert native.SymengineRing.has_float(conv.to_native(expr)) is floating
+    assert SympyRing.has_float(expr) is floating
