@@ -22,6 +22,7 @@ from perturb.oracle import SymbolicRHS
 from perturb.validation import Condition, Equations, Integrals
 from problems.base import _SOLUTION_CACHE, ParameterSpec, Problem, positive
 from problems.rigid_body import equations as eq
+from problems.rigid_body import numeric
 from problems.rigid_body._stored import stored
 from problems.rigid_body.euler_angles import angles_from_state, precession_by_quadrature
 from problems.rigid_body.reduction import (
@@ -33,9 +34,9 @@ from problems.rigid_body.reduction import (
 
 __all__ = ["FastSpinBody", "INTEGRAL_NAMES", "STATE_NAMES", "geometric_constraint"]
 
-#: Names of the physical state components, in the order of :func:`equations.full_rhs`.
+#: Names of the physical state components, in the order of :func:`numeric.full_rhs`.
 STATE_NAMES = ("p", "q", "r", "gamma1", "gamma2", "gamma3")
-#: Names of the first integrals, in the order of :func:`equations.integrals_function`.
+#: Names of the first integrals, in the order of :func:`numeric.integrals_function`.
 INTEGRAL_NAMES = ("energy", "area", "geometric")
 #: Above this value of eps = c/r0 the fast-spin expansion is not even qualitatively right
 #: (reference section (f): at eps = 232 the motion is tumbling). It is also the limit of the
@@ -346,11 +347,11 @@ class FastSpinBody(Problem):
     # ------------------------------------------------------------------ original equations
     def original_rhs(self, solution: PeriodicSolution | None = None):
         """The dimensional Euler–Poisson right-hand side ``f(t, y)`` on (p, q, r, gammas)."""
-        return eq.full_rhs(self.body())
+        return numeric.full_rhs(self.body())
 
     def original_jacobian(self):
         """Jacobian ``J(t, y)`` of :meth:`original_rhs`."""
-        return eq.full_jacobian(self.body())
+        return numeric.full_jacobian(self.body())
 
     def original_symbolic(self) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Expr, ...]]:
         """(state symbols, rhs expressions with every number substituted), e.g. for heyoka."""
@@ -403,7 +404,7 @@ class FastSpinBody(Problem):
 
     def integrals_of_motion(self, y0=None) -> Integrals:
         """Energy, area and geometric integrals of the physical state."""
-        return Integrals(eq.integrals_function(self.body()), INTEGRAL_NAMES)
+        return Integrals(numeric.integrals_function(self.body()), INTEGRAL_NAMES)
 
     def validity_estimates(self) -> tuple[Condition, ...]:
         """Estimates of the fast-spin expansion's domain (they warn; the verdict is measured)."""
@@ -439,11 +440,11 @@ class FastSpinBody(Problem):
 
         The returned callable carries ``.names`` = :data:`INTEGRAL_NAMES`.
         """
-        return _NamedIntegrals(eq.integrals_function(self.body()))
+        return _NamedIntegrals(numeric.integrals_function(self.body()))
 
     def integrals(self, y) -> np.ndarray:
         """(energy, area, geometric) of physical states ``y`` (shape (6,) or (6, n))."""
-        return eq.integrals_function(self.body())(y)
+        return numeric.integrals_function(self.body())(y)
 
 
 class _NamedIntegrals:

@@ -24,14 +24,11 @@ References
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from functools import cache
 
-import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
-from perturb._lambdify import numpy_lambdify
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.system import EPS
 from problems.rigid_body._stored import stored
@@ -50,15 +47,9 @@ __all__ = [
     "body_potential",
     "euler_poisson_equations",
     "first_integrals",
-    "full_jacobian",
-    "full_rhs",
     "inertia_ratio_values",
-    "integrals_function",
     "nondimensional_equations",
     "nondimensional_integrals",
-    "nondimensional_integrals_function",
-    "nondimensional_jacobian",
-    "nondimensional_rhs",
     "nondimensional_substitution",
     "potential",
     "time_derivative",
@@ -522,121 +513,23 @@ class NondimensionalParameters:
         }
 
 
-# ---------------------------------------------------------------------------- numerics
-_KAPPA = sp.Symbol("kappa")  # 3 g / R, so that R = inf is the number 0
-_DIM_ARGS = (A, B, C, x0, y0, z0, M, g, _KAPPA)
-_NONDIM_ARGS = (a, b, k, x0p, y0p, z0p, EPS)
+#: The numeric functions moved to :mod:`problems.rigid_body.numeric` (one concern per module);
+#: still importable from here.
+_MOVED_TO_NUMERIC = frozenset(
+    {
+        "full_jacobian",
+        "full_rhs",
+        "integrals_function",
+        "nondimensional_integrals_function",
+        "nondimensional_jacobian",
+        "nondimensional_rhs",
+    }
+)
 
 
-#: Which of the three numeric functions: right-hand side, Jacobian, first integrals.
-_RHS, _JACOBIAN, _INTEGRALS = range(3)
-_INTEGRAL_NAMES = ("energy", "area", "geometric")
+def __getattr__(name: str):
+    if name in _MOVED_TO_NUMERIC:
+        from problems.rigid_body import numeric
 
-
-@cache
-def _dimensional_expressions() -> tuple:
-    """(rhs list, Jacobian matrix, integrals list) with R = 3g/kappa (on disk: body-independent)."""
-    return stored("body-dimensional", ("equations.py",), (), _derive_dimensional)
-
-
-def _derive_dimensional() -> tuple:
-    rhs = euler_poisson_equations(R).subs(R, 3 * g / _KAPPA)
-    jac = rhs.jacobian(DIMENSIONAL_STATE)
-    ints = [first_integrals(R)[name].subs(R, 3 * g / _KAPPA) for name in _INTEGRAL_NAMES]
-    return list(rhs), jac, ints
-
-
-@cache
-def _nondimensional_expressions() -> tuple:
-    rhs = nondimensional_equations(True, ratios=False)
-    jac = rhs.jacobian(NONDIMENSIONAL_STATE)
-    ints = [nondimensional_integrals(True)[name] for name in _INTEGRAL_NAMES]
-    return list(rhs), jac, ints
-
-
-@cache
-def _dimensional_function(which: int) -> Callable:
-    """One of the numeric dimensional functions, compiled only when asked for."""
-    return numpy_lambdify(
-        (DIMENSIONAL_STATE, _DIM_ARGS), _dimensional_expressions()[which], cse=True
-    )
-
-
-@cache
-def _nondimensional_function(which: int) -> Callable:
-    """One of the numeric dimensionless functions, compiled only when asked for."""
-    expr = _nondimensional_expressions()[which]
-    return numpy_lambdify((NONDIMENSIONAL_STATE, _NONDIM_ARGS), expr, cse=True)
-
-
-def _dim_args(params: RigidBodyParameters) -> tuple[float, ...]:
-    if not isinstance(params, RigidBodyParameters):
-        raise bad_value("params", params, "pass a RigidBodyParameters instance")
-    return (
-        params.A,
-        params.B,
-        params.C,
-        params.x0,
-        params.y0,
-        params.z0,
-        params.M,
-        params.g,
-        params.gradient,
-    )
-
-
-def _nondim_args(params: NondimensionalParameters) -> tuple[float, ...]:
-    if not isinstance(params, NondimensionalParameters):
-        raise bad_value("params", params, "pass a NondimensionalParameters instance")
-    return (params.a, params.b, params.k, params.x0p, params.y0p, params.z0p, params.eps)
-
-
-def full_rhs(params: RigidBodyParameters) -> Callable[[float, np.ndarray], np.ndarray]:
-    """Numeric right-hand side ``f(t, y)`` of the dimensional 6-D Euler–Poisson system.
-
-    ``y = (p, q, r, gamma1, gamma2, gamma3)``; suitable for :func:`scipy.integrate.solve_ivp`.
-    """
-    f = _dimensional_function(_RHS)
-    args = _dim_args(params)
-    return lambda t_, y: np.array(f(y, args), dtype=float)
-
-
-def full_jacobian(params: RigidBodyParameters) -> Callable[[float, np.ndarray], np.ndarray]:
-    """Numeric Jacobian ``J(t, y)`` (6x6) of :func:`full_rhs`."""
-    jf = _dimensional_function(_JACOBIAN)
-    args = _dim_args(params)
-    return lambda t_, y: np.array(jf(y, args), dtype=float)
-
-
-def integrals_function(params: RigidBodyParameters) -> Callable[[np.ndarray], np.ndarray]:
-    """Numeric ``(energy, area, geometric)`` of a state ``y`` of shape (6,) or (6, n)."""
-    hf = _dimensional_function(_INTEGRALS)
-    args = _dim_args(params)
-    return lambda y: np.array(np.broadcast_arrays(*hf(np.asarray(y, dtype=float), args)))
-
-
-def nondimensional_rhs(
-    params: NondimensionalParameters,
-) -> Callable[[float, np.ndarray], np.ndarray]:
-    """Numeric ``f(tau, y)`` of the dimensionless system, ``y = (p1, q1, r1, gamma1..3)``."""
-    f = _nondimensional_function(_RHS)
-    args = _nondim_args(params)
-    return lambda t_, y: np.array(f(y, args), dtype=float)
-
-
-def nondimensional_jacobian(
-    params: NondimensionalParameters,
-) -> Callable[[float, np.ndarray], np.ndarray]:
-    """Numeric Jacobian of :func:`nondimensional_rhs`."""
-    jf = _nondimensional_function(_JACOBIAN)
-    args = _nondim_args(params)
-    return lambda t_, y: np.array(jf(y, args), dtype=float)
-
-
-def nondimensional_integrals_function(
-    params: NondimensionalParameters,
-) -> Callable[[np.ndarray], np.ndarray]:
-    """Numeric dimensionless ``(energy, area, geometric)`` of ``y`` (shape (6,) or (6, n))."""
-    hf = _nondimensional_function(_INTEGRALS)
-    args = _nondim_args(params)
-    return lambda y: np.array(np.broadcast_arrays(*hf(np.asarray(y, dtype=float), args)))
+        return getattr(numeric, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

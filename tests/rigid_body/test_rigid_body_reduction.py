@@ -19,11 +19,11 @@ from problems.rigid_body.equations import (
     a,
     b,
     k,
-    nondimensional_rhs,
     x0p,
     y0p,
     z0p,
 )
+from problems.rigid_body.numeric import nondimensional_rhs
 from problems.rigid_body.reduction import (
     DISK_PARAMETERS,
     G0,

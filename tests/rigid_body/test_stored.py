@@ -10,7 +10,7 @@ import perturb.cache
 from perturb.cache import bypassed
 from perturb.errors import CacheWarning
 from problems import get_problem
-from problems.rigid_body import _body, _stored, equations, true_orbit
+from problems.rigid_body import _body, _stored, equations, numeric, true_orbit
 from problems.rigid_body.reduction import _reduce
 
 PAPER = {
@@ -95,15 +95,15 @@ def test_a_damaged_or_foreign_entry_is_refused_and_recomputed(cache_folder, monk
 
 def test_the_body_potential_and_dimensional_expressions_read_back_equal(cache_folder):
     potential = equations.body_potential.__wrapped__(2)
-    expressions = equations._dimensional_expressions.__wrapped__()
+    expressions = numeric._dimensional_expressions.__wrapped__()
     assert (
         len(_entries(cache_folder, "body-potential"))
         == len(_entries(cache_folder, "body-dimensional"))
         == 1
     )
     assert equations.body_potential.__wrapped__(2) == potential == equations._body_potential(2)
-    again = equations._dimensional_expressions.__wrapped__()
-    assert again == expressions == equations._derive_dimensional()
+    again = numeric._dimensional_expressions.__wrapped__()
+    assert again == expressions == numeric._derive_dimensional()
 
 
 def _conditioning():

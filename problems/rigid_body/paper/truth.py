@@ -17,7 +17,7 @@ import numpy as np
 from attrs import field, frozen
 
 from perturb.oracle import Scipy
-from problems.rigid_body.equations import full_rhs, integrals_function
+from problems.rigid_body.numeric import full_rhs, integrals_function
 from problems.rigid_body.paper.closed_form import closed_form_columns
 from problems.rigid_body.paper.data import (
     PAPER_INPUTS,
