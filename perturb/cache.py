@@ -376,23 +376,21 @@ def bypassed():
 
 
 def active() -> bool:
-    """Whether :func:`cached` would use the disk now (a folder is set and it is not bypassed).
-
-    Callers whose cache key is costly to build (``sympy.srepr`` of a large system) check this
-    first, so that a run with the cache off does not pay for a key it never uses.
-    """
+    """Whether :func:`cached` uses the disk now (a folder is set and it is not bypassed)."""
     return cache_dir() is not None and not _BYPASS.get()
 
 
-def cached(kind: str, parts: tuple, compute: Callable[[], T]) -> T:
+def cached(kind: str, parts: tuple | Callable[[], tuple], compute: Callable[[], T]) -> T:
     """Return ``compute()``, reading it from / writing it to the disk cache when enabled.
 
     Parameters
     ----------
     kind : str
         A label used as the file prefix (``solution``, ``reduction`` ...): letters, digits, ``-``, ``_``.
-    parts : tuple
-        Everything the result depends on, as text-representable values (use ``sympy.srepr``).
+    parts : tuple or callable
+        Everything the result depends on, as text-representable values (use ``sympy.srepr``), or
+        a function returning that tuple: called only when the disk cache is in use, so that a run
+        with the cache off or bypassed does not pay for a costly key (``srepr`` of a large system).
     compute : callable
         Builds the object when it is not cached.
 
@@ -403,9 +401,11 @@ def cached(kind: str, parts: tuple, compute: Callable[[], T]) -> T:
     """
     if not isinstance(kind, str) or not _KIND.fullmatch(kind):
         raise bad_value("kind", kind, "use a short label of letters, digits, '-' or '_'")
-    folder = cache_dir()
-    if folder is None or _BYPASS.get():
+    if not active():
         return compute()
+    folder = cache_dir()
+    if callable(parts):
+        parts = parts()
     try:
         _check_folder(folder)
         secret = _secret(folder)

@@ -45,14 +45,9 @@ import sympy as sp
 from sympy.polys.rings import ring as polynomial_ring
 
 from perturb._defaults import LINEAR_SYMPY_MAX_TERMS
-from perturb.native import Converter
+from perturb.native import Converter, se
 
 __all__ = ["canonical_value", "solve_unique"]
-
-try:  # pragma: no branch - the native route needs symengine
-    import symengine as se
-except ImportError:  # pragma: no cover - exercised where symengine is absent
-    se = None
 
 
 class _NotHere(Exception):
@@ -60,7 +55,8 @@ class _NotHere(Exception):
 
 
 def canonical_value(value: sp.Expr) -> sp.Expr:
-    """The form sympy's linear route gives a solved value (``expand(factor_terms(cancel(v)))``)."""
+    """The form sympy's linear route gives a solved value (``expand(factor_terms(cancel(v)))``,
+    as :func:`perturb.method.conditions._solve_linear` writes it)."""
     return sp.expand(sp.factor_terms(sp.cancel(value)))
 
 

@@ -41,7 +41,6 @@ from attrs import field, frozen
 
 from perturb._checks import known_keywords
 from perturb._defaults import SOLVE_SECONDS
-from perturb.cache import active as cache_active
 from perturb.cache import cached
 from perturb.errors import InvalidSystemError, bad_value
 from perturb.method.conditions import ConditionSolver, OrderFailed
@@ -131,9 +130,9 @@ class PoincareMethod:
         ``cache=False``.
         """
         check_system(system)
-        if not self.cache or not cache_active():
+        if not self.cache:
             return _construct(self, system)
-        return cached("solution", self._cache_key(system), lambda: _construct(self, system))
+        return cached("solution", lambda: self._cache_key(system), lambda: _construct(self, system))
 
     def _cache_key(self, system: QuasilinearSystem) -> tuple:
         def text(value):

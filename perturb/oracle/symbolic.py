@@ -94,9 +94,9 @@ class SymbolicRHS:
     def _numeric(self) -> Callable[..., Any]:
         return numpy_lambdify(self.state, list(self.expressions), cse=True)
 
-    @cached_property
-    def _key(self) -> tuple:
-        """The disk-cache key of what is derived from this field: its exact state and expressions."""
+    def _cache_parts(self) -> tuple:
+        """The disk-cache key of what is derived from this field: its exact state and expressions
+        (built only when the cache is in use)."""
         return (tuple(map(sp.srepr, self.state)), tuple(map(sp.srepr, self.expressions)))
 
     @cached_property
@@ -105,7 +105,7 @@ class SymbolicRHS:
 
         Kept in memory and on disk (:func:`perturb.cache.cached`, kind ``jacobian``).
         """
-        return cached("jacobian", self._key, self._derive_jacobian)
+        return cached("jacobian", self._cache_parts, self._derive_jacobian)
 
     def _derive_jacobian(self) -> sp.Matrix:
         return sp.Matrix(self.expressions).jacobian(sp.Matrix(self.state))
@@ -131,7 +131,7 @@ class SymbolicRHS:
         period gives the monodromy matrix.  Kept in memory and on disk (kind ``variational``;
         the Jacobian's symbols ``Phi`` are :class:`sympy.Dummy`, read back as the same dummies).
         """
-        state, expressions = cached("variational", self._key, self._derive_variational)
+        state, expressions = cached("variational", self._cache_parts, self._derive_variational)
         return SymbolicRHS(state, expressions)
 
     def _derive_variational(self) -> tuple[tuple, tuple]:

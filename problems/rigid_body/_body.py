@@ -475,11 +475,11 @@ def _user_parameter(solution: PeriodicSolution, eps: float) -> float:
 def _symbolic_rhs(items: tuple) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Expr, ...]]:
     values = dict(items)
     body = tuple((name, values[name]) for name in _BODY_DATA)  # r0 and gamma3_0 do not enter
-    rhs = stored("body-rhs", ("equations.py", "_body.py"), body, lambda: _numeric_rhs(body))
+    rhs = stored("body-rhs", ("equations.py", "_body.py"), body, lambda: _rhs_with_values(body))
     return eq.DIMENSIONAL_STATE, rhs
 
 
-def _numeric_rhs(items: tuple) -> tuple[sp.Expr, ...]:
+def _rhs_with_values(items: tuple) -> tuple[sp.Expr, ...]:
     """The Euler–Poisson right-hand sides with the values ``items`` (name, float) put in."""
     v = dict(items)
     distance = sp.oo if math.isinf(v["R"]) else v["R"]

@@ -49,5 +49,8 @@ def stored(kind: str, sources: tuple[str, ...], inputs: tuple, compute: Callable
     compute : callable
         Builds the result when there is no valid entry.
     """
-    parts = (source_fingerprint(tuple(sources)), tuple(sp.srepr(value) for value in inputs))
+
+    def parts() -> tuple:  # built only when the disk cache is in use
+        return source_fingerprint(tuple(sources)), tuple(sp.srepr(value) for value in inputs)
+
     return cached(kind, parts, compute)

@@ -79,3 +79,22 @@ def test_no_key_is_built_when_the_cache_is_not_used(tmp_path, monkeypatch, setti
     assert active()
     PoincareMethod(order=1, amplitudes={"x": A}).solve(SYSTEM)
     assert keys == [1]  # the cache in use: the key is built
+
+
+def test_a_key_given_as_a_function_is_built_only_when_the_cache_is_used(tmp_path, monkeypatch):
+    from perturb.cache import bypassed, cached
+
+    built = []
+
+    def parts():
+        built.append(1)
+        return ("k",)
+
+    monkeypatch.setenv("PERTURB_CACHE_DIR", "off")
+    assert cached("demo", parts, lambda: "off") == "off" and built == []
+    monkeypatch.setenv("PERTURB_CACHE_DIR", str(tmp_path))
+    with bypassed():
+        assert cached("demo", parts, lambda: "bypassed") == "bypassed" and built == []
+    assert cached("demo", parts, lambda: "stored") == "stored" and built == [1]
+    # the function's key and the same tuple name one entry
+    assert cached("demo", ("k",), lambda: "not called") == "stored"

@@ -42,7 +42,7 @@ def test_a_body_reads_back_its_own_equations(cache_folder, monkeypatch):
     def not_again(items):
         raise AssertionError("recomputed although an entry exists")
 
-    monkeypatch.setattr(_body, "_numeric_rhs", not_again)
+    monkeypatch.setattr(_body, "_rhs_with_values", not_again)
     assert _rhs(PAPER) == first == fresh
     assert entry.stat().st_mtime_ns == written  # read, not rewritten
 
