@@ -12,7 +12,7 @@ import pytest
 from perturb.oracle import Scipy, SymbolicRHS, find_periodic_orbit
 from perturb.oracle.orbit import OrbitStatus
 from tests.oracle.noisy import NoisyIntegrator
-from tests.oracle.systems import duffing, duffing_period, van_der_pol, x, v
+from tests.oracle.systems import duffing, duffing_period, v, van_der_pol, x
 
 #: The issue's demand: the same orbit to 1e-6 (relative) whatever the machine perturbs.
 SAME_ORBIT = 1e-6
@@ -75,7 +75,11 @@ def test_a_stall_far_above_the_floor_still_fails():
     """The floor is measured, not granted: an integrator whose noise is far below the residual at
     which Newton cannot gain (here a max_iter of 1 from a poor guess) is a failure, not a pass."""
     orbit = find_periodic_orbit(
-        van_der_pol(EPS_VDP), [1.0, 0.0], 2 * np.pi, section_index=1, max_iter=1,
+        van_der_pol(EPS_VDP),
+        [1.0, 0.0],
+        2 * np.pi,
+        section_index=1,
+        max_iter=1,
         integrator=_integrator(),
     )
     assert not orbit.success and orbit.status is OrbitStatus.MAX_ITER

@@ -105,4 +105,4 @@ def test_a_converging_method_falls_monotonically_as_its_setting_tightens():
     for method in ("rk4", "scipy DOP853"):
         errors = [p.error for p in table.points if p.method == method]
         assert len(errors) == 4
-        assert all(b < a for a, b in zip(errors, errors[1:])), (method, errors)
+        assert all(b < a for a, b in zip(errors, errors[1:], strict=False)), (method, errors)
