@@ -288,6 +288,7 @@ class _OrderByOrder:
         self.pending: list = []
         self.dependent: list[PeriodicityCondition] = []
         self.frequency_top: int | None = None  # the order whose Omega_k is the last one kept
+        self.failure: OrderFailed | None = None  # why the run stopped, when it failed
 
     def _new(self, label: str) -> sp.Symbol:
         sym = sp.Symbol(label)
@@ -442,6 +443,7 @@ class _OrderByOrder:
                 raise OrderFailed(
                     Status.INCONSISTENT,
                     f"order {k}: condition {to_sympy(before)} = 0 cannot hold",
+                    (to_sympy(after),),
                 )
         self.pending = []
         return solution, branches
@@ -450,7 +452,11 @@ class _OrderByOrder:
     def run(self) -> PeriodicSolution:
         method, system = self.method, self.system
         lead = system.leading_order
-        max_k = method.order + max(lead, 1) + 1
+        # the orders a run may take: order N's terms, the deeper ones of coordinates that start
+        # at a power of eps (one lead more), and the corrections a degenerate family's
+        # conditions fix only at twice its family order (Hénon–Heiles's lines: the correction
+        # of order j at order j + 4; the bowed line along x, whose y starts at eps: N + 5)
+        max_k = method.order + 3 * max(lead, 1) + 2
         self.expansion = system.expansion(max_k)
         generating = self._generating()
         status, message = Status.SUCCESS, ""
@@ -488,6 +494,7 @@ class _OrderByOrder:
             status, message = Status.NOT_POLYNOMIAL, str(exc)
         except OrderFailed as exc:
             status, message = exc.status, exc.message
+            self.failure = exc
         if status is Status.SUCCESS and isinstance(method.branch, Mapping):
             stray = sorted({str(key) for key in method.branch} - self.created)
             if stray:
@@ -515,9 +522,21 @@ class _OrderByOrder:
         """
         depths = []
         for row in self.x:
-            lead = next((q for q, term in enumerate(row) if not term.is_zero()), 0)
+            lead = next((q for q, term in enumerate(row) if self._known_nonzero(term)), 0)
             depths.append(self.method.order + lead)
         return depths
+
+    def _known_nonzero(self, term) -> bool:
+        """Whether a term is non-zero whatever its open unknowns turn out to be: a term made of
+        open unknowns alone (a correction not yet fixed, an invariant coordinate's zero) does not
+        decide where a coordinate starts."""
+        if term.is_zero():
+            return False
+        open_ = self.conv.poly_symbols(term) & self.unknowns
+        if not open_:
+            return True
+        zero = self.conv.mapping(dict.fromkeys(open_, sp.S.Zero))
+        return not term.subs(zero).is_zero()
 
     def _open_unknowns(self, uniform: bool = False) -> set:
         """The unknowns left in the terms each coordinate keeps and in the frequency to order N
