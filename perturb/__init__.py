@@ -30,6 +30,9 @@ _LAZY = {
     "EPS": "perturb.system",
     "QuasilinearSystem": "perturb.system",
     "Regime": "perturb.system",
+    "Excitation": "perturb.excitation",
+    "amplitude_equations": "perturb.method.driven",
+    "frequency_response": "perturb.response",
     "Family": "perturb.method.families",
     "FamilyList": "perturb.method.families",
     "find_families": "perturb.method.families",
@@ -39,6 +42,7 @@ _LAZY = {
 __all__ = [
     "EPS",
     "AccuracyWarning",
+    "Excitation",
     "Family",
     "FamilyList",
     "IntegrationError",
@@ -52,7 +56,9 @@ __all__ = [
     "SolutionFailed",
     "Status",
     "UnknownNameError",
+    "amplitude_equations",
     "find_families",
+    "frequency_response",
     "solve",
     "validate",
 ]

@@ -55,6 +55,8 @@ from perturb.validation import (
     Model,
     OrbitEstimate,
     ShootingSetup,
+    quasilinear_state_names,
+    state_along,
 )
 
 __all__ = ["ParameterSpec", "Problem"]
@@ -194,9 +196,14 @@ class Problem(Model, ABC):
         return self.system(), options
 
     def families(self, order: int = 1) -> FamilyList:
-        """Every family of periodic solutions (:func:`perturb.find_families`), carried to ``order``."""
+        """Every family of periodic solutions (:func:`perturb.find_families`), carried to ``order``.
+
+        For a driven problem: every branch of the steady-state response at these parameter
+        values (``trivial``, ``lower``, ``middle``, ``upper``, …), each with its stability."""
         from perturb import find_families
 
+        if self.system().excitation is not None:
+            return self._driven_families(order)
         system, options = self.family_options(order)
         key = (type(self).__qualname__, order, system, repr(sorted(options.items())))
         if key not in _FAMILY_CACHE:
@@ -230,9 +237,13 @@ class Problem(Model, ABC):
         """The symbolic periodic solution (cached per class, order and method options).
 
         ``family`` (or the problem's :attr:`family`) names a family of :meth:`families` to follow
-        instead of the one :meth:`method_options` selects.
+        instead of the one :meth:`method_options` selects. A driven problem's solution is the
+        branch of its steady-state response at these parameter values (default: the largest
+        amplitude; :meth:`families` lists them all).
         """
         name = family if family is not None else self.family
+        if self.system().excitation is not None:
+            return self._driven_solution(order, name)
         if name is not None:
             return self.family_solution(order, name)
         options = self.method_options()
@@ -242,13 +253,69 @@ class Problem(Model, ABC):
         return _SOLUTION_CACHE[key]
 
     def state_names(self) -> tuple[str, ...]:
-        """Names of the state components :meth:`state` returns."""
-        return self.system().state_names
+        """Names of the state components :meth:`state` returns (a driven problem's phase
+        θ = Ωt last)."""
+        return quasilinear_state_names(self.system())
 
     def state(self, solution: PeriodicSolution, t) -> dict[str, np.ndarray]:
         """The state along ``solution`` at physical times ``t``, by name."""
-        y = solution.evaluate(t, self.parameter_value(), self.symbol_values())
-        return dict(zip(solution.state_names, y, strict=True))
+        return state_along(solution, t, self.parameter_value(), self.symbol_values())
+
+    def with_parameters(self, **values) -> Problem:
+        """The same problem with some parameters changed (validated as by :meth:`create`)."""
+        return type(self).create(**{**self.values, **values}).with_family(self.family)
+
+    # ------------------------------------------------------------------ driven problems
+    def _driven_branches(self, order: int):
+        """(points, names, equations, why) of the steady state at these values (cached)."""
+        from perturb.method.driven import amplitude_equations
+        from perturb.response import branch_names, branches_at
+
+        key = ("driven", type(self).__qualname__, order, tuple(sorted(self.values.items())))
+        if key not in _FAMILY_CACHE:
+            equations = amplitude_equations(self.system(), order)
+            points, why = branches_at(equations, self.symbol_values(), self.epsilon(), order)
+            _FAMILY_CACHE[key] = (points, branch_names(points), equations, why)
+        return _FAMILY_CACHE[key]
+
+    def _driven_solution(self, order: int, name: str | None) -> PeriodicSolution:
+        from perturb.response import branch_solution
+
+        points, names, equations, why = self._driven_branches(order)
+        if why or not points:
+            return attrs.evolve(
+                equations.solution,
+                status=Status.NO_ROOT,
+                message=why or "the response equations have no real root at these values",
+            )
+        if name is None:
+            nontrivial = [i for i, p in enumerate(points) if not p.trivial]
+            index = nontrivial[-1] if nontrivial else len(points) - 1
+        elif name in names:
+            index = names.index(name)
+        else:
+            raise UnknownNameError(
+                f"`family` = {name!r} is not a branch of {self.name} here: choose from {names}"
+            )
+        return branch_solution(equations, points[index], names[index])
+
+    def _driven_families(self, order: int) -> FamilyList:
+        from perturb import Family
+        from perturb.response import branch_solution
+
+        points, names, equations, _ = self._driven_branches(order)
+        families = [
+            Family(
+                name=name,
+                kind="isolated",
+                amplitudes={k: float(v) for k, v in point.amplitudes.items()},
+                free=(),
+                solution=branch_solution(equations, point, name),
+                phase_coordinate=equations.coordinates[0],
+            )
+            for point, name in zip(points, names, strict=True)
+        ]
+        return FamilyList(system=self.name, order=order, family_order=1, families=tuple(families))
 
     def period(self, solution: PeriodicSolution) -> float:
         """The period in physical time."""

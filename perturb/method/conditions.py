@@ -64,11 +64,16 @@ class ConditionSolver:
         Time budget of one sympy ``solve`` (and of one Groebner root search).
     phase : int
         Index of the phase coordinate (its amplitude orders the default branch choice).
+    driven : bool
+        A driven system: the forcing fixes the phase, so the phase coordinate's cosine amplitude
+        may vanish (no Rabinowitsch condition), and the default branch is the one of largest
+        amplitude sqrt(a**2 + b**2) of that coordinate.
     """
 
     branch: object
     solve_seconds: float
     phase: int
+    driven: bool = False
 
     def solve(
         self,
@@ -191,7 +196,11 @@ class ConditionSolver:
             return None
         system, variables = list(eqs), list(unknowns)
         phase_amplitude = generating.cos_amplitudes[self.phase]
-        if isinstance(phase_amplitude, sp.Symbol) and phase_amplitude in unknowns:
+        if (
+            not self.driven
+            and isinstance(phase_amplitude, sp.Symbol)
+            and phase_amplitude in unknowns
+        ):
             inverse = sp.Dummy("w")
             system.append(inverse * phase_amplitude - 1)
             variables = [inverse, *variables]
@@ -289,6 +298,8 @@ class ConditionSolver:
         ]
         pool = isolated or roots
         phase_amp = generating.cos_amplitudes[self.phase]
+        if self.driven:  # the forcing fixes the phase: order by the amplitude itself
+            phase_amp = phase_amp**2 + generating.sin_amplitudes[self.phase] ** 2
 
         def key(root):
             value = sp.sympify(phase_amp).xreplace(root)

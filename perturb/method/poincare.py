@@ -158,8 +158,9 @@ class PoincareMethod:
             if isinstance(self.branch, Mapping)
             else repr(self.branch)
         )
+        drive = () if system.excitation is None else (repr(system.excitation),)
         return (
-            tuple(sp.srepr(f) for f in fields),
+            tuple(sp.srepr(f) for f in fields) + drive,
             system.regime.value,
             system.name,
             system.truncation,
@@ -178,11 +179,16 @@ def solve(system: QuasilinearSystem, order: int = 1, **options) -> PeriodicSolut
 
 
 def _construct(method: PoincareMethod, system: QuasilinearSystem) -> PeriodicSolution:
-    """One run on the native backend; again on sympy if an expression cannot be held natively."""
+    """One run on the native backend; again on sympy if an expression cannot be held natively.
+
+    A driven system (``excitation`` set) runs the template of :mod:`perturb.method.driven`."""
+    template = _OrderByOrder
+    if system.excitation is not None:
+        from perturb.method.driven import _DrivenOrderByOrder as template
     try:
-        return _OrderByOrder(method, system).run()
+        return template(method, system).run()
     except NotNative:
-        return _OrderByOrder(method, system, SympyRing).run()
+        return template(method, system, SympyRing).run()
 
 
 class _OrderByOrder:
@@ -206,9 +212,14 @@ class _OrderByOrder:
         self._setup_phase_and_harmonics()
         self.conv = Converter(ring or self._ring())
         self._setup_unknowns()
-        self.solver = ConditionSolver(method.branch, method.solve_seconds, self.phase)
+        self.solver = self._make_solver()
 
     # ------------------------------------------------------------------ setup
+    def _make_solver(self) -> ConditionSolver:
+        """The solver of the periodicity conditions (hook: a driven system's knows the forcing
+        fixes the phase)."""
+        return ConditionSolver(self.method.branch, self.method.solve_seconds, self.phase)
+
     def _setup_phase_and_harmonics(self):
         method, names = self.method, self.names
         for key in method.amplitudes:
@@ -306,7 +317,7 @@ class _OrderByOrder:
                 a = b = sp.S.Zero
             else:
                 a = self._initial_cos(i, 0)
-                b = sp.S.Zero if i == self.phase else self._new(f"b_{name}0")
+                b = sp.S.Zero if self._phase_fixed_by(i) else self._new(f"b_{name}0")
             cos_amp.append(a)
             sin_amp.append(b)
             self.x[i].append(
@@ -344,9 +355,18 @@ class _OrderByOrder:
         return total
 
     # ------------------------------------------------------------------ order k
+    def _phase_fixed_by(self, i: int) -> bool:
+        """Whether coordinate ``i``'s sine amplitudes vanish because its velocity fixes the phase
+        (hook: the phase coordinate of an autonomous system; none of a driven one)."""
+        return i == self.phase
+
+    def _frequency_coefficient(self, k: int):
+        """:math:`\\Omega_k` in the native ring: an unknown of order k (hook: a driven system's
+        frequency is given)."""
+        return self.conv.to_native(self._new(f"Omega{k}"))
+
     def _forcing(self, k: int) -> list[TrigPoly]:
-        omega_new = self._new(f"Omega{k}")
-        omega_new = self.conv.to_native(omega_new)
+        omega_new = self._frequency_coefficient(k)
         result = forcing(
             k,
             self.system,
@@ -404,7 +424,11 @@ class _OrderByOrder:
             quadratures[name] = conv.trig(g)
             self._initial_cos(i, k)
             a = self.init_cos[i][-1]
-            b = conv.ring.zero if i == self.phase else conv.to_native(self._new(f"b_{name}{k}"))
+            b = (
+                conv.ring.zero
+                if self._phase_fixed_by(i)
+                else conv.to_native(self._new(f"b_{name}{k}"))
+            )
             self.x[i].append((g + poly.harmonic(m, a, b)).expand())
         return quadratures, conditions
 

@@ -23,8 +23,10 @@ from perturb.validation._quasilinear import (
     conservative_energy,
     first_order_form,
     lambdify_integrals,
+    state_along,
     substitutions,
 )
+from perturb.validation._quasilinear import state_names as quasilinear_state_names
 from perturb.validation.report import Condition
 
 __all__ = [
@@ -372,11 +374,10 @@ class SystemModel(Model):
         return _SOLUTIONS[key]
 
     def state_names(self) -> tuple[str, ...]:
-        return self.quasilinear.state_names
+        return quasilinear_state_names(self.quasilinear)
 
     def state(self, solution: PeriodicSolution, t) -> dict[str, np.ndarray]:
-        y = solution.evaluate(t, self.parameter_value(), self.symbol_values())
-        return dict(zip(solution.state_names, y, strict=True))
+        return state_along(solution, t, self.parameter_value(), self.symbol_values())
 
     def period(self, solution: PeriodicSolution) -> float:
         return float(solution.period_at(self.parameter_value(), self.symbol_values()))
