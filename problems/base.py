@@ -266,56 +266,23 @@ class Problem(Model, ABC):
         return type(self).create(**{**self.values, **values}).with_family(self.family)
 
     # ------------------------------------------------------------------ driven problems
-    def _driven_branches(self, order: int):
-        """(points, names, equations, why) of the steady state at these values (cached)."""
-        from perturb.method.driven import amplitude_equations
-        from perturb.response import branch_names, branches_at
+    def steady_state(self, order: int = 1):
+        """Every branch of a driven problem's response at these values
+        (:func:`perturb.response.steady_state`, cached per class, order and values)."""
+        from perturb.response import steady_state
 
         key = ("driven", type(self).__qualname__, order, tuple(sorted(self.values.items())))
         if key not in _FAMILY_CACHE:
-            equations = amplitude_equations(self.system(), order)
-            points, why = branches_at(equations, self.symbol_values(), self.epsilon(), order)
-            _FAMILY_CACHE[key] = (points, branch_names(points), equations, why)
+            _FAMILY_CACHE[key] = steady_state(
+                self.system(), self.symbol_values(), self.epsilon(), order
+            )
         return _FAMILY_CACHE[key]
 
     def _driven_solution(self, order: int, name: str | None) -> PeriodicSolution:
-        from perturb.response import branch_solution
-
-        points, names, equations, why = self._driven_branches(order)
-        if why or not points:
-            return attrs.evolve(
-                equations.solution,
-                status=Status.NO_ROOT,
-                message=why or "the response equations have no real root at these values",
-            )
-        if name is None:
-            nontrivial = [i for i, p in enumerate(points) if not p.trivial]
-            index = nontrivial[-1] if nontrivial else len(points) - 1
-        elif name in names:
-            index = names.index(name)
-        else:
-            raise UnknownNameError(
-                f"`family` = {name!r} is not a branch of {self.name} here: choose from {names}"
-            )
-        return branch_solution(equations, points[index], names[index])
+        return self.steady_state(order).solution(name)
 
     def _driven_families(self, order: int) -> FamilyList:
-        from perturb import Family
-        from perturb.response import branch_solution
-
-        points, names, equations, _ = self._driven_branches(order)
-        families = [
-            Family(
-                name=name,
-                kind="isolated",
-                amplitudes={k: float(v) for k, v in point.amplitudes.items()},
-                free=(),
-                solution=branch_solution(equations, point, name),
-                phase_coordinate=equations.coordinates[0],
-            )
-            for point, name in zip(points, names, strict=True)
-        ]
-        return FamilyList(system=self.name, order=order, family_order=1, families=tuple(families))
+        return self.steady_state(order).families(self.name, order)
 
     def period(self, solution: PeriodicSolution) -> float:
         """The period in physical time."""

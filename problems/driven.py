@@ -17,7 +17,12 @@ import math
 from perturb.errors import InvalidParameterError
 from problems.base import Problem
 
-__all__ = ["DrivenProblem", "positive_frequency"]
+__all__ = ["DrivenProblem", "non_negative", "positive_frequency"]
+
+
+def non_negative(value: float) -> str | None:
+    """Check helper: zero or positive (a damping coefficient)."""
+    return None if value >= 0 else "give a value >= 0"
 
 
 def positive_frequency(value: float) -> str | None:
@@ -34,6 +39,8 @@ class DrivenProblem(Problem):
 
     #: (p/q) * omega of the resonance (Omega = resonance_frequency + eps * sigma).
     resonance_frequency: float = 1.0
+    #: The parameters that vanish in the unforced, undamped system (the backbone's), by name.
+    unforced: dict = {}
 
     def _resonance(self, values) -> float:
         rf = self.resonance_frequency
@@ -53,6 +60,28 @@ class DrivenProblem(Problem):
     def symbol_values(self) -> dict[str, float]:
         values = {**self.values, "sigma": self.detuning()}
         return {p.name: values[p.name] for p in self.system().parameters if p.name in values}
+
+    def backbone_system(self, parameter: str):
+        """``(free system, coordinate, ω -> Ω)`` of the backbone when sweeping ``Omega``.
+
+        The free system is this one with :attr:`unforced` put in and no excitation; its
+        frequency ω(a) at amplitude a is where the forced response peaks, at Ω = (p/q) ω.
+        """
+        import attrs
+
+        if parameter != "Omega" or not self.unforced:
+            return None
+        system = self.system()
+        names = {p.name for p in system.parameters}
+        free = attrs.evolve(
+            system.with_values({k: v for k, v in self.unforced.items() if k in names}),
+            excitation=None,
+        )
+        detuning = system.excitation.detuning
+        free = attrs.evolve(free, parameters=tuple(p for p in free.parameters if p != detuning))
+        ratio = float(system.excitation.ratio)
+        coordinate = system.coordinates[system.reference_index].name
+        return free, coordinate, lambda w: ratio * w
 
     def with_epsilon(self, eps: float) -> Problem | None:
         if not (isinstance(eps, int | float) and math.isfinite(eps) and eps > 0):

@@ -13,9 +13,10 @@ from __future__ import annotations
 import sympy as sp
 
 from perturb import EPS, Excitation, QuasilinearSystem
+from perturb.errors import InvalidParameterError
 from problems import register
 from problems.base import ParameterSpec, positive
-from problems.driven import DrivenProblem, positive_frequency
+from problems.driven import DrivenProblem, non_negative, positive_frequency
 
 X, XDOT, THETA = sp.symbols("x xdot theta")
 ZETA, GAMMA, FORCE, SIGMA = sp.symbols("zeta gamma F sigma")
@@ -33,11 +34,21 @@ class ForcedDuffing(DrivenProblem):
     parameter_specs = (
         ParameterSpec("eps", 0.05, "scale of the small terms (damping, cubic stiffness, forcing)",
                       positive),
-        ParameterSpec("zeta", 0.1, "scaled damping (the damping ratio is eps*zeta)", positive),
+        ParameterSpec("zeta", 0.1, "scaled damping (the damping ratio is eps*zeta)", non_negative),
         ParameterSpec("gamma", 1.0, "scaled cubic stiffness (> 0 hardening, < 0 softening)"),
         ParameterSpec("F", 1.0, "scaled forcing amplitude (the force is eps*F)", positive),
         ParameterSpec("Omega", 1.0, "excitation frequency", positive_frequency),
     )  # fmt: skip
+
+    unforced = {"F": 0.0, "zeta": 0.0}
+
+    def check_values(self, values) -> None:
+        super().check_values(values)
+        if values["zeta"] == 0 and values["gamma"] == 0:
+            raise InvalidParameterError(
+                "`zeta` = 0 with `gamma` = 0 is invalid: an undamped linear oscillator forced at "
+                "resonance has no bounded response; give zeta > 0 (damping) or gamma != 0"
+            )
 
     @classmethod
     def build_system(cls) -> QuasilinearSystem:

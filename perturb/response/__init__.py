@@ -4,7 +4,14 @@
 :mod:`perturb.method.driven` for every real root at each value (:func:`real_roots`).
 """
 
-from perturb.response.branches import BranchPoint, branch_names, branch_solution, branches_at
+from perturb.response.branches import (
+    BranchPoint,
+    SteadyState,
+    branch_names,
+    branch_solution,
+    branches_at,
+    steady_state,
+)
 from perturb.response.curve import (
     Fold,
     FrequencyResponse,
@@ -16,6 +23,7 @@ from perturb.response.roots import RootSet, RootStatus, real_roots
 
 __all__ = [
     "BranchPoint",
+    "SteadyState",
     "branch_names",
     "branch_solution",
     "branches_at",
@@ -26,5 +34,6 @@ __all__ = [
     "RootStatus",
     "frequency_response",
     "real_roots",
+    "steady_state",
     "trace_branches",
 ]

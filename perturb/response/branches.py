@@ -23,7 +23,15 @@ from perturb.response.roots import real_roots
 from perturb.solution import PeriodicSolution, Status
 from perturb.system import EPS
 
-__all__ = ["BranchPoint", "branch_names", "branch_solution", "branches_at", "exact_number"]
+__all__ = [
+    "BranchPoint",
+    "SteadyState",
+    "branch_names",
+    "branch_solution",
+    "branches_at",
+    "exact_number",
+    "steady_state",
+]
 
 #: Newton iterations of the order-N continuation from a first-order root.
 CONTINUATION_ITERATIONS = 12
@@ -116,7 +124,10 @@ def branches_at(
     out = []
     for root in roots.roots:
         amplitudes, note = refine(root)
-        flow = slow_flow(equations, amplitudes, point_values, float(epsilon), order=0)
+        # the slow flow of the displacement function whose root this is (order 0 when the
+        # continuation kept the first-order root): a Jacobian off its own root means nothing
+        flow_order = 0 if note else order
+        flow = slow_flow(equations, amplitudes, point_values, float(epsilon), order=flow_order)
         norms = {
             c: math.hypot(amplitudes[f"a_{c}"], amplitudes[f"b_{c}"]) for c in equations.coordinates
         }
@@ -230,3 +241,73 @@ def branch_solution(
         status=Status.SUCCESS,
         message=message,
     )
+
+
+@attrs.frozen
+class SteadyState:
+    """Every branch of a driven system's response at one parameter point.
+
+    Attributes
+    ----------
+    points : tuple of BranchPoint
+        Sorted by amplitude.
+    names : tuple of str
+        :func:`branch_names` of ``points``.
+    equations : AmplitudeEquations
+    why : str
+        Empty, or why the roots could not be enumerated (then ``points`` is empty).
+    """
+
+    points: tuple = attrs.field(converter=tuple)
+    names: tuple = attrs.field(converter=tuple)
+    equations: AmplitudeEquations = attrs.field(eq=False)
+    why: str = ""
+
+    def solution(self, name: str | None = None) -> PeriodicSolution:
+        """The branch ``name`` (default: the largest non-trivial amplitude) as a solution; a
+        failed one (``NO_ROOT`` with the reason) when there is none."""
+        from perturb.errors import UnknownNameError
+
+        if self.why or not self.points:
+            return attrs.evolve(
+                self.equations.solution,
+                status=Status.NO_ROOT,
+                message=self.why or "the response equations have no real root at these values",
+            )
+        if name is None:
+            nontrivial = [i for i, p in enumerate(self.points) if not p.trivial]
+            index = nontrivial[-1] if nontrivial else len(self.points) - 1
+        elif name in self.names:
+            index = self.names.index(name)
+        else:
+            raise UnknownNameError(
+                f"`family` = {name!r} is not a branch of the response here: choose from "
+                f"{list(self.names)}"
+            )
+        return branch_solution(self.equations, self.points[index], self.names[index])
+
+    def families(self, system_name: str, order: int):
+        """The branches as a :class:`perturb.FamilyList` (isolated families, by name)."""
+        from perturb.method.families import Family, FamilyList
+
+        families = [
+            Family(
+                name=name,
+                kind="isolated",
+                amplitudes={k: float(v) for k, v in point.amplitudes.items()},
+                free=(),
+                solution=branch_solution(self.equations, point, name),
+                phase_coordinate=self.equations.coordinates[0],
+            )
+            for point, name in zip(self.points, self.names, strict=True)
+        ]
+        return FamilyList(system=system_name, order=order, family_order=1, families=families)
+
+
+def steady_state(system, values: Mapping, epsilon: float, order: int = 1) -> SteadyState:
+    """Every branch of the driven ``system``'s response at ``values`` (:class:`SteadyState`)."""
+    from perturb.method.driven import amplitude_equations
+
+    equations = amplitude_equations(system, order)
+    points, why = branches_at(equations, values, epsilon, order)
+    return SteadyState(points, branch_names(points), equations, why)

@@ -227,33 +227,60 @@ def _folds(first, unknowns, swept, low, high, equations) -> list[Fold]:
 def trace_branches(points, grid, coordinate: str | None = None) -> list[list[ResponsePoint]]:
     """Join the roots of neighbouring grid values into continuous branches.
 
-    At each grid value the roots are sorted by amplitude; a root continues the branch whose last
-    point (at the previous grid value) is nearest in amplitude, each branch taken once; roots left
-    over start new branches (a fold was crossed). A plotting aid: the points themselves are exact.
+    Between two folds the roots keep their order in amplitude (two roots of the response
+    equations meet only at a fold), so equal counts are matched rank by rank. Where the count
+    changes, a fold was crossed: the roots that appear (or disappear) are chosen among the
+    adjacent pairs by the least total distance to the others' predicted amplitudes (linear
+    extrapolation of each branch). A plotting aid: the points themselves are exact.
     """
+    from itertools import combinations
+
     by_value: dict[float, list] = {}
     for p in points:
         by_value.setdefault(p.value, []).append(p)
     branches: list[list] = []
     open_: list[list] = []
+
+    def predicted(branch, value):
+        if len(branch) < 2:
+            return branch[-1].norm(coordinate)
+        (a, b) = branch[-2], branch[-1]
+        if b.value == a.value:
+            return b.norm(coordinate)
+        slope = (b.norm(coordinate) - a.norm(coordinate)) / (b.value - a.value)
+        return b.norm(coordinate) + slope * (value - b.value)
+
     for value in sorted(by_value):
         here = sorted(by_value[value], key=lambda p: p.norm(coordinate))
-        next_open, taken = [], set()
-        for p in here:
-            best, distance = None, math.inf
-            for i, branch in enumerate(open_):
-                if i in taken:
-                    continue
-                d = abs(branch[-1].norm(coordinate) - p.norm(coordinate))
-                if d < distance:
-                    best, distance = i, d
-            if best is None:
-                branch = [p]
-                branches.append(branch)
-            else:
-                taken.add(best)
-                branch = open_[best]
-                branch.append(p)
-            next_open.append(branch)
+        guesses = [predicted(b, value) for b in open_]
+        n, m = len(open_), len(here)
+        best, best_cost = None, math.inf
+        if m >= n:  # choose which of the current roots continue the open branches
+            for kept in combinations(range(m), n):
+                cost = sum(
+                    abs(here[j].norm(coordinate) - g) for j, g in zip(kept, guesses, strict=True)
+                )
+                if cost < best_cost:
+                    best, best_cost = [(i, j) for i, j in enumerate(kept)], cost
+        else:  # choose which open branches end here
+            for kept in combinations(range(n), m):
+                cost = sum(abs(here[j].norm(coordinate) - guesses[i]) for j, i in enumerate(kept))
+                if cost < best_cost:
+                    best, best_cost = [(i, j) for j, i in enumerate(kept)], cost
+        continued = dict(best or [])
+        next_open = []
+        taken = set(continued.values())
+        for i, j in sorted(continued.items(), key=lambda item: item[1]):
+            open_[i].append(here[j])
+        for j, p in enumerate(here):
+            if j in taken:
+                continue
+            branch = [p]
+            branches.append(branch)
+        for j, p in enumerate(here):
+            owner = next((open_[i] for i, jj in continued.items() if jj == j), None)
+            if owner is None:
+                owner = next(b for b in branches if b[-1] is p)
+            next_open.append(owner)
         open_ = next_open
     return branches

@@ -369,8 +369,17 @@ class SystemModel(Model):
 
     def solve(self, order: int = 1) -> PeriodicSolution:
         key = (self.quasilinear, order, repr(sorted(self.options.items(), key=str)))
+        if self.quasilinear.excitation is not None:  # a branch of the steady state at the values
+            key = (*key, repr(sorted(self.symbol_values().items())), self.parameter_value())
         if key not in _SOLUTIONS:
-            _SOLUTIONS[key] = PoincareMethod(order=order, **self.options).solve(self.quasilinear)
+            if self.quasilinear.excitation is not None:
+                from perturb.response import steady_state
+
+                state = steady_state(self.quasilinear, self.symbol_values(), self.epsilon(), order)
+                _SOLUTIONS[key] = state.solution(self.options.get("family"))
+            else:
+                method = PoincareMethod(order=order, **self.options)
+                _SOLUTIONS[key] = method.solve(self.quasilinear)
         return _SOLUTIONS[key]
 
     def state_names(self) -> tuple[str, ...]:

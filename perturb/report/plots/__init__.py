@@ -7,10 +7,12 @@ importing this package works without it, and a plot then raises
 
 Modules: :mod:`.timeseries` (state against time, error, phase portraits), :mod:`.convergence`
 (error against ε), :mod:`.workprecision`, :mod:`.rigid_body` (Euler angles, orientation, GIF),
-:mod:`.style` (the publication rc context every function uses).
+:mod:`.response` (frequency responses, Floquet multipliers along the branches), :mod:`.style`
+(the publication rc context every function uses).
 """
 
 from perturb.report.plots.convergence import plot_convergence
+from perturb.report.plots.response import plot_floquet_along_branches, plot_frequency_response
 from perturb.report.plots.rigid_body import (
     animate_orientation,
     plot_euler_angles,
@@ -25,6 +27,8 @@ __all__ = [
     "animate_orientation",
     "plot_convergence",
     "plot_error",
+    "plot_floquet_along_branches",
+    "plot_frequency_response",
     "plot_euler_angles",
     "plot_orientation",
     "plot_phase",
