@@ -42,6 +42,9 @@ CONTINUATION_TOL = 1e-12
 CONTINUATION_LEAP = 0.5
 #: A response whose amplitudes are all below this is the trivial one (x = 0).
 TRIVIAL = 1e-12
+#: Two roots this close (relative) are one: far above the isolation width, far below any
+#: distinct branch.
+DUPLICATE = 1e-8
 
 
 @attrs.frozen
@@ -122,7 +125,7 @@ def branches_at(
     refine = _continuation(equations, order, fixed, float(epsilon))
     point_values = {k.name: float(v) for k, v in fixed.items()}
     out = []
-    for root in roots.roots:
+    for root in _distinct_orbits(roots.roots, equations):
         amplitudes, note = refine(root)
         # the slow flow of the displacement function whose root this is (order 0 when the
         # continuation kept the first-order root): a Jacobian off its own root means nothing
@@ -143,6 +146,40 @@ def branches_at(
             )
         )
     return sorted(out, key=lambda p: tuple(p.norms.values())), ""
+
+
+def _distinct_orbits(roots, equations: AmplitudeEquations) -> list[dict]:
+    """The roots that are different orbits: a response of p forcing periods shifted by k forcing
+    periods (s -> s + 2 pi k/p) is the same orbit, its harmonic-m amplitudes rotated by
+    2 pi k m/p (p = 2: the parametric response's (a, b) and (-a, -b))."""
+    p = equations.system.excitation.p
+    symbols = equations.amplitudes
+    kept: list[dict] = []
+
+    def vector(root):
+        return np.array([float(root[s]) for s in symbols])
+
+    def rotated(v, k):
+        out = v.copy()
+        for i, m in enumerate(equations.harmonics):
+            angle = 2 * math.pi * k * m / p
+            c, s_ = math.cos(angle), math.sin(angle)
+            a, b = v[2 * i], v[2 * i + 1]
+            out[2 * i], out[2 * i + 1] = c * a + s_ * b, -s_ * a + c * b
+        return out
+
+    for root in roots:
+        v = vector(root)
+        size = max(1.0, float(np.max(np.abs(v))))
+        images = [rotated(v, k) for k in range(1, p)]
+        if any(
+            np.max(np.abs(image - vector(other))) <= DUPLICATE * size
+            for other in kept
+            for image in images
+        ):
+            continue
+        kept.append(root)
+    return kept
 
 
 def _continuation(equations: AmplitudeEquations, order: int, fixed: dict, eps: float):

@@ -84,11 +84,17 @@ class ResponsePoint:
 
 @frozen
 class Fold:
-    """A saddle-node point of the first-order response: where two branches meet."""
+    """A saddle-node point of the response: where two branches meet.
+
+    ``value`` is the fold of the order-N response (continued from the exact first-order fold,
+    ``first_order``); ``note`` says when the continuation did not converge (then both agree).
+    """
 
     value: float = field(converter=float)
     amplitudes: dict
     norms: dict
+    first_order: float = field(default=math.nan, converter=float)
+    note: str = ""
 
 
 @frozen
@@ -220,8 +226,54 @@ def _folds(first, unknowns, swept, low, high, equations) -> list[Fold]:
         }
         if all(n == 0 for n in norms.values()):
             continue  # the trivial branch's own crossing is a pitchfork, reported by stability
-        out.append(Fold(value, amplitudes, norms))
+        out.append(Fold(value, amplitudes, norms, value))
     return sorted(out, key=lambda f: f.value)
+
+
+#: Newton iterations of a fold's continuation to order N.
+FOLD_ITERATIONS = 20
+
+
+def continue_fold(fold: Fold, equations, order: int, fixed: dict, swept, epsilon: float) -> Fold:
+    """The order-N fold near a first-order one: Newton on {D_N = 0, det dD_N/d(a, b) = 0} in the
+    amplitudes and the swept parameter, started at the exact first-order fold."""
+    import numpy as np
+
+    from perturb._lambdify import numpy_lambdify
+    from perturb.system import EPS
+
+    if order == 0:
+        return fold
+    rows = [sp.expand(r.xreplace(fixed).subs(EPS, epsilon)) for r in equations.displacement(order)]
+    unknowns = [*equations.amplitudes, swept]
+    jac = sp.Matrix([[sp.diff(r, a) for a in equations.amplitudes] for r in rows])
+    system = [*rows, sp.expand(jac.det(method="berkowitz"))]
+    f = numpy_lambdify(unknowns, system)
+    df = numpy_lambdify(unknowns, [[sp.diff(e, u) for u in unknowns] for e in system])
+    x = np.array([*(fold.amplitudes[a.name] for a in equations.amplitudes), fold.value])
+    start = x.copy()
+    for _ in range(FOLD_ITERATIONS):
+        residual = np.asarray(f(*x), dtype=float)
+        if np.max(np.abs(residual)) <= 1e-12 * max(1.0, float(np.max(np.abs(x)))):
+            break
+        try:
+            x = x + np.linalg.lstsq(np.asarray(df(*x), dtype=float), -residual, rcond=None)[0]
+        except np.linalg.LinAlgError:
+            break
+    residual = np.asarray(f(*x), dtype=float)
+    moved = float(np.max(np.abs(x - start)))
+    if (
+        not np.all(np.isfinite(x))
+        or np.max(np.abs(residual)) > 1e-9
+        or moved > 0.5 * max(1.0, float(np.max(np.abs(start))))
+    ):
+        return Fold(fold.value, fold.amplitudes, fold.norms, fold.value,
+                    f"the order-{order} fold did not converge: first-order value kept")  # fmt: skip
+    amplitudes = {a.name: float(v) for a, v in zip(equations.amplitudes, x, strict=False)}
+    norms = {
+        c: math.hypot(amplitudes[f"a_{c}"], amplitudes[f"b_{c}"]) for c in equations.coordinates
+    }
+    return Fold(float(x[-1]), amplitudes, norms, fold.value)
 
 
 def trace_branches(points, grid, coordinate: str | None = None) -> list[list[ResponsePoint]]:

@@ -26,7 +26,13 @@ from attrs import field, frozen
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import amplitude_equations
 from perturb.response.branches import branch_names, branches_at, exact_number
-from perturb.response.curve import Fold, FrequencyResponse, ResponsePoint, _folds
+from perturb.response.curve import (
+    Fold,
+    FrequencyResponse,
+    ResponsePoint,
+    _folds,
+    continue_fold,
+)
 
 __all__ = ["Backbone", "ProblemResponse", "TrueResponse", "problem_response"]
 
@@ -209,9 +215,16 @@ def _problem_folds(equations, problem, parameter, variants, grid) -> list[Fold]:
     rows = [sp.expand(e.xreplace(fixed)) for e in equations.displacement(0)]
     low, high = sorted((s0, s1))
     out = []
+    eps = float(problem.epsilon())
     for fold in _folds(rows, list(equations.amplitudes), symbol, low, high, equations):
-        value = a + (fold.value - s0) / slope if slope else a
-        out.append(Fold(value, fold.amplitudes, fold.norms))
+        fold = continue_fold(fold, equations, equations.order, fixed, symbol, eps)
+
+        def back(value):
+            return a + (value - s0) / slope if slope else a
+
+        out.append(
+            Fold(back(fold.value), fold.amplitudes, fold.norms, back(fold.first_order), fold.note)
+        )
     return sorted(out, key=lambda f: f.value)
 
 

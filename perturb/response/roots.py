@@ -60,17 +60,17 @@ class RootSet:
 
 
 def _isolated(poly: sp.Poly) -> list[float]:
-    """The real roots of a univariate polynomial with rational coefficients, certified."""
+    """The real roots of a univariate polynomial with rational coefficients, certified.
+
+    The square-free part is isolated (a multiple root, such as the trivial response's, counts
+    once), each interval narrowed to :data:`ROOT_WIDTH` by the exact method itself.
+    """
     if poly.degree() <= 0:
         return []
-    out = []
-    for (lo, hi), _mult in poly.intervals():
-        lo, hi = sp.Rational(lo), sp.Rational(hi)
-        width = ROOT_WIDTH * max(1.0, float(abs(lo)), float(abs(hi)))
-        if hi - lo > width and lo != hi:
-            lo, hi = poly.refine_root(lo, hi, eps=sp.Rational(width))
-        out.append(float((lo + hi) / 2))
-    return out
+    square_free = poly.sqf_part()
+    bound = max(1.0, *(abs(float(c)) for c in square_free.monic().coeffs()))
+    width = sp.Rational(ROOT_WIDTH) * sp.Rational(repr(min(bound, 1e6)))
+    return [float((lo + hi) / 2) for (lo, hi), _ in square_free.intervals(eps=width)]
 
 
 def _scale(poly: sp.Poly) -> float:
