@@ -84,3 +84,54 @@ def test_bad_input_is_one_line_and_exit_2(capsys, argv, words):
 def test_a_free_problem_has_no_frequency_response(capsys):
     code, _, err = run(capsys, "response", "duffing", "--sweep", "eps=0.1:0.2:3")
     assert code == 2 and "not driven" in err
+
+
+USER_FILE = '''
+import sympy as sp
+from perturb import EPS, Excitation, QuasilinearSystem
+from problems.base import ParameterSpec, Problem
+
+X, V, TH = sp.symbols("x xdot theta")
+MU, K, SIGMA = sp.symbols("mu k sigma")
+
+
+class ForcedVanDerPol(Problem):
+    """A user's own: x'' + x = eps [mu (1 - x^2) x' + k cos(Omega t)], Omega = 1 + eps sigma."""
+
+    name = "forced-vdp"
+    summary = "forced van der Pol (a user's file)"
+    parameter_specs = (
+        ParameterSpec("eps", 0.05, "small parameter"),
+        ParameterSpec("mu", 1.0, "negative damping"),
+        ParameterSpec("k", 1.0, "forcing"),
+        ParameterSpec("sigma", 0.0, "detuning"),
+    )
+
+    @classmethod
+    def build_system(cls):
+        return QuasilinearSystem(
+            [X], [V], [1], [EPS * (MU * (1 - X**2) * V + K * sp.cos(TH))],
+            parameters=[MU, K, SIGMA], excitation=Excitation(TH, 1, SIGMA),
+        )
+'''
+
+
+def test_a_users_own_forced_oscillator_from_one_file(capsys, tmp_path):
+    """Issue 18's 'done when': a forced oscillator of one's own, in one file, its response with
+    stable and unstable branches, and `perturb validate` at a chosen point."""
+    path = tmp_path / "forced_vdp.py"
+    path.write_text(USER_FILE)
+    code, out, err = run(
+        capsys, "response", f"{path}:ForcedVanDerPol", "--sweep", "sigma=-1:1:9", "--format",
+        "json",
+    )  # fmt: skip
+    assert code == 0, err
+    points = json.loads(out)["points"]
+    assert {p["stable"] for p in points} >= {True, False}  # frequency entrainment and its loss
+    code, out, err = run(
+        capsys, "validate", f"{path}:ForcedVanDerPol", "--set", "sigma=0", "--format", "json"
+    )
+    assert code == 0, err
+    report = json.loads(out)
+    assert report["outcome"] == "valid", report["verdict"]
+    assert report["checks"]["stability"]["passed"] is True
