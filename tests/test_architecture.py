@@ -112,36 +112,3 @@ def test_only_the_cli_imports_the_leaves(path):
 def test_no_file_holds_two_rooms(path):
     n_lines = len(path.read_text(encoding="utf-8").splitlines())
     assert n_lines <= MAX_LINES, f"{path.relative_to(ROOT)} has {n_lines} lines (limit {MAX_LINES})"
-
-
-#: The sweep extra's packages and the only modules that may import them (issue 19: the engine
-#: and the rest of the CLI never do, so `perturb --help` and every other command run without it).
-SWEEP_PACKAGES = ("dask", "distributed", "xarray", "zarr")
-SWEEP_IMPORTERS = ("perturb.sweep", "perturb.cli._sweep", "perturb.report.plots.sweep")
-
-
-@pytest.mark.parametrize("path", list(_sources()), ids=_module_name)
-def test_only_the_sweep_room_imports_the_sweep_extra(path):
-    module = _module_name(path)
-    if any(_is_under(module, room) for room in SWEEP_IMPORTERS):
-        return
-    offending = [
-        (line, name)
-        for line, name in _imports(path)
-        if any(_is_under(name, package) for package in SWEEP_PACKAGES)
-        or _is_under(name, "perturb.sweep")
-    ]
-    assert not offending, f"{path.relative_to(ROOT)} imports the sweep extra at {offending}"
-
-
-def test_the_help_loads_no_sweep_package():
-    import subprocess
-    import sys
-
-    code = (
-        "import sys; from perturb.cli import main\n"
-        "try:\n    main(['--help'])\nexcept SystemExit:\n    pass\n"
-        f"print(sorted(m for m in sys.modules if m.split('.')[0] in {SWEEP_PACKAGES!r}))"
-    )
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
-    assert out.stdout.strip().splitlines()[-1] == "[]", out.stdout

@@ -64,8 +64,8 @@ def _progress(args) -> Iterator[None]:
                 bar.close()
 
 
-#: Commands whose ``--output`` is a folder (report files; a sweep's Zarr store): their own meaning.
-_FOLDER_OUTPUT = ("reproduce", "report", "sweep")
+#: Commands whose ``--output`` is a folder of report files (their own meaning, kept).
+_FOLDER_OUTPUT = ("reproduce", "report")
 
 
 def _output_file(path: str) -> Path:
@@ -121,7 +121,6 @@ _COMMANDS = {
     "work-precision": _command("_cmd_work_precision"),
     "families": _command("_cmd_families"),
     "response": _command("_cmd_response", "_response"),
-    "sweep": _command("_cmd_sweep", "_sweep"),
     "report": _command("_cmd_report", "_report"),
 }
 

@@ -15,7 +15,6 @@ _EPILOG = """examples:
   perturb validate duffing --set eps=0.05
   perturb families resonant-pair --order 2
   perturb response forced-duffing --sweep Omega=0.9:1.3:81 --set F=1 --validate 2
-  perturb sweep duffing --grid eps=0.01:0.3:30 --grid amplitude=0.5:2:20 --validate --output map.zarr
   perturb solve resonant-pair --family anti-phase
   perturb reproduce paper
   perturb work-precision duffing --periods 10 --orders 3 --format csv
@@ -167,7 +166,6 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     _add_family_arguments(sub, solve, validate)
     _add_response(sub)
-    _add_sweep(sub)
     report = sub.add_parser(
         "report",
         help="write a scene's report folder: only the tables, checks and plots it asks for",
@@ -180,7 +178,7 @@ def _build_parser() -> argparse.ArgumentParser:
         "--output", required=True, metavar="DIR", help="the report folder (created if missing)"
     )
     for name, command in sub.choices.items():
-        if name not in ("reproduce", "report", "sweep"):  # theirs is a folder, kept as it was
+        if name not in ("reproduce", "report"):  # theirs is a folder (DIR), kept as it was
             command.add_argument(
                 "--output",
                 default=None,
@@ -220,36 +218,6 @@ def _add_response(sub) -> None:
         help="also save the frequency-response plot (needs matplotlib)",
     )  # fmt: skip
     _add_format(response, ["table", "csv", "json", "latex"])
-
-
-def _add_sweep(sub) -> None:
-    """``perturb sweep``: a problem over a grid of its parameters, on Dask."""
-    sweep = sub.add_parser(
-        "sweep",
-        help="a problem over a grid of its parameters (evaluated, optionally validated) on Dask",
-        description="Evaluate PROBLEM at every point of a grid of its own parameters (period, "
-        "frequency, amplitudes) and with --validate judge each point against the true motion, "
-        "on a Dask LocalCluster (--workers) or an existing cluster (--scheduler), written to a "
-        "Zarr store chunk by chunk (--output; --resume continues an interrupted sweep).",
-    )
-    _add_problem_arguments(sweep)
-    sweep.add_argument(
-        "--grid", action="append", required=True, metavar="NAME=START:STOP:N",
-        help="a swept parameter and its N values (repeatable: one dimension each)",
-    )  # fmt: skip
-    sweep.add_argument("--validate", action="store_true", help="also judge every point")
-    sweep.add_argument("--workers", default=None, help="LocalCluster worker processes")
-    sweep.add_argument(
-        "--scheduler", default=None, metavar="ADDRESS",
-        help="tcp://HOST:PORT of an existing Dask scheduler (instead of a LocalCluster)",
-    )  # fmt: skip
-    sweep.add_argument(
-        "--output", default=None, metavar="STORE",
-        help="the Zarr store written chunk by chunk (a folder; never overwritten)",
-    )  # fmt: skip
-    sweep.add_argument("--resume", action="store_true", help="continue the sweep in --output")
-    sweep.add_argument("--yes", action="store_true", help="confirm a sweep of over 1e7 points")
-    _add_format(sweep, ["zarr", "csv", "json"])
 
 
 def _add_family_arguments(sub, solve, validate) -> None:

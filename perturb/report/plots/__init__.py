@@ -20,7 +20,6 @@ from perturb.report.plots.rigid_body import (
     rotation_matrix,
 )
 from perturb.report.plots.style import publication_style
-from perturb.report.plots.sweep import plot_validity_map
 from perturb.report.plots.timeseries import plot_error, plot_phase, plot_time_series
 from perturb.report.plots.workprecision import plot_work_precision
 
@@ -34,7 +33,6 @@ __all__ = [
     "plot_orientation",
     "plot_phase",
     "plot_time_series",
-    "plot_validity_map",
     "plot_work_precision",
     "publication_style",
     "rotation_matrix",
