@@ -10,7 +10,7 @@
 
 Times are medians of ``repeat`` runs.  The reference is heyoka in extended precision when available
 (``long double``/``real128``), else DOP853 at ``REFERENCE_RTOL``.  The error is the maximum over the
-output grid and the components of ``|y - y_ref| / amplitude`` (amplitude = max |y_ref| per component).
+output grid and the components of ``|y - y_ref| / amplitude`` (amplitude = max ``|y_ref|`` per component).
 
 The problem is anything validation accepts (a :class:`perturb.validation.Model`: a registered
 problem, a user's Problem subclass, or a bare system through :func:`perturb.validation.as_model`).

@@ -193,7 +193,7 @@ class OrbitCheck:
     period_error : float
         (analytic period − true period) / true period.
     initial_state_error : float
-        Max over components of |analytic − true| initial state, relative to the amplitudes.
+        Max over components of ``|analytic − true|`` initial state, relative to the amplitudes.
     orbit_error : float
         Max distance of the analytic orbit from the true one over one period, at equal phases,
         relative to the orbit's size (the largest amplitude).

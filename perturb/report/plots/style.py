@@ -100,7 +100,7 @@ def require_matplotlib():
 
 @contextlib.contextmanager
 def publication_style() -> Iterator[None]:
-    """Context in which :data:`PUBLICATION_RC` is in force (the global rcParams are restored)."""
+    """Context in which :data:`~perturb.report.plots.style.PUBLICATION_RC` is in force (the global rcParams are restored)."""
     matplotlib = require_matplotlib()
     with _STYLE_LOCK, matplotlib.rc_context(PUBLICATION_RC):
         yield
