@@ -19,8 +19,10 @@ from pathlib import Path
 
 import perturb
 
+sys.path.insert(0, str(Path(__file__).resolve().parent / "_ext"))
+from perturb_docs import FigureScraper  # noqa: E402 - needs _ext on the path
+
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE / "_ext"))
 # The notebooks' kernel inherits this environment: the ``perturb`` command of *this* Python comes
 # first on PATH (a venv used without activating it), and the figures render without a display.
 os.environ["PATH"] = str(Path(sys.executable).parent) + os.pathsep + os.environ.get("PATH", "")
@@ -96,6 +98,7 @@ sphinx_gallery_conf = {
     "abort_on_example_error": True,
     "reset_modules": ("matplotlib",),
     "show_memory": False,
+    "image_scrapers": (FigureScraper(),),  # perturb's figures are not pyplot's (_ext/perturb_docs.py)
 }
 
 # -- HTML --------------------------------------------------------------------------------------------

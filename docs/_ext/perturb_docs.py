@@ -162,8 +162,44 @@ def resolve_internal(app, env, node, contnode):
     return nodes.literal(target, contnode.astext())
 
 
+def drop_object_base(app, name, obj, options, bases) -> None:
+    """No "Bases: object" line: it says nothing."""
+    bases[:] = [base for base in bases if base is not object]
+
+
 def setup(app):
+    app.connect("autodoc-process-bases", drop_object_base)
     app.add_directive("perturb-cli", CliDirective)
     app.add_directive("perturb-constants", ConstantsDirective)
     app.connect("missing-reference", resolve_internal)
     return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}
+
+
+class FigureScraper:
+    """sphinx-gallery image scraper for figures that live outside pyplot.
+
+    perturb's plot functions return a ``Figure`` without registering it with pyplot (no global
+    state), so the default matplotlib scraper, which asks pyplot, sees none. This one saves every
+    ``Figure`` bound to a name of the example (or held in a list or tuple there) that it has not
+    saved yet, in the order of the names.
+    """
+
+    def __repr__(self) -> str:  # sphinx-gallery keys its cache on the configuration's repr
+        return "perturb_docs.FigureScraper()"
+
+    def __call__(self, block, block_vars, gallery_conf):
+        from matplotlib.figure import Figure
+        from sphinx_gallery.scrapers import figure_rst
+
+        namespace = block_vars["example_globals"]
+        seen = namespace.setdefault("__perturb_scraped__", set())
+        figures = []
+        for value in list(namespace.values()):
+            items = value if isinstance(value, list | tuple) else [value]
+            figures += [f for f in items if isinstance(f, Figure) and id(f) not in seen]
+        paths = []
+        for figure, path in zip(figures, block_vars["image_path_iterator"]):
+            figure.savefig(path, dpi=110)
+            seen.add(id(figure))
+            paths.append(path)
+        return figure_rst(paths, gallery_conf["src_dir"])
