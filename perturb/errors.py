@@ -60,7 +60,7 @@ class InvalidSystemError(PerturbError, ValueError):
     >>> QuasilinearSystem([x], [xdot], [1, 2], [0])
     Traceback (most recent call last):
     ...
-    perturb.errors.InvalidSystemError: `frequencies` = [1, 2] is invalid: ...
+    perturb.errors.InvalidSystemError: `frequencies` has 2 entries but there are 1 coordinates: give one per coordinate
     """
 
 
@@ -80,7 +80,7 @@ class InvalidParameterError(PerturbError, ValueError):
     >>> get_problem("duffing").create(amplitude=-1.0)
     Traceback (most recent call last):
     ...
-    perturb.errors.InvalidParameterError: `amplitude` = -1.0 is invalid: ...
+    perturb.errors.InvalidParameterError: `amplitude` = -1 is invalid: give a value > 0
     """
 
 
