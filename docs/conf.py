@@ -61,9 +61,15 @@ default_role = "py:obj"
 # Without intersphinx (the build is offline) names of other projects have no page to link to; our
 # own names (perturb.*, problems.*) are never ignored, so a broken reference to them still fails.
 nitpick_ignore_regex = [
-    ("py:(class|obj|exc|func|meth|attr|data|mod)", r"(numpy|np|sympy|sp|scipy|matplotlib|attrs?)(\..*)?"),
+    (
+        "py:(class|obj|exc|func|meth|attr|data|mod)",
+        r"(numpy|np|sympy|sp|scipy|matplotlib|attrs?)(\..*)?",
+    ),
     ("py:(class|obj|exc|func|meth|attr|data|mod)", r"(enum|typing|collections|pathlib|os|abc)\..*"),
-    ("py:(class|obj|exc)", r"(ValueError|TypeError|ImportError|KeyError|Warning|UserWarning|Exception)"),
+    (
+        "py:(class|obj|exc)",
+        r"(ValueError|TypeError|ImportError|KeyError|Warning|UserWarning|Exception)",
+    ),
     ("py:(class|obj)", r"(float|int|str|bool|dict|list|tuple|callable|object|None|bytes|set)"),
 ]
 
@@ -98,7 +104,9 @@ sphinx_gallery_conf = {
     "abort_on_example_error": True,
     "reset_modules": ("matplotlib",),
     "show_memory": False,
-    "image_scrapers": (FigureScraper(),),  # perturb's figures are not pyplot's (_ext/perturb_docs.py)
+    "image_scrapers": (
+        FigureScraper(),
+    ),  # perturb's figures are not pyplot's (_ext/perturb_docs.py)
 }
 
 # -- HTML --------------------------------------------------------------------------------------------

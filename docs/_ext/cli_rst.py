@@ -53,7 +53,9 @@ def _options(parser: argparse.ArgumentParser, *, with_help: bool) -> list[str]:
     return lines
 
 
-def _command(parser: argparse.ArgumentParser, name: str, help_text: str | None, level: int) -> list[str]:
+def _command(
+    parser: argparse.ArgumentParser, name: str, help_text: str | None, level: int
+) -> list[str]:
     lines = _heading(f"perturb {name}", level)
     lines += [f".. program:: perturb {name}", ""]
     if help_text:
@@ -80,6 +82,14 @@ def cli_reference(parser: argparse.ArgumentParser) -> str:
             lines += _command(command, name, helps.get(name), 0)
     if parser.epilog:
         lines += _heading("Examples", 0)
-        body = parser.epilog.split("\n", 1)[1] if parser.epilog.startswith("examples:") else parser.epilog
-        lines += [".. code-block:: text", ""] + ["   " + line.strip() for line in body.splitlines()] + [""]
+        body = (
+            parser.epilog.split("\n", 1)[1]
+            if parser.epilog.startswith("examples:")
+            else parser.epilog
+        )
+        lines += (
+            [".. code-block:: text", ""]
+            + ["   " + line.strip() for line in body.splitlines()]
+            + [""]
+        )
     return "\n".join(lines) + "\n"

@@ -13,6 +13,7 @@ import importlib
 import inspect
 import sys
 
+from cli_rst import cli_reference
 from docutils import nodes
 from docutils.parsers.rst import directives
 from docutils.statemachine import StringList
@@ -20,12 +21,13 @@ from sphinx.pycode import ModuleAnalyzer
 from sphinx.util.docutils import SphinxDirective
 from sphinx.util.nodes import nested_parse_with_titles
 
-from cli_rst import cli_reference
 
 class _RstDirective(SphinxDirective):
     def _parse(self, text: str) -> list[nodes.Node]:
         node = nodes.container()
-        nested_parse_with_titles(self.state, StringList(text.splitlines(), self.get_source_info()[0]), node)
+        nested_parse_with_titles(
+            self.state, StringList(text.splitlines(), self.get_source_info()[0]), node
+        )
         return node.children
 
 
@@ -126,7 +128,13 @@ def _documented(app, env) -> dict[int, tuple[str, str]]:
         return cached
     table: dict[int, tuple[str, str]] = {}
     for name, entry in env.get_domain("py").objects.items():
-        if entry.aliased or entry.objtype not in ("class", "exception", "function", "method", "module"):
+        if entry.aliased or entry.objtype not in (
+            "class",
+            "exception",
+            "function",
+            "method",
+            "module",
+        ):
             continue
         found, obj = _import_target(name, [""])
         if found and (inspect.isclass(obj) or inspect.isroutine(obj) or inspect.ismodule(obj)):
@@ -155,7 +163,9 @@ def resolve_internal(app, env, node, contnode):
     documented = _documented(app, env).get(id(obj))
     if documented is not None:
         name, objtype = documented
-        role = {"exception": "exc", "function": "func", "method": "meth", "module": "mod"}.get(objtype, objtype)
+        role = {"exception": "exc", "function": "func", "method": "meth", "module": "mod"}.get(
+            objtype, objtype
+        )
         return env.get_domain("py").resolve_xref(
             env, node["refdoc"], app.builder, role, name, node, contnode
         )
@@ -198,7 +208,7 @@ class FigureScraper:
             items = value if isinstance(value, list | tuple) else [value]
             figures += [f for f in items if isinstance(f, Figure) and id(f) not in seen]
         paths = []
-        for figure, path in zip(figures, block_vars["image_path_iterator"]):
+        for figure, path in zip(figures, block_vars["image_path_iterator"], strict=False):
             figure.savefig(path, dpi=110)
             seen.add(id(figure))
             paths.append(path)

@@ -22,6 +22,6 @@ for order in (1, 3):
     analytic = problem.state(solution, t)
     y0 = np.array([analytic[name][0] for name in problem.state_names()])
     trajectory = choose().integrate(problem.original_equations(y0).rhs, (0.0, t[-1]), y0, t_eval=t)
-    true = dict(zip(problem.state_names(), trajectory.y))
+    true = dict(zip(problem.state_names(), trajectory.y, strict=True))
     title = f"van der Pol, ε = 0.1, order {order}"
     figures.append(plot_error(t, analytic, true, time_unit="", title=title))

@@ -21,6 +21,6 @@ analytic = problem.state(solution, t)  # {"x": ..., "xdot": ...}
 # the true motion: the original equation integrated from the analytic initial state
 y0 = np.array([analytic[name][0] for name in problem.state_names()])
 trajectory = choose().integrate(problem.original_equations(y0).rhs, (0.0, t[-1]), y0, t_eval=t)
-true = dict(zip(problem.state_names(), trajectory.y))
+true = dict(zip(problem.state_names(), trajectory.y, strict=True))
 
 fig = plot_time_series(t, analytic, true, time_unit="", title="Duffing, ε = 0.3, order 2")
