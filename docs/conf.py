@@ -104,6 +104,7 @@ sphinx_gallery_conf = {
     "abort_on_example_error": True,
     "reset_modules": ("matplotlib",),
     "show_memory": False,
+    "run_stale_examples": True,  # every build runs every script, as it runs every tutorial
     "image_scrapers": (
         FigureScraper(),
     ),  # perturb's figures are not pyplot's (_ext/perturb_docs.py)

@@ -42,7 +42,9 @@ def _options(parser: argparse.ArgumentParser, *, with_help: bool) -> list[str]:
         if isinstance(action, argparse._HelpAction) and not with_help:
             continue
         lines += [f".. option:: {_invocation(parser, action)}", ""]
-        details = _text(action.help)
+        details = _text(action.help).rstrip()
+        if details and not details.endswith((".", ")")):
+            details += "."
         if action.required and action.option_strings:
             details += " Required."
         if action.option_strings and action.nargs == 0:
