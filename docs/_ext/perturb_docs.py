@@ -172,12 +172,49 @@ def resolve_internal(app, env, node, contnode):
     return nodes.literal(target, contnode.astext())
 
 
+def _join_stream_chunks(outputs):
+    """Join consecutive stream outputs of one name into one, by plain concatenation.
+
+    A ``%%bash`` cell's output reaches the notebook in chunks cut anywhere in a line, and
+    myst-nb's own merging (``nb_merge_streams``) ends every chunk with a newline, which breaks
+    such lines ("limit-" / "cycle"). Joined here first, its merging then sees whole text.
+    """
+    joined = []
+    for output in outputs:
+        previous = joined[-1] if joined else None
+        if (
+            output.get("output_type") == "stream"
+            and previous is not None
+            and previous.get("output_type") == "stream"
+            and previous.get("name") == output.get("name")
+        ):
+            previous["text"] = previous["text"] + output["text"]
+        else:
+            joined.append(output)
+    return joined
+
+
+def _patch_myst_nb_streams() -> None:
+    from myst_nb.core import render
+
+    merge = render.coalesce_streams
+    if getattr(merge, "_perturb_joined", False):
+        return
+
+    def coalesce(outputs):
+        return merge(_join_stream_chunks(outputs))
+
+    coalesce._perturb_joined = True
+    render.coalesce_streams = coalesce
+
+
 def drop_object_base(app, name, obj, options, bases) -> None:
     """No "Bases: object" line: it says nothing."""
     bases[:] = [base for base in bases if base is not object]
 
 
 def setup(app):
+    _patch_myst_nb_streams()
     app.connect("autodoc-process-bases", drop_object_base)
     app.add_directive("perturb-cli", CliDirective)
     app.add_directive("perturb-constants", ConstantsDirective)
