@@ -156,3 +156,16 @@ def test_the_site_builds_with_warnings_as_errors_and_its_links_resolve(tmp_path)
     for page in (html / "tutorials").glob("*.html"):
         if page.stem != "index" and page.stem != "new-problem":
             assert any(link.endswith(".png") for link in pages[page].links), page.name
+
+
+def test_every_plot_kind_has_a_gallery_figure():
+    """A new ``plot_*`` function of ``perturb.report.plots`` needs its ``docs/gallery_src`` file
+    (``animate_orientation`` writes the orientation picture as a GIF: its figure is
+    ``plot_orientation``'s)."""
+    import perturb.report.plots as plots
+
+    scripts = "\n".join(p.read_text() for p in (DOCS / "gallery_src").glob("plot_*.py"))
+    kinds = [name for name in plots.__all__ if name.startswith("plot_")]
+    assert len(kinds) >= 7
+    missing = [name for name in kinds if f"{name}(" not in scripts]
+    assert not missing, f"no gallery script calls {missing}"
