@@ -4,8 +4,7 @@ Error against time
 
 :func:`~perturb.report.plots.plot_error` draws ``|analytic − true|`` on a logarithmic axis, each
 component relative to its amplitude. Van der Pol's limit cycle at ε = 0.1 over ten periods, at
-orders 1 and 3: two more orders lower the error by more than a hundredfold (it grows along the orbit as
-the small period error accumulates).
+orders 1 and 3: two more orders lower the error by more than a hundredfold.
 """
 
 import numpy as np
