@@ -83,6 +83,7 @@ def report_dict(report: ReproductionReport) -> dict:
             "notes": list(report.notes),
             "elapsed_seconds": report.elapsed,
             "euler_angles": report.euler_angles,
+            "true_orbit": report.true_orbit,
         }
     )
 
@@ -255,6 +256,23 @@ def _summary_euler(report: ReproductionReport) -> list[str]:
     ]
 
 
+def _summary_true_orbit(report: ReproductionReport) -> list[str]:
+    orbit = report.true_orbit
+    if not orbit:
+        return []
+    if not orbit["success"]:
+        return [
+            f"true orbit at eps = {orbit['eps']:g} (paper geometry): not found: {orbit['message']}"
+        ]
+    b1, b2 = orbit["beta1_over_eps"], orbit["beta2_over_eps"]
+    f1, f2 = orbit["first_order"][:2]
+    return [
+        f"true orbit at eps = {orbit['eps']:g} (paper geometry; conditioned, quadruple precision):",
+        f"  beta/eps = {b1:.7f}, {b2:.7f} (+-{orbit['resolution']:.0e}); first order "
+        f"{f1:.6f}, {f2:.6f}: {100 * (1 - f1 / b1):.2f} % low",
+    ]
+
+
 def _summary_errata(report: ReproductionReport) -> list[str]:
     by_status = {
         status: [eid for eid, item in report.errata.items() if item["status"] == status]
@@ -297,6 +315,7 @@ def summary_text(report: ReproductionReport) -> str:
         *_summary_motion(report),
         *_summary_experiment(report),
         *_summary_euler(report),
+        *_summary_true_orbit(report),
         *_summary_errata(report),
         "",
         f"Full tables: --full; report files: --output DIR; every number: --format json "

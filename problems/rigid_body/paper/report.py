@@ -47,6 +47,9 @@ class ReproductionReport:
     euler_angles : dict
         The check of the Euler angles (28)–(29) in the fast-spin regime
         (:func:`problems.rigid_body.paper.euler.euler_angle_study`).
+    true_orbit : dict
+        The true periodic orbit at the paper's geometry in its fast-spin reading, ε = 1e-4
+        (:func:`problems.rigid_body.paper.geometry_orbit.paper_geometry_orbit`).
     """
 
     paper: str
@@ -62,6 +65,7 @@ class ReproductionReport:
     notes: tuple[str, ...] = field(converter=tuple)
     elapsed: float = 0.0
     euler_angles: dict = field(factory=dict)
+    true_orbit: dict = field(factory=dict)
 
     def as_dict(self) -> dict:
         """A JSON-serialisable dict (:func:`~problems.rigid_body.paper.output.report_dict`)."""

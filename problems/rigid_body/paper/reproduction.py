@@ -21,6 +21,7 @@ from problems.rigid_body.paper.corrected import corrected_columns
 from problems.rigid_body.paper.data import TABLE1_COLUMNS, derived_constants, paper_table1
 from problems.rigid_body.paper.errata import errata
 from problems.rigid_body.paper.euler import euler_angle_study
+from problems.rigid_body.paper.geometry_orbit import paper_geometry_orbit
 from problems.rigid_body.paper.report import ReproductionReport
 from problems.rigid_body.paper.rk4_experiment import rk4_experiment
 from problems.rigid_body.paper.truth import true_motion, verdict
@@ -100,6 +101,7 @@ def reproduce(name: str, output=None) -> ReproductionReport:
     judged = verdict(consts["eps"]["computed"], cf, motion)
     experiment = rk4_experiment(cf, printed, truth_block)
     euler = euler_angle_study()
+    orbit = paper_geometry_orbit()
     found = errata(consts, cf, printed, check, judged, experiment, euler)
     report = ReproductionReport(
         paper=name,
@@ -115,6 +117,7 @@ def reproduce(name: str, output=None) -> ReproductionReport:
         notes=NOTES,
         elapsed=time.perf_counter() - start,
         euler_angles=euler,
+        true_orbit=orbit,
     )
     if path is not None:
         _output.write_outputs(report, path)
