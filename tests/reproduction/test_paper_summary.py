@@ -189,7 +189,7 @@ def test_cli_json_keeps_the_key_tree(capsys):
     expected = set(json.loads(KEYS_FILE.read_text())["paths"])
     paths = _key_paths(data)
     assert expected <= paths
-    assert {p.split(".")[0] for p in paths - expected} == {"true_orbit"}
+    assert {p.split("/")[1] for p in paths - expected} == {"true_orbit"}
 
 
 # ---------------------------------------------------------------------------- the registry
