@@ -163,6 +163,46 @@ SCENE_MAX_REPEAT = 100
 #: Closeness (difflib ratio) above which an unknown name in a scene gets a "did you mean".
 SCENE_SUGGESTION_CUTOFF = 0.6
 
+# ---------------------------------------------------------------------------------- sweeps
+#: A sweep of more points than this asks for confirmation (``--yes``, ``yes=True``): at 10^5
+#: points/s an evaluation of 10^7 points already takes minutes and its store hundreds of MB, and a
+#: typing slip (an extra zero in N) should not start an hour of work unasked.
+SWEEP_CONFIRM_POINTS = 10_000_000
+
+#: Most points of one sweep even with confirmation: 10^10 float64 values per quantity are 80 GB
+#: a variable; beyond it the grid is a mistake rather than a plan.
+SWEEP_MAX_POINTS = 10_000_000_000
+
+#: Samples of one period from which a component's amplitude (half its range) is found; each
+#: extreme is then refined by the vertex of the parabola through the sample and its neighbours, so
+#: the error is ~(2 pi h / 256)^4 / 4 relative for the h-th harmonic (2e-8 for h = 1).
+SWEEP_AMPLITUDE_SAMPLES = 256
+
+#: Wall time one task (a chunk of points) should take: Dask's scheduling costs about 1 to 5 ms a
+#: task (``benchmarks/bench_sweep.md``), so 0.5 s keeps it under 1 %, well inside the 5 % allowed.
+SWEEP_TASK_SECONDS = 0.5
+
+#: Fewest chunks per worker when the grid allows it: with four, the last chunks to finish keep
+#: every worker busy, and an interrupted sweep loses at most a quarter of a worker's share.
+SWEEP_CHUNKS_PER_WORKER = 4
+
+#: Points evaluated on the driver to time one point before the chunks are sized (evaluation only;
+#: a validated sweep times one validation): enough to average the per-call overheads.
+SWEEP_PILOT_POINTS = 64
+
+#: Most points of one chunk: a chunk's results travel back to the driver in one message, and its
+#: state at many times grows as points x times x components.
+SWEEP_MAX_CHUNK_POINTS = 100_000
+
+#: Seconds to wait for an existing Dask scheduler (``--scheduler``) before giving up with one
+#: line (exit 2): a scheduler on the network answers in well under a second.
+SWEEP_CONNECT_SECONDS = 10.0
+
+#: Relative margin of the vectorised domain screen: a point whose terms are within this fraction of
+#: failing (or passing) the check is decided by :func:`perturb.domain.series_domain` itself, so the
+#: screen's round-off (float64 against sympy's evaluation) can never change a status.
+SWEEP_DOMAIN_MARGIN = 1e-9
+
 
 # --------------------------------------------------------------------------------------------------
 # Validation (perturb.validation): the verdict's tolerances and the measurements' settings

@@ -64,6 +64,41 @@ _SOLUTION_CACHE: dict[tuple, PeriodicSolution] = {}
 _FAMILY_CACHE: dict[tuple, FamilyList] = {}
 
 
+_OPTION_KEYS: dict = {}
+#: Most keys kept by :func:`_options_key` (options that carry parameter values differ per point).
+_OPTION_KEYS_SIZE = 4096
+
+
+def _frozen_options(value):
+    """``value`` (nested dicts, lists, sympy objects, numbers) as a hashable tuple, or None."""
+    if isinstance(value, dict):
+        items = [(k, _frozen_options(v)) for k, v in value.items()]
+        return None if any(v is None for _, v in items) else ("dict", tuple(items))
+    if isinstance(value, list | tuple):
+        items = [_frozen_options(v) for v in value]
+        return None if any(v is None for v in items) else (type(value).__name__, tuple(items))
+    try:
+        hash(value)
+    except TypeError:
+        return None
+    return (type(value).__name__, value)
+
+
+def _options_key(options: dict) -> str:
+    """``repr(sorted(options.items()))``, the solution cache's key of the method options, kept per
+    options so that a solve already cached costs a dictionary lookup instead of printing sympy
+    expressions (a sweep asks for it at every point)."""
+    frozen_ = _frozen_options(options)
+    if frozen_ is None:
+        return repr(sorted(options.items()))
+    key = _OPTION_KEYS.get(frozen_)
+    if key is None:
+        if len(_OPTION_KEYS) >= _OPTION_KEYS_SIZE:
+            _OPTION_KEYS.clear()
+        key = _OPTION_KEYS[frozen_] = repr(sorted(options.items()))
+    return key
+
+
 @frozen
 class ParameterSpec:
     """A named parameter with its default, meaning and admissible range.
@@ -236,7 +271,7 @@ class Problem(Model, ABC):
         if name is not None:
             return self.family_solution(order, name)
         options = self.method_options()
-        key = (type(self).__module__, type(self).__qualname__, order, repr(sorted(options.items())))
+        key = (type(self).__module__, type(self).__qualname__, order, _options_key(options))
         if key not in _SOLUTION_CACHE:
             _SOLUTION_CACHE[key] = PoincareMethod(order=order, **options).solve(self.system())
         return _SOLUTION_CACHE[key]
@@ -331,6 +366,17 @@ class Problem(Model, ABC):
         name, exponent = knob
         factor = (eps / float(self.epsilon())) ** (1.0 / exponent)
         return type(self).create(**{**self.values, name: self.values[name] * factor})
+
+    def with_parameters(self, values: Mapping[str, float]) -> Problem:
+        """The problem with some parameters set to ``values`` (the others kept), on the same
+        family; the parameters are checked as :meth:`create` checks them."""
+        problem = type(self).create(**{**self.values, **values})
+        return problem if self.family is None else problem.with_family(self.family)
+
+    def evaluates_solution_directly(self) -> bool:
+        """True unless the class maps the solution to its own state or period (``state``,
+        ``period`` overridden)."""
+        return type(self).state is Problem.state and type(self).period is Problem.period
 
     def _epsilon_knob(self) -> tuple[str, float] | None:
         """``(name, exponent)`` of a parameter with ε ∝ p^exponent that leaves ``symbol_values()``

@@ -268,7 +268,12 @@ class FastSpinBody(Problem):
 
     def _reduction_of(self, solution: PeriodicSolution) -> Reduction:
         orders = [solution.order, *range(1, solution.order)]
+        symbolic = bool(solution.system.parameters)
         for order in orders:
+            if symbolic and order > self.SYMBOLIC_MAX_ORDER:
+                # that candidate is specialised (no parameters left), so it cannot be this
+                # solution's: skip deriving it (a sweep evaluates a symbolic solution everywhere)
+                continue
             candidate = self._solving_reduction(order)
             if candidate.system == solution.system or candidate.system.rhs == solution.system.rhs:
                 return candidate

@@ -1,0 +1,44 @@
+"""Sweeps and validity maps: a problem's solution over a grid of its parameters, on Dask.
+
+``perturb.sweep(problem, grid, ...)`` (this module is callable: it is :func:`sweep`) derives
+the solution once, evaluates — and with ``validate=True`` shoots and judges — every point in
+chunks on a ``dask.distributed`` cluster, and returns an :class:`xarray.Dataset` (written to a
+resumable Zarr store when ``output`` is given). ``perturb sweep`` is the same from the command line.
+
+Rooms: :mod:`.grid` (axes, points, chunks), :mod:`.spec` (what a sweep computes),
+:mod:`.derive` (derive once), :mod:`.quantities` (the variables), :mod:`.status` (coded
+statuses), :mod:`.evaluate` and :mod:`.task` (the work of a task, on a worker), :mod:`.driver`
+(Dask), :mod:`.store` (Zarr, resume), :mod:`.memory` (results without a store), :mod:`.api`
+(the front door). Only :mod:`.driver`, :mod:`.store` and :mod:`.memory` import the extra
+``perturb[sweep]`` (dask, distributed, xarray, zarr), and only when a sweep runs.
+
+Examples
+--------
+>>> import perturb
+>>> from problems import get_problem
+>>> ds = perturb.sweep(get_problem("duffing").create(), ["eps=0.05:0.1:3"], workers=1)  # doctest: +SKIP
+>>> ds.period.sel(eps=0.1).item()  # doctest: +SKIP
+6.0533...
+"""
+
+from __future__ import annotations
+
+import sys
+import types
+
+from perturb.sweep.api import sweep
+from perturb.sweep.grid import Axis, Grid, parse_axis
+from perturb.sweep.status import PointStatus
+
+__all__ = ["Axis", "Grid", "PointStatus", "parse_axis", "sweep"]
+
+
+class _CallableModule(types.ModuleType):
+    """``perturb.sweep`` is both this package and its front door: ``perturb.sweep(...)`` calls
+    :func:`perturb.sweep.api.sweep`."""
+
+    def __call__(self, *args, **kwargs):
+        return sweep(*args, **kwargs)
+
+
+sys.modules[__name__].__class__ = _CallableModule

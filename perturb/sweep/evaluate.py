@@ -1,0 +1,236 @@
+"""The analytic quantities of a sweep's points: period, frequency, amplitudes, state at times.
+
+Two routes, the same numbers to rounding:
+
+* **vectorised** — for models whose state and period are the solution's own at their parameter
+  values (:meth:`~perturb.validation.Model.evaluates_solution_directly`): the points sharing one
+  solution are evaluated in one call of :meth:`perturb.PeriodicSolution.coefficients` and
+  :meth:`~perturb.PeriodicSolution.evaluate` over arrays of parameter values;
+* **per point** — :meth:`Model.period` and :meth:`Model.state` (the disk's physical state goes
+  through its exact inverse map, which is compiled per parameter set).
+
+The domain check of ``perturb solve`` (:func:`perturb.domain.series_domain`) is screened for all
+the points of a solution at once by :class:`DomainScreen`; a point it cannot clear beyond
+rounding is checked by ``series_domain`` itself, so a status never differs from that function's.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import sympy as sp
+
+from perturb._defaults import SWEEP_AMPLITUDE_SAMPLES, SWEEP_DOMAIN_MARGIN
+from perturb._lambdify import numpy_lambdify
+from perturb.domain import series_domain
+from perturb.errors import PerturbError
+from perturb.solution import PeriodicSolution, SolutionFailed
+from perturb.system import Regime
+
+__all__ = ["DomainScreen", "Evaluated", "evaluate_group", "evaluate_one", "half_range"]
+
+#: What the evaluation of a point gives (arrays are NaN where it could not be computed).
+Evaluated = dict
+
+
+def half_range(samples: np.ndarray) -> np.ndarray:
+    """Half the range of periodic samples along the last axis, each extreme refined by the vertex
+    of the parabola through it and its two neighbours (the samples cover one period, without the
+    end point)."""
+    samples = np.asarray(samples, dtype=float)
+    out = []
+    for sign in (1.0, -1.0):
+        y = sign * samples
+        k = np.argmax(y, axis=-1)[..., None]
+        n = y.shape[-1]
+        y0 = np.take_along_axis(y, k, axis=-1)[..., 0]
+        ym = np.take_along_axis(y, (k - 1) % n, axis=-1)[..., 0]
+        yp = np.take_along_axis(y, (k + 1) % n, axis=-1)[..., 0]
+        curvature = ym - 2 * y0 + yp
+        with np.errstate(all="ignore"):
+            offset = np.where(curvature < 0, (ym - yp) / (2 * curvature), 0.0)
+            peak = y0 - (ym - yp) * offset / 4
+        out.append(sign * np.where(np.isfinite(peak), peak, y0))
+    return (out[0] - out[1]) / 2
+
+
+def _phase_tables(harmonics: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    s = 2 * np.pi * np.arange(SWEEP_AMPLITUDE_SAMPLES) / SWEEP_AMPLITUDE_SAMPLES
+    j = np.arange(harmonics + 1)[:, None]
+    return np.cos(j * s), np.sin(j * s), j
+
+
+def evaluate_group(
+    solution: PeriodicSolution,
+    parameter_values: np.ndarray,
+    values: Mapping[str, np.ndarray],
+    times: np.ndarray,
+) -> Evaluated:
+    """Period, frequency, amplitudes and state of many points of one solution, vectorised.
+
+    Parameters
+    ----------
+    solution : PeriodicSolution
+    parameter_values : ndarray, shape (P,)
+        Each point's value of the solution's own parameter (ε, or μ).
+    values : mapping name -> ndarray of shape (P,)
+        Each point's values of the solution's parameters.
+    times : ndarray, shape (T,)
+
+    Returns
+    -------
+    dict
+        ``omega``, ``period``, ``frequency`` (P,), ``amplitude`` (P, 2n), ``state`` (P, T, 2n).
+
+    Raises
+    ------
+    perturb.solution.SolutionFailed
+        Some point's coefficients are not finite (the caller then goes point by point).
+    """
+    omega, cos, sin = solution.coefficients(parameter_values, values)
+    period = 2 * np.pi / omega
+    c_table, s_table, j = _phase_tables(cos.shape[1] - 1)
+    # x(s) = sum_j cos_j cos(js) + sin_j sin(js); dx/dt = Omega sum_j j (sin_j cos(js) - cos_j sin(js))
+    x = np.einsum("nhp,hk->pnk", cos, c_table) + np.einsum("nhp,hk->pnk", sin, s_table)
+    dx = np.einsum("nhp,hk->pnk", sin * j, c_table) - np.einsum("nhp,hk->pnk", cos * j, s_table)
+    dx *= omega[:, None, None]
+    amplitude = np.concatenate([half_range(x), half_range(dx)], axis=1)
+    state = solution.evaluate(times, parameter_values, values)  # (2n, P, T)
+    return {
+        "omega": omega,
+        "period": period,
+        "frequency": 2 * np.pi / period,
+        "amplitude": amplitude,
+        "state": np.moveaxis(state, 0, -1),
+    }
+
+
+def evaluate_one(model, solution: PeriodicSolution, times: np.ndarray) -> Evaluated:
+    """Period, frequency, amplitudes and state of one point through the model's own maps."""
+    names = tuple(model.state_names())
+    period = float(model.period(solution))
+    state = model.state(solution, times)
+    out = {
+        "period": period,
+        "frequency": 2 * math.pi / period,
+        "state": np.array([np.asarray(state[n], dtype=float) for n in names]).T,
+    }
+    if math.isfinite(period) and period > 0:
+        t = period * np.arange(SWEEP_AMPLITUDE_SAMPLES) / SWEEP_AMPLITUDE_SAMPLES
+        samples = model.state(solution, t)
+        out["amplitude"] = half_range(np.array([np.asarray(samples[n], float) for n in names]))
+    else:
+        out["amplitude"] = np.full(len(names), np.nan)
+    return out
+
+
+class DomainScreen:
+    """:func:`perturb.domain.series_domain` for many points at once, where it is clear.
+
+    The sizes of the series' terms are evaluated in float64 for all points (one compiled
+    function of the solution's parameters); a point is cleared when every test passes by more
+    than :data:`SWEEP_DOMAIN_MARGIN` (relative) and no term that may vanish is near zero. Every
+    other point gets ``series_domain`` itself.
+    """
+
+    def __init__(self, solution: PeriodicSolution):
+        self.solution = solution
+        system = solution.system
+        self.parameters = list(system.parameters)
+        frequency = [sp.sympify(f) for f in solution.frequency]
+        orders = []
+        for k in range(solution.order + 1):
+            coeffs = []
+            for row in solution.terms:
+                if k < len(row):
+                    term = row[k]
+                    coeffs += [
+                        sp.sympify(c)
+                        for j in range(term.max_harmonic + 1)
+                        for c in term.coefficient(j)
+                    ]
+            orders.append(coeffs)
+        #: orders whose every coefficient is the number 0: their size is exactly zero either way
+        self.zero_orders = [all(c == 0 for c in coeffs) for coeffs in orders]
+        self.zero_frequency = [f == 0 for f in frequency]
+        self.function = numpy_lambdify(self.parameters, [frequency, orders], cse=True)
+
+    def _sizes(self, eps: np.ndarray, args: Sequence[np.ndarray]):
+        shape = eps.shape
+        with np.errstate(all="ignore"):
+            frequency, orders = self.function(*args)
+            freq = np.array([np.broadcast_to(np.abs(np.asarray(f, float)), shape) for f in frequency])
+            freq = freq * np.abs(eps) ** np.arange(len(frequency))[:, None]
+            sizes = []
+            for k, coeffs in enumerate(orders):
+                top = np.zeros(shape)
+                for c in coeffs:
+                    top = np.maximum(top, np.broadcast_to(np.abs(np.asarray(c, float)), shape))
+                sizes.append(np.abs(eps) ** k * top)
+        return freq, np.array(sizes)
+
+    def _clear(self, terms: np.ndarray, structural_zero: list[bool]) -> np.ndarray:
+        """Points whose terms (rows: orders) clearly decrease, none near zero unless zero by form."""
+        margin = SWEEP_DOMAIN_MARGIN
+        ok = np.all(np.isfinite(terms), axis=0)
+        kept = [k for k in range(terms.shape[0]) if not structural_zero[k]]
+        for k in kept:
+            ok &= terms[k] > 0  # a float zero that is not zero by form: uncertain
+        for k0, k1 in zip(kept, kept[1:], strict=False):
+            ok &= terms[k1] < terms[k0] * (1 - margin)
+        return ok
+
+    def check(self, parameter_values, values: Mapping[str, np.ndarray], omega) -> list:
+        """For each point: None when it is clearly inside the domain, else the reasons
+        (``series_domain``'s, empty when that function finds it inside after all).
+
+        ``omega`` are the points' frequencies (from the evaluation), ``values`` the solution's
+        parameters by name.
+        """
+        pv = np.atleast_1d(np.asarray(parameter_values, dtype=float))
+        large = self.solution.system.regime is Regime.LARGE
+        with np.errstate(all="ignore"):
+            eps = 1.0 / pv if large else pv
+        args = [np.asarray(values.get(p.name, np.nan), dtype=float) for p in self.parameters]
+        args = [np.broadcast_to(a, pv.shape) for a in args]
+        freq, sizes = self._sizes(eps, args)
+        omega = np.broadcast_to(np.asarray(omega, dtype=float), pv.shape)
+        scale = np.max(np.where(np.isfinite(freq), freq, 0.0), axis=0)
+        clear = np.isfinite(omega) & (omega > SWEEP_DOMAIN_MARGIN * scale)
+        clear &= self._clear(freq, self.zero_frequency) & self._clear(sizes, self.zero_orders)
+        out: list = []
+        for i in range(pv.size):
+            if clear[i]:
+                out.append(None)
+                continue
+            point = {name: float(np.asarray(a).ravel()[i]) for name, a in values.items()}
+            try:
+                domain = series_domain(self.solution, float(pv[i]), point)
+            except (PerturbError, ValueError, ArithmeticError) as exc:
+                out.append([f"the domain could not be checked: {exc}"])
+                continue
+            out.append(list(domain.reasons))
+        return out
+
+
+def group_arrays(points: Sequence) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """The parameter values of ``points`` (models) as arrays: (parameter_value, symbol_values)."""
+    pv = np.array([float(m.parameter_value()) for m in points])
+    rows = [m.symbol_values() for m in points]
+    names = dict.fromkeys(name for row in rows for name in row)
+    columns = {name: np.array([row.get(name, np.nan) for row in rows], dtype=float) for name in names}
+    return pv, columns
+
+
+def quietly(function, *args):
+    """``function(*args)`` with its warnings recorded: (result, [messages])."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = function(*args)
+    return result, [str(w.message) for w in caught]
+
+
+__all__ += ["SolutionFailed", "group_arrays", "quietly"]
