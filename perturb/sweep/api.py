@@ -5,7 +5,7 @@ from __future__ import annotations
 import time
 from collections.abc import Mapping, Sequence
 
-from perturb._defaults import DEFAULT_PERIODS, DEFAULT_TOL
+from perturb._defaults import DEFAULT_PERIODS, DEFAULT_TOL, SWEEP_CONNECT_SECONDS
 from perturb.errors import InvalidParameterError, MissingDependencyError, SweepError
 from perturb.sweep.derive import plan
 from perturb.sweep.grid import Axis, Grid, parse_axis
@@ -74,6 +74,7 @@ def sweep(
     workers: int | None = None,
     scheduler: str | None = None,
     client=None,
+    timeout: float = SWEEP_CONNECT_SECONDS,
     yes: bool = False,
     attrs: Mapping | None = None,
 ):
@@ -111,6 +112,8 @@ def sweep(
         Address of an existing Dask scheduler (``tcp://HOST:PORT``) instead of a LocalCluster.
     client : distributed.Client, optional
         An existing client to use (left open).
+    timeout : float
+        Seconds to wait for the ``scheduler`` to answer.
     yes : bool
         Confirm a grid of more than :data:`perturb._defaults.SWEEP_CONFIRM_POINTS` points.
     attrs : mapping, optional
@@ -156,11 +159,13 @@ def sweep(
         from perturb.sweep.store import SweepStore
 
         SweepStore.check(output, spec, resume=resume, version=version)
-    derivation, _ = plan(spec.model, spec.grid.axes, spec.order, spec.derive)
-    job = SweepJob(spec, derivation, spec.fingerprint(version))
     extra = {"perturb_version": version, **dict(attrs or {})}
-    with Cluster(workers, scheduler, client) as cluster:
+    if isinstance(timeout, bool) or not (isinstance(timeout, int | float) and timeout > 0):
+        raise InvalidParameterError(f"`timeout` = {timeout!r} is invalid: give seconds > 0")
+    with Cluster(workers, scheduler, client, timeout) as cluster:
         workers_now = cluster.n_workers()
+        derivation, _ = plan(spec.model, spec.grid.axes, spec.order, spec.derive)
+        job = SweepJob(spec, derivation, spec.fingerprint(version))
 
         def size() -> int:
             return chunk_points(pilot_seconds(job), spec.grid.size, workers_now)

@@ -124,13 +124,20 @@ class Cluster:
     Raises
     ------
     perturb.errors.InvalidParameterError
-        No scheduler answers at ``address`` within :data:`SWEEP_CONNECT_SECONDS` (one line), or
+        No scheduler answers at ``address`` within ``timeout`` seconds (one line), or
         ``workers`` < 1.
     """
 
-    def __init__(self, workers: int | None = None, address: str | None = None, client=None):
+    def __init__(
+        self,
+        workers: int | None = None,
+        address: str | None = None,
+        client=None,
+        timeout: float = SWEEP_CONNECT_SECONDS,
+    ):
         self.workers = workers
         self.address = address
+        self.timeout = timeout
         self.client = client
         self._owned = client is None
         self._cluster = None
@@ -142,14 +149,12 @@ class Cluster:
 
         if self.address is not None:
             try:
-                self.client = Client(
-                    self.address, timeout=SWEEP_CONNECT_SECONDS, set_as_default=False
-                )
+                self.client = Client(self.address, timeout=self.timeout, set_as_default=False)
             except (OSError, TimeoutError, ValueError, TypeError) as exc:
                 reason = " ".join(str(exc).split()) or type(exc).__name__
                 raise InvalidParameterError(
                     f"--scheduler {self.address!r}: no Dask scheduler answered within "
-                    f"{SWEEP_CONNECT_SECONDS:g} s ({reason}); start one with `dask scheduler` "
+                    f"{self.timeout:g} s ({reason}); start one with `dask scheduler` "
                     "and check the address (tcp://HOST:PORT)"
                 ) from None
             return self
