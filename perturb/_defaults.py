@@ -174,8 +174,10 @@ SWEEP_CONFIRM_POINTS = 10_000_000
 SWEEP_MAX_POINTS = 10_000_000_000
 
 #: Samples of one period from which a component's amplitude (half its range) is found; each
-#: extreme is then refined by the vertex of the parabola through the sample and its neighbours, so
-#: the error is ~(2 pi h / 256)^4 / 4 relative for the h-th harmonic (2e-8 for h = 1).
+#: extreme is then refined on the quartic through it and its four neighbours (the quartic's
+#: interpolation error, max|x^(5)| (2 pi/256)^5 1.41/120: ~1e-10 of a first harmonic's amplitude).
+#: Solutions evaluated in one vectorised call are refined on their own trigonometric polynomial,
+#: exact to rounding; the samples only find which extreme is the highest.
 SWEEP_AMPLITUDE_SAMPLES = 256
 
 #: Wall time one task (a chunk of points) should take: Dask's scheduling costs about 1 to 5 ms a

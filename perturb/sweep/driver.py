@@ -237,6 +237,7 @@ def run_tasks(
         )
         futures[future] = number
     lost: list[tuple[int, str]] = []
+    busy: list[float] = []
     notify(label, done, total)
     try:
         for future in as_completed(futures, loop=client.loop):
@@ -245,6 +246,7 @@ def run_tasks(
                 lost.append((number, _failure(future)))
                 continue
             result = future.result()
+            busy.append(result.get("seconds", 0.0))
             write(number, result)
             done += _points(chunking, number)
             notify(label, done, total)
@@ -252,6 +254,8 @@ def run_tasks(
     except BaseException:
         client.cancel(list(futures))
         raise
+    if os.environ.get("PERTURB_SWEEP_DEBUG"):
+        print(f"tasks {len(busy)}, busy {sum(busy):.2f} s", file=sys.stderr)
     return lost
 
 

@@ -16,7 +16,7 @@ import numpy as np
 from attrs import field, frozen
 
 from perturb._defaults import DEFAULT_PERIODS, DEFAULT_TOL, MAX_ORDER, MAX_TIMES
-from perturb.errors import InvalidParameterError, bad_value
+from perturb.errors import InvalidParameterError, PerturbError, bad_value
 from perturb.sweep.derive import Derivation
 from perturb.sweep.grid import Grid, check_names, check_size
 from perturb.validation.model import Model
@@ -92,7 +92,10 @@ class SweepSpec:
         """SHA-256 of everything the sweep's numbers depend on: the problem (its class and its
         model at the grid's first point, which names its family and fixed values), the grid, the
         settings and the perturb version."""
-        first = self.model.with_parameters(self.grid.point(0))
+        try:
+            first = self.model.with_parameters(self.grid.point(0))
+        except (PerturbError, ValueError):  # a point the problem refuses: the model as given
+            first = None
         text = json.dumps(
             {
                 "format": STORE_FORMAT,
@@ -115,6 +118,12 @@ class SweepJob:
     spec: SweepSpec
     derivation: Derivation
     key: str
+
+
+def model_values(model: Model, grid: Grid) -> list[float]:
+    """The model's own values of the swept parameters (a point it accepts, to probe with)."""
+    values = model.parameters_in_force()
+    return [values[name] for name in grid.names]
 
 
 def _order(order) -> int:
@@ -174,7 +183,11 @@ def check_spec(
                 "parameter cannot be swept by name (rename it in the problem)"
             )
     check_size(grid.size, bool(yes))
-    if model.with_parameters(grid.point(0)) is None:
+    try:
+        sweepable = model.with_parameters(dict(zip(grid.names, model_values(model, grid))))
+    except (PerturbError, ValueError):
+        sweepable = True  # it can be re-created; these values it refuses (each point says so)
+    if sweepable is None:
         raise InvalidParameterError(
             f"`problem` = {model.label()!r} cannot be re-created at other parameter values (its "
             "with_parameters gives none): it cannot be swept"

@@ -20,7 +20,7 @@ from perturb import PeriodicSolution, PoincareMethod
 from perturb.errors import AccuracyWarning, InvalidParameterError
 from perturb.oracle import SymbolicRHS
 from perturb.validation import Condition, Equations, Integrals
-from problems.base import _SOLUTION_CACHE, ParameterSpec, Problem, positive
+from problems.base import _SOLUTION_CACHE, ParameterSpec, Problem, _options_key, positive
 from problems.rigid_body import equations as eq
 from problems.rigid_body import numeric
 from problems.rigid_body._stored import stored
@@ -258,7 +258,7 @@ class FastSpinBody(Problem):
             type(self).__qualname__,
             order,
             reduction.order,
-            repr(sorted(options.items())),
+            _options_key(options),
             repr(sorted((str(k), v) for k, v in values.items())),
         )
         if key not in _SOLUTION_CACHE:
@@ -360,7 +360,9 @@ class FastSpinBody(Problem):
 
     def original_symbolic(self) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Expr, ...]]:
         """(state symbols, rhs expressions with every number substituted), e.g. for heyoka."""
-        return _symbolic_rhs(tuple(sorted(self.values.items())))
+        # keyed by the body's data alone: r0 and gamma3_0 do not enter the equations, so every
+        # point of a sweep over them shares one field (and its compiled integrators)
+        return _symbolic_rhs(tuple(sorted((name, self.values[name]) for name in _BODY_DATA)))
 
     def true_motion_errors(
         self, solution: PeriodicSolution, periods: float = TRACK_PERIODS, samples: int = 200

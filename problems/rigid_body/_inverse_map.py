@@ -149,14 +149,17 @@ def compile_polynomials(
     where = {s: i for i, s in enumerate(keep)}
     stray = [s for s in keep if s not in first and s not in second]
     split = []
+    stray_at = [where[s] for s in stray]
+    first_at = [where[s] for s in first]
+    second_at = [where[s] for s in second]
     for poly in polys:
         component: dict[tuple[tuple[int, ...], tuple[int, ...]], float] = {}
-        for monom, coeff in ring.evaluate(poly, numbers, keep).items():
-            if any(monom[where[s]] for s in stray):
+        for monom, coeff in ring.evaluate_float(poly, numbers, keep).items():
+            if any(monom[i] for i in stray_at):
                 raise AssertionError(f"the series still depends on one of {stray}")
-            mz = tuple(monom[where[s]] for s in first)
-            m0 = tuple(monom[where[s]] for s in second)
-            component[mz, m0] = float(coeff)
+            mz = tuple(monom[i] for i in first_at)
+            m0 = tuple(monom[i] for i in second_at)
+            component[mz, m0] = coeff
         split.append(component)
     needed = _with_divisors({mz for component in split for mz, _ in component})
     if needed:  # register the divisors as zero terms of the first component
