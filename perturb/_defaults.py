@@ -116,6 +116,19 @@ SHOOTING_MAX_HALVINGS = 8
 #: residual is then dominated by the integration error, and the iteration stops as stalled.
 SHOOTING_STALL_STEP = 1e-14
 
+#: The shooting's precision floor (perturb.oracle.shooting): a tolerance below what the working
+#: precision can show is not a convergence test. The float64 defect y(T) - y(0) carries a few ulps
+#: of the states subtracted (one for each rounding of y(T), y(0) and the difference, one spare);
+#: the integration error is measured once Newton stops gaining, by a second shot with an integrator
+#: NOISE_PROBE_FACTOR times looser (its error is about factor - 1 times the first one's: 100 makes
+#: it stand clear of round-off at double precision). A residual within FLOOR_SAFETY of that floor
+#: is converged: the estimate holds to a factor of a few (the error is proportional to the
+#: tolerance only roughly), and an order of magnitude covers it while a genuine stall far above
+#: the floor (a poor guess, a wrong section) still fails.
+ROUNDING_ULPS = 4
+NOISE_PROBE_FACTOR = 100.0
+FLOOR_SAFETY = 10.0
+
 #: Relative step of the centred finite differences used for the Jacobian when the user gives none
 #: and the rhs is not symbolic: eps**(1/3) balances truncation (h**2) and round-off (eps/h) errors.
 FD_REL_STEP = 6e-6

@@ -35,7 +35,12 @@ class DomainCheck:
     frequency : float
         Ω at the given values.
     term_sizes : tuple of float
-        Size of each order's contribution to the coordinates, :math:`|\\varepsilon|^k \\max|x_k|`.
+        Size of each order's contribution to the coordinates,
+        :math:`|\\varepsilon|^k \\max_i|x_{i,k}|`.
+    coordinate_term_sizes : dict
+        ``{coordinate: (|eps|^k max|x_ik|, ...)}``: each coordinate's own terms, which must
+        decrease (a coordinate that starts at a power of ε is compared with itself, not with the
+        others).
     frequency_terms : tuple of float
         :math:`|\\varepsilon^k \\Omega_k|`.
     """
@@ -45,6 +50,7 @@ class DomainCheck:
     frequency: float = field(converter=float)
     term_sizes: tuple = field(converter=tuple)
     frequency_terms: tuple = field(converter=tuple)
+    coordinate_term_sizes: dict = field(factory=dict)
 
 
 def _numbers(exprs, subs) -> list[float]:
@@ -92,16 +98,18 @@ def series_domain(
     eps = 1.0 / parameter_value if system.regime is Regime.LARGE else float(parameter_value)
     subs = {p: values[p.name] for p in system.parameters if p.name in values}
     freq_terms = [abs(eps**k * f) for k, f in enumerate(_numbers(solution.frequency, subs))]
-    sizes = []
-    for k in range(solution.order + 1):
-        size = 0.0
-        for row in solution.terms:
-            if k >= len(row):
-                continue
-            term = row[k]
+    per_coordinate = {}
+    for name, row in zip(solution.coordinates, solution.terms, strict=True):
+        own = []
+        for k, term in enumerate(row):
             coeffs = [c for j in range(term.max_harmonic + 1) for c in term.coefficient(j)]
-            size = max([size, *(abs(c) for c in _numbers(coeffs, subs))])
-        sizes.append(abs(eps) ** k * size)
+            own.append(abs(eps) ** k * max([0.0, *(abs(c) for c in _numbers(coeffs, subs))]))
+        per_coordinate[name] = tuple(own)
+    depth = max((len(own) for own in per_coordinate.values()), default=0)
+    sizes = [
+        max([0.0, *(own[k] for own in per_coordinate.values() if k < len(own))])
+        for k in range(depth)
+    ]
     with np.errstate(all="ignore"):
         omega = float(np.asarray(solution.coefficients(parameter_value, values)[0]).ravel()[0])
     reasons = []
@@ -115,5 +123,6 @@ def series_domain(
         reasons.append(f"some terms of the series are not finite at eps = {eps:.6g}")
     else:
         reasons += _not_decreasing(freq_terms, "frequency", eps)
-        reasons += _not_decreasing(sizes, "coordinates", eps)
-    return DomainCheck(not reasons, reasons, omega, sizes, freq_terms)
+        for name, own in per_coordinate.items():
+            reasons += _not_decreasing(own, f"coordinate {name}", eps)
+    return DomainCheck(not reasons, reasons, omega, sizes, freq_terms, per_coordinate)

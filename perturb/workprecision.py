@@ -8,7 +8,10 @@
 - RK4 at several steps per unit time, the scipy methods at several tolerances and heyoka (JIT
   compilation excluded, done once before timing): their error against a reference run.
 
-Times are medians of ``repeat`` runs.  The reference is heyoka in extended precision when available
+Each point is timed as a benchmark is: one untimed warm-up run first (imports, JIT compilation,
+lambdified functions and caches built on first use belong to no point), then the best of
+``repeat`` runs (the least disturbed by the rest of the machine), so a curve falls monotonically
+where the method converges instead of its loosest point carrying every one-time cost.  The reference is heyoka in extended precision when available
 (``long double``/``real128``), else DOP853 at ``REFERENCE_RTOL``.  The error is the maximum over the
 output grid and the components of ``|y - y_ref| / amplitude`` (amplitude = max |y_ref| per component).
 
@@ -21,7 +24,6 @@ The command line is ``perturb work-precision``; the tables are written by
 from __future__ import annotations
 
 import math
-import statistics
 import time
 from collections.abc import Callable, Sequence
 
@@ -56,7 +58,7 @@ SCIPY_TOLERANCES = (1e-6, 1e-8, 1e-10, 1e-12)
 #: tightest compared tolerance.
 REFERENCE_RTOL = 1e-13
 
-#: Repeated runs per point (the median is reported); 3 removes most scheduling noise.
+#: Timed runs per point after the warm-up (the best is reported); 3 removes most scheduling noise.
 DEFAULT_REPEAT = 3
 
 
@@ -73,7 +75,7 @@ class WorkPoint:
     error : float
         Max relative error over the grid (NaN for the derivation rows and failed runs).
     seconds : float
-        Median wall time.
+        Best wall time of the timed runs, after one untimed warm-up run.
     """
 
     method: str
@@ -103,13 +105,15 @@ class WorkPrecision:
     points: tuple
 
 
-def _median_time(fn: Callable[[], object], repeat: int):
-    times, result = [], None
+def _best_time(fn: Callable[[], object], repeat: int):
+    """The best of ``repeat`` timed calls of ``fn`` after one untimed warm-up call, and a result."""
+    result = fn()  # warm-up: one-time costs (imports, compilation, first-use caches), not timed
+    times = []
     for _ in range(repeat):
         start = time.perf_counter()
         result = fn()
         times.append(time.perf_counter() - start)
-    return statistics.median(times), result
+    return min(times), result
 
 
 def _relative_error(y: np.ndarray, ref: np.ndarray) -> float:
@@ -159,7 +163,7 @@ def work_precision(
     heyoka : bool, optional
         Include heyoka (machine-precision Taylor) if installed and the equations are symbolic.
     repeat : int, optional
-        Runs per point; the median time is reported.
+        Timed runs per point after one untimed warm-up; the best time is reported.
     samples_per_period : int, optional
         Output points per period of the error measurement.
 
@@ -227,7 +231,7 @@ def work_precision(
             continue
         if not solution.success:
             continue
-        seconds, state = _median_time(lambda s=solution: problem.state(s, t), repeat)
+        seconds, state = _best_time(lambda s=solution: problem.state(s, t), repeat)
         y = np.array([np.asarray(state[n], dtype=float) for n in names])
         error = _relative_error(y, truth(y[:, 0].copy()))
         points.append(WorkPoint("analytic", f"order {k}", error, seconds))
@@ -246,7 +250,7 @@ def work_precision(
         hy.integrate(original.rhs, (0.0, min(horizon, period)), y0)  # JIT compile, not timed
         runs.append(("heyoka", "tol=eps", hy))
     for method, setting, integrator in track(runs, label="work-precision: integrators"):
-        seconds, traj = _median_time(
+        seconds, traj = _best_time(
             lambda i=integrator: i.integrate(original.rhs, (0.0, horizon), y0, t_eval=t), repeat
         )
         error = _relative_error(np.asarray(traj.y, dtype=float), ref) if traj.success else math.nan

@@ -129,14 +129,18 @@ def _build_parser() -> argparse.ArgumentParser:
         "work-precision",
         help="error against run time: analytic orders 1..N, RK4, scipy and heyoka",
         description="For PROBLEM over a horizon, measure the error against a reference trajectory and "
-        "the wall time (median of repeated runs) of the analytic solution at orders 1..N "
+        "the wall time (best of repeated runs after a warm-up) of the analytic solution at orders 1..N "
         "(derivation and evaluation timed apart), RK4 at several steps, the scipy methods at "
         "several tolerances and heyoka.",
     )
     _add_problem_arguments(work, order=False)
     work.add_argument("--periods", default="10", help="horizon in periods (default 10)")
     work.add_argument("--orders", default="3", help="analytic orders 1..N (default 3)")
-    work.add_argument("--repeat", default="3", help="runs per point, median reported (default 3)")
+    work.add_argument(
+        "--repeat",
+        default="3",
+        help="timed runs per point after one untimed warm-up, best reported (default 3)",
+    )
     work.add_argument(
         "--plot",
         default=None,

@@ -287,6 +287,7 @@ class _OrderByOrder:
         self.steps: list[OrderStep] = []
         self.pending: list = []
         self.dependent: list[PeriodicityCondition] = []
+        self.frequency_top: int | None = None  # the order whose Omega_k is the last one kept
 
     def _new(self, label: str) -> sp.Symbol:
         sym = sp.Symbol(label)
@@ -461,7 +462,7 @@ class _OrderByOrder:
                         Status.TRUNCATED,
                         f"order {method.order} needs the conditions of order {k}, but the system "
                         f"neglects epsilon^{system.truncation} and beyond "
-                        f"(unknowns still open: {sorted(map(str, self._open_unknowns(method.order)))})",
+                        f"(unknowns still open: {sorted(map(str, self._open_unknowns()))})",
                     )
                 forcing_k = self._forcing(k)
                 quadratures, conditions = self._quadratures(k, forcing_k)  # extends self.pending
@@ -478,7 +479,10 @@ class _OrderByOrder:
                     )
                 )
                 k_done = k
-                if k >= method.order and not self._open_unknowns(method.order):
+                if self.frequency_top is None and k >= method.order:
+                    if not self._open_unknowns(uniform=True):
+                        self.frequency_top = k
+                if k >= max(self._depths()) and not self._open_unknowns():
                     break
         except NotPolynomial as exc:
             status, message = Status.NOT_POLYNOMIAL, str(exc)
@@ -494,16 +498,35 @@ class _OrderByOrder:
                     f"name some of {sorted(self.created)}",
                     InvalidSystemError,
                 )
-        if status is Status.SUCCESS and self._open_unknowns(method.order):
+        if status is Status.SUCCESS and self._open_unknowns():
             status = Status.UNDETERMINED
-            message = f"unknowns {sorted(map(str, self._open_unknowns(method.order)))} are not fixed by orders up to {k_done}"
+            message = f"unknowns {sorted(map(str, self._open_unknowns()))} are not fixed by orders up to {k_done}"
         return self._result(generating, status, message)
 
-    def _open_unknowns(self, order: int) -> set:
-        conv = self.conv
-        syms = set()
+    def _depths(self) -> list[int]:
+        """How many orders each coordinate's series keeps: ``order + d_i``.
+
+        ``d_i`` is the order of the coordinate's first non-zero term (0 when all known terms
+        vanish). Order N promises each coordinate relative to its own size to
+        :math:`O(\varepsilon^{N+1})`: a coordinate that starts at :math:`\varepsilon^{d}` (the
+        degenerate branch of the disk, whose P-amplitude is O(ε); a non-resonant coordinate
+        forced at order 1) needs its terms through :math:`\varepsilon^{N+d}`, with the amplitude
+        and frequency corrections the later conditions fix, as a free amplitude's are.
+        """
+        depths = []
         for row in self.x:
-            for term in row[: order + 1]:
+            lead = next((q for q, term in enumerate(row) if not term.is_zero()), 0)
+            depths.append(self.method.order + lead)
+        return depths
+
+    def _open_unknowns(self, uniform: bool = False) -> set:
+        """The unknowns left in the terms each coordinate keeps and in the frequency to order N
+        (``uniform``: in every coordinate's terms to order N, whatever its leading order)."""
+        conv, order = self.conv, self.method.order
+        syms = set()
+        depths = [order] * self.n if uniform else self._depths()
+        for row, depth in zip(self.x, depths, strict=True):
+            for term in row[: depth + 1]:
                 syms |= conv.poly_symbols(term)
         for w in self.omega[: order + 1]:
             syms |= conv.symbols(w)
@@ -526,11 +549,17 @@ class _OrderByOrder:
             reference_frequency=generating.reference_frequency,
         )
         conv = self.conv  # back to sympy: the result holds sympy expressions only
-        terms = tuple(tuple(conv.trig(t) for t in row[: order + 1]) for row in self.x)
+        terms = tuple(
+            tuple(conv.trig(t) for t in row[: depth + 1])
+            for row, depth in zip(self.x, self._depths(), strict=True)
+        )
         omega_all = [conv.to_sympy(w) for w in self.omega]
-        # keep every frequency coefficient that is fully determined
+        # keep every frequency coefficient that is fully determined by the time every coordinate's
+        # terms to order N were (the orders run further only for the deeper terms of coordinates
+        # that start at a power of eps: they add those terms, never frequency coefficients)
         frequency = []
-        for w in omega_all:
+        top = len(omega_all) if self.frequency_top is None else self.frequency_top + 1
+        for w in omega_all[:top]:
             if w.free_symbols & self.unknowns:
                 break
             frequency.append(w)

@@ -212,6 +212,8 @@ class IntegratorBase(abc.ABC):
        cannot take (heyoka needs a :class:`~perturb.oracle.symbolic.SymbolicRHS`).
     5. Register a factory in :data:`perturb.oracle.registry.INTEGRATORS`, and in
        :func:`perturb.oracle.registry.choose` if it takes ``rtol``/``max_steps``.
+    6. Optionally override :meth:`loosened` (a copy whose error is ``factor`` times larger): the
+       shooting uses it to measure its own noise floor a posteriori.
     """
 
     __slots__ = ()
@@ -271,6 +273,16 @@ class IntegratorBase(abc.ABC):
             nfev=int(run.nfev),
             integrator=self.name,
         )
+
+    def loosened(self, factor: float) -> IntegratorBase | None:
+        """A copy of this integrator whose error is about ``factor`` times larger, or None.
+
+        Comparing a result with the loosened integrator's measures the error of this one a
+        posteriori: for a method whose error is proportional to its tolerance,
+        :math:`|y_{loose} - y| \approx (factor - 1)\\,|e|`.  None (the default) when the backend
+        has no such setting.
+        """
+        return None
 
     def _accept_rhs(self, rhs: RHS) -> None:  # noqa: B027 (an optional hook, empty by default)
         """Refuse an rhs this backend cannot integrate (hook; accepts everything by default)."""

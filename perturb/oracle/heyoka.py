@@ -13,6 +13,7 @@ import math
 import threading
 from typing import Any
 
+import attrs
 import numpy as np
 from attrs import frozen
 
@@ -34,6 +35,10 @@ def heyoka_available() -> bool:
     except ImportError:
         return False
     return True
+
+
+#: The machine epsilon of each floating point type, heyoka's default tolerance in it.
+_EPSILON = {"double": 2.0**-52, "long double": 2.0**-63, "real128": 2.0**-112}
 
 
 @functools.cache  # the platform and the heyoka build do not change during a run
@@ -151,6 +156,11 @@ class Heyoka(IntegratorBase):
             return "long double"
         types = _fp_types()
         return "long double" if "long double" in types else "real128"
+
+    def loosened(self, factor: float) -> Heyoka:
+        """A copy whose tolerance is ``factor`` times this one's (the type's epsilon by default)."""
+        tol = _EPSILON[self.precision] if self.tol is None else self.tol
+        return attrs.evolve(self, fp_type=self.precision, tol=float(tol) * factor)
 
     @property
     def name(self) -> str:

@@ -92,6 +92,11 @@ class PeriodicOrbit:
         integration error, so expect ~1e-7 there rather than ~1e-13.
     integrator : str
         The integrator that ran.
+    precision_floor : float
+        The smallest residual the working precision can show at the orbit (relative, as
+        ``residual``): the round-off of the defect and, when Newton stopped gaining above ``tol``,
+        the integration error measured a posteriori. A residual above ``tol`` but within
+        ``FLOOR_SAFETY`` of it is converged (the message says so).
     n_trivial_expected : int
         Multipliers that must equal 1: the ``n_trivial`` given, or the count derived from the
         integrals and ``hamiltonian`` by :func:`~perturb.oracle.floquet.expected_trivial_multipliers`.
@@ -113,6 +118,7 @@ class PeriodicOrbit:
     integrator: str = ""
     n_trivial_expected: int = 0
     n_trivial_found: int = 0
+    precision_floor: float = math.nan
 
     @property
     def success(self) -> bool:

@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
+import attrs
 import numpy as np
 from attrs import field, frozen
 
@@ -116,6 +117,11 @@ class Scipy(IntegratorBase):
     def name(self) -> str:
         """Description, e.g. ``"scipy DOP853 (rtol=1e-12)"``."""
         return f"scipy {self.method} (rtol={self.rtol:g})"
+
+    def loosened(self, factor: float) -> Scipy:
+        """A copy with ``rtol`` and ``atol`` (given or derived) ``factor`` times larger."""
+        atol = None if self.atol is None else np.asarray(self.atol, dtype=float) * factor
+        return attrs.evolve(self, rtol=self.rtol * factor, atol=atol)
 
     def _atol(self, y0: np.ndarray) -> np.ndarray | float:
         if self.atol is not None:

@@ -40,6 +40,9 @@ from attrs import frozen
 from perturb._defaults import (
     EQUILIBRIUM_MOTION,
     FD_REL_STEP,
+    FLOOR_SAFETY,
+    NOISE_PROBE_FACTOR,
+    ROUNDING_ULPS,
     SHOOTING_INTEGRATOR_RTOL,
     SHOOTING_MAX_HALVINGS,
     SHOOTING_MAX_ITER,
@@ -86,6 +89,71 @@ def finite_difference_jacobian(rhs: RHS, y: np.ndarray) -> np.ndarray:
         e[j] = h
         jac[:, j] = (np.asarray(rhs(y + e)) - np.asarray(rhs(y - e))) / (2.0 * h)
     return jac
+
+
+def _defect_noise(y_start, defect, noise=None) -> np.ndarray:
+    """The absolute noise of each component of the defect ``y(T) - y(0)``.
+
+    Both states are float64 numbers however precisely they were integrated, so each component of
+    the difference carries :data:`ROUNDING_ULPS` of their spacing, plus the integration error
+    ``noise`` when it was measured (:func:`_integration_noise`, absolute).
+    """
+    size = np.maximum(np.abs(y_start), np.abs(y_start + defect))
+    rounding = ROUNDING_ULPS * np.spacing(size)
+    return rounding if noise is None else rounding + noise
+
+
+def _precision_floor(y_start, defect, scale: float, tol: float, noise=None) -> float:
+    """The smallest residual the working precision can show at ``y_start``, relative to ``scale``.
+
+    The largest :func:`_defect_noise` among the components whose defect is still above ``tol``: a
+    large component that returns exactly (a constant, a pinned coordinate) limits nothing. Far
+    below ``tol`` for states of the size of ``scale``; not for a conditioned state whose origin is
+    off the orbit (``|u| >> 1``).
+    """
+    floor = _defect_noise(y_start, defect, noise) / scale
+    limiting = np.abs(defect) / scale > tol
+    return float(np.max(floor[limiting], initial=0.0))
+
+
+def _integration_noise(solver, shoot, y, period, defect):
+    """The integration error of each component of the defect at ``(y, period)`` (absolute).
+
+    The same shot with an integrator whose error is :data:`NOISE_PROBE_FACTOR` times larger
+    (:meth:`~perturb.oracle.base.IntegratorBase.loosened`) differs by about ``factor - 1`` times
+    this integrator's error (both errors are proportional to the tolerance). None when the
+    integrator cannot be loosened or the probe fails: the floor is then round-off alone.
+    """
+    # an Integrator given by the user need not derive from IntegratorBase: no loosened() then
+    loosen = getattr(solver, "loosened", None)
+    probe = loosen(NOISE_PROBE_FACTOR) if loosen is not None else None
+    if probe is None:
+        return None
+    _, probe_defect, _, _ = shoot(y, period, probe)
+    if probe_defect is None or not np.all(np.isfinite(probe_defect)):
+        return None
+    return np.abs(probe_defect - defect) / (NOISE_PROBE_FACTOR - 1.0)
+
+
+def _newton_step(newton: np.ndarray, target: np.ndarray, noise=None):
+    """The least-squares Newton step and the rank of the Newton matrix.
+
+    Without ``noise``: the minimum-norm least-squares step (singular values below
+    ``_RANK_RTOL`` of the largest cut). With ``noise`` (the absolute noise of each row of
+    ``target``), a truncated-SVD step that also leaves out every direction whose component of the
+    target is within the noise (a discrepancy rule): near a rank-deficient matrix those directions
+    carry only noise, amplified by a small singular value, and a step along them wrecks the
+    directions that can still converge.
+    """
+    if noise is None:
+        step, _, rank, _ = np.linalg.lstsq(newton, target, rcond=_RANK_RTOL)
+        return step, int(rank)
+    u, sv, vt = np.linalg.svd(newton, full_matrices=False)
+    components = u.T @ target
+    kept = sv > _RANK_RTOL * sv[0]
+    keep = kept & (np.abs(components) > float(np.linalg.norm(noise)))
+    step = vt[keep].T @ (components[keep] / sv[keep])
+    return step, int(np.count_nonzero(kept))
 
 
 def _variational_rhs(rhs, jac):
@@ -339,9 +407,10 @@ def find_periodic_orbit(
     solver = _shooting_integrator(integrator, aug_rhs, n)
     identity = np.eye(n)
 
-    def shoot(y_start, period):
+    def shoot(y_start, period, integrator=solver):
         """Integrate state + variational equations over one period: (F, Phi, f(y(T))) or error."""
-        traj = solver.integrate(aug_rhs, (0.0, period), np.concatenate((y_start, identity.ravel())))
+        start = np.concatenate((y_start, identity.ravel()))
+        traj = integrator.integrate(aug_rhs, (0.0, period), start)
         if not traj.success:
             return traj, None, None, None
         z = np.asarray(traj.y_final, dtype=float)
@@ -388,8 +457,36 @@ def find_periodic_orbit(
     residual = residual_of(y, defect)
     iterations = 0
     rank_note = ""
-    while residual > tol:
+    floor = _precision_floor(y, defect, scale, tol)
+    measured = None  # the integration noise, once measured at the current point
+
+    def at_floor() -> bool:
+        """Whether the residual is at the precision floor, measured now that Newton stopped."""
+        nonlocal floor, measured
+        measured = _integration_noise(solver, shoot, y, period, defect)
+        floor = _precision_floor(y, defect, scale, tol, measured)
+        return residual <= FLOOR_SAFETY * floor
+
+    def line_search(step):
+        """The first damped step that reduces the residual: (y, period, shot, residual) or None."""
+        lam = 1.0
+        for _ in range(SHOOTING_MAX_HALVINGS + 1):
+            y_try = y.copy()
+            y_try[free] += lam * step[:-1]
+            period_try = period + lam * step[-1]
+            if period_try > 0:
+                trial = shoot(y_try, period_try)
+                if trial[1] is not None:
+                    residual_try = residual_of(y_try, trial[1])
+                    if residual_try < residual:
+                        return y_try, period_try, trial, residual_try
+            lam *= 0.5
+        return None
+
+    while residual > max(tol, floor):
         if iterations >= max_iter:
+            if at_floor():
+                break
             return failed(
                 OrbitStatus.MAX_ITER,
                 f"no convergence in max_iter = {max_iter} Newton iterations: residual "
@@ -416,48 +513,50 @@ def find_periodic_orbit(
             ]
             newton = np.vstack((newton, rows))
             target = np.concatenate((target, misses))
-        step, _, rank, _ = np.linalg.lstsq(newton, target, rcond=_RANK_RTOL)
+        step, rank = _newton_step(newton, target)
         if rank < newton.shape[1]:
             rank_note = (
-                f" The Newton matrix has rank {rank} < {newton.shape[1]} unknowns: the orbit is "
-                "not isolated; pin more components with `fixed_indices`."
+                f" The Newton matrix has rank {rank} < {newton.shape[1]} unknowns: the steps "
+                "are the least-squares ones of minimum norm (what the matrix does not determine "
+                "is left alone); if the orbit is a member of a family, pin it with "
+                "`fixed_indices` or `integrals`."
             )
-        lam, accepted = 1.0, False
-        for _ in range(SHOOTING_MAX_HALVINGS + 1):
-            y_try = y.copy()
-            y_try[free] += lam * step[:-1]
-            period_try = period + lam * step[-1]
-            if period_try > 0:
-                trial = shoot(y_try, period_try)
-                if trial[1] is not None:
-                    residual_try = residual_of(y_try, trial[1])
-                    if residual_try < residual:
-                        accepted = True
-                        break
-            lam *= 0.5
+        found = line_search(step)
+        if found is None and not at_floor():
+            # near the floor, the directions whose target is within the noise carry only noise:
+            # a step along them (amplified by a small singular value) wrecks the others
+            rows = _defect_noise(y, defect, measured)
+            noise = np.concatenate((rows, np.zeros(len(target) - len(rows))))
+            step, _ = _newton_step(newton, target, noise)
+            found = line_search(step)
         step_size = float(np.max(np.abs(step[:-1]), initial=0.0)) / scale
         step_size = max(step_size, abs(step[-1]) / period)
+        accepted = found is not None
         if not accepted:
+            if residual <= FLOOR_SAFETY * floor:  # at_floor() measured it above
+                break
             return failed(
                 OrbitStatus.STALLED,
                 f"stalled after {iterations} iterations at residual {residual:.3e} > tol = "
-                f"{tol:.1e}: no damped Newton step reduces it (relative step {step_size:.1e}); "
-                "the integrator error probably dominates: tighten its tolerance or loosen `tol`."
-                + rank_note,
+                f"{tol:.1e}: no damped Newton step reduces it (relative step {step_size:.1e}), "
+                f"and it is above {FLOOR_SAFETY:g} x the precision floor {floor:.1e} measured "
+                "there; improve the guess, or tighten the integrator." + rank_note,
                 iterations,
                 y,
                 period,
                 residual,
                 phi,
             )
-        y, period = y_try, period_try
-        traj, defect, phi, f_end = trial
-        residual = residual_try
-        if step_size < SHOOTING_STALL_STEP and residual > tol:
+        y, period, (traj, defect, phi, f_end), residual = found
+        floor = _precision_floor(y, defect, scale, tol)
+        if step_size < SHOOTING_STALL_STEP and residual > max(tol, floor):
+            if at_floor():
+                break
             return failed(
                 OrbitStatus.STALLED,
                 f"stalled after {iterations} iterations at residual {residual:.3e} > tol = "
-                f"{tol:.1e}: the Newton step is below {SHOOTING_STALL_STEP:g}." + rank_note,
+                f"{tol:.1e} and above {FLOOR_SAFETY:g} x the precision floor {floor:.1e}: the "
+                f"Newton step is below {SHOOTING_STALL_STEP:g}." + rank_note,
                 iterations,
                 y,
                 period,
@@ -469,9 +568,14 @@ def find_periodic_orbit(
     distances = np.sort(np.abs(multipliers - 1.0))
     trivial_error = float(distances[n_trivial - 1]) if n_trivial > 0 else 0.0
     n_found = count_near_one(multipliers)
+    where = (
+        f"residual {residual:.2e}"
+        if residual <= tol
+        else f"residual {residual:.2e} at the precision floor {floor:.1e} (> tol = {tol:.1e})"
+    )
     status, message = (
         OrbitStatus.CONVERGED,
-        f"converged in {iterations} iterations: residual {residual:.2e}, period {float(period)!r}, "
+        f"converged in {iterations} iterations: {where}, period {float(period)!r}, "
         f"trivial multiplier error {trivial_error:.1e}; {n_found} multipliers within "
         f"{TRIVIAL_MULTIPLIER_TOL:g} of 1, {n_trivial} expected." + rank_note,
     )
@@ -503,4 +607,5 @@ def find_periodic_orbit(
         n_trivial_expected=n_trivial,
         n_trivial_found=n_found,
         integrator=solver.name,
+        precision_floor=floor,
     )

@@ -22,7 +22,12 @@ from perturb.workprecision import WorkPrecision
 __all__ = ["load_ipython_extension", "register", "validation_html", "work_precision_html"]
 
 #: Colours of the verdict (green, red, amber): readable on light and dark notebook themes.
-VERDICT_COLOURS = {"VALID": "#1a7f37", "INVALID": "#cf222e", "UNDECIDED": "#9a6700"}
+VERDICT_COLOURS = {
+    "VALID": "#1a7f37",
+    "INVALID": "#cf222e",
+    "UNDECIDED": "#9a6700",
+    "LOWER_ORDER": "#0969da",
+}
 
 
 def _number(value) -> str:

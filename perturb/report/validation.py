@@ -86,6 +86,7 @@ def validation_as_dict(report: ValidationReport) -> dict:
             "epsilon": report.epsilon,
             "valid": report.valid,
             "outcome": report.outcome.label,
+            "accurate_order": report.accurate_order,
             "verdict": report.verdict,
             "tol": report.tol,
             "checks": {c.name: _check_as_dict(c) for c in report.checks},

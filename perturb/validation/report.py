@@ -32,15 +32,19 @@ class Verdict(enum.Enum):
     UNDECIDED = (
         "the checks could not decide whether the analytic solution describes the true motion"
     )
+    LOWER_ORDER = (
+        "the analytic solution describes the true motion, but to a lower order than asked: its "
+        "error falls like eps^(k+1) with k < N"
+    )
 
     @property
     def success(self) -> bool:
-        """True only for :attr:`VALID`."""
+        """True only for :attr:`VALID` (a lower order than asked is not what was asked)."""
         return self is Verdict.VALID
 
     @property
     def label(self) -> str:
-        """``"valid"``, ``"invalid"`` or ``"undecided"`` (the JSON ``outcome``)."""
+        """``"valid"``, ``"invalid"``, ``"undecided"`` or ``"lower_order"`` (the JSON ``outcome``)."""
         return self.name.lower()
 
 
@@ -311,7 +315,10 @@ class ValidationReport:
     timings : dict
         Wall time in seconds of each stage.
     outcome : Verdict
-        VALID, INVALID or UNDECIDED.
+        VALID, INVALID, UNDECIDED or LOWER_ORDER.
+    accurate_order : int or None
+        With LOWER_ORDER: the k of "accurate to O(eps^(k+1))" the measured slope supports (the
+        solution is then as good as an order-k one); None otherwise.
     checks : tuple of Check
         The measurements the verdict rests on (existence, orbit error, period error, order).
     tol : float
@@ -341,6 +348,7 @@ class ValidationReport:
     outcome: Verdict = Verdict.UNDECIDED
     checks: tuple = field(default=(), converter=tuple)
     tol: float = field(default=math.nan, converter=float)
+    accurate_order: int | None = None
 
     def check(self, name: str) -> Check | None:
         """The check called ``name``, or None if it is not in the report."""

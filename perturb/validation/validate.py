@@ -22,6 +22,7 @@ from perturb._defaults import (
     SLOPE_FACTORS,
     STIFFNESS_SAMPLES,
 )
+from perturb.domain import series_domain
 from perturb.errors import PerturbError, bad_value
 from perturb.oracle import Integrator, Trajectory
 from perturb.validation.checks import (
@@ -41,7 +42,7 @@ from perturb.validation.setup import (
     derived_shooting_setup,
     integrator_for,
 )
-from perturb.validation.verdict import decide, measurement_checks
+from perturb.validation.verdict import accurate_order, decide, measurement_checks
 
 __all__ = ["validate"]
 
@@ -268,6 +269,11 @@ def validate(
             "frequency has broken down"
         )
         period = _generating_period(model, solution)
+    elif start_override is None:
+        # the same domain check as ``perturb solve``: terms that do not decrease are no series
+        domain = series_domain(solution, model.parameter_value(), model.symbol_values())
+        if not domain.ok:
+            breakdown = "the series is outside its domain: " + "; ".join(domain.reasons)
     if not np.all(np.isfinite(y_analytic0)):
         breakdown = f"the analytic initial state {y_analytic0.tolist()} is not finite"
         if start_override is None:
@@ -388,6 +394,7 @@ def validate(
         stiffness=stiffness,
         timings=timings,
         checks=checks,
+        accurate_order=accurate_order(checks) if outcome is Verdict.LOWER_ORDER else None,
     )
 
 

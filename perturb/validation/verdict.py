@@ -4,7 +4,10 @@ VALID only when every check passed: a true periodic orbit exists near the analyt
 the analytic orbit is within ``tol`` of it at equal phase and its period within ``tol`` (accuracy),
 and the error falls like ε^(N+1) along a scan of the problem's own small parameter (order).  A check
 that failed makes the verdict INVALID, naming it with its figure; otherwise a check that could not
-run makes it UNDECIDED, saying why.  The trajectory over the horizon and the problem's own validity
+run makes it UNDECIDED, saying why. When the order check alone failed but the error still falls
+like ε^(k+1) for some 1 <= k < N (a solution that cannot gain at order N), the verdict is
+LOWER_ORDER: "accurate to O(ε^(k+1))", with the measured errors — not INVALID, which says the
+solution does not describe the motion at all.  The trajectory over the horizon and the problem's own validity
 estimates are reported, never decisive.
 """
 
@@ -12,9 +15,28 @@ from __future__ import annotations
 
 import math
 
+from perturb._defaults import SLOPE_TOLERANCE
 from perturb.validation.report import Check, Condition, OrbitCheck, SlopeFit, Verdict
 
-__all__ = ["decide", "measurement_checks"]
+__all__ = ["accurate_order", "decide", "measurement_checks"]
+
+
+def accurate_order(checks: tuple[Check, ...]) -> int | None:
+    """The k of "accurate to O(eps^(k+1))", k >= 1, when the order check alone failed.
+
+    The largest k whose slope k + 1 the measured slope reaches within the verdict's band
+    (``SLOPE_TOLERANCE``), when that is below the order asked and at least 1; None when the
+    outcome is not a lower order (another check failed or could not run, or even k = 1 fails).
+    """
+    order = next((c for c in checks if c.name == "order"), None)
+    others = [c for c in checks if c.name != "order"]
+    if order is None or order.passed is not False or any(c.passed is not True for c in others):
+        return None
+    if not math.isfinite(order.value):
+        return None
+    k = math.floor(order.value + SLOPE_TOLERANCE) - 1
+    asked = round(order.tolerance + SLOPE_TOLERANCE) - 1
+    return k if 1 <= k < asked else None
 
 
 def _existence(orbit: OrbitCheck | None, why_missing: str) -> Check:
@@ -138,7 +160,17 @@ def decide(
     else:
         failed = [c for c in checks if c.passed is False]
         open_ = [c for c in checks if c.passed is None]
-        if failed:
+        lower = accurate_order(checks)
+        if lower is not None:
+            outcome = Verdict.LOWER_ORDER
+            asked = round(failed[0].tolerance + SLOPE_TOLERANCE) - 1
+            body = (
+                f"The analytic solution describes the true motion, but only to O(eps^{lower + 1}) "
+                f"(accurate to order {lower} < {asked} asked): "
+                + "; ".join(c.sentence for c in checks if c.name != "order")
+                + f"; {failed[0].sentence.replace(', so any agreement at this eps is accidental', '')}"
+            )
+        elif failed:
             outcome = Verdict.INVALID
             body = "The analytic solution does not describe the true motion: " + "; ".join(
                 f"{c.name}: {c.sentence}" for c in failed

@@ -44,7 +44,7 @@ __all__ = ["DETUNING_RATIO_LIMIT", "DISK_RTOL", "DiskInNewtonianField"]
 #: Relative tolerance of A + B = C (round-off in user input must not reject a disk).
 DISK_RTOL = 1e-9
 #: The reduction order needed for a solution of order n is n + 2 (the first forcing is O(eps**2)).
-_FORCING_DELAY = 2
+_FORCING_DELAY = 3
 #: Highest solution order offered: order n needs the reduction to eps**(n + 2) (order 3: F5, about
 #: 10 s cold); orders above 1 are derived for the given body's parameter values.
 MAX_DISK_ORDER = 3

@@ -107,7 +107,7 @@ __all__ = [
 
 #: Highest reduction order accepted (symbolic disk, cold: order 3 ~0.2 s, 4 ~0.5 s, 5 ~2.5 s of
 #: series arithmetic, plus the sympy expressions of what is asked for).
-MAX_REDUCTION_ORDER = 5
+MAX_REDUCTION_ORDER = 6
 #: Specialised reductions kept in memory (one per body and order; each is a few hundred kB).
 SPECIALISED_CACHE_SIZE = 32
 

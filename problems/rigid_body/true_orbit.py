@@ -239,7 +239,9 @@ def _move_to_section(problem, y, forward):
     return y, forward(y / units)
 
 
-def conditioned_true_orbit(problem, solution=None, offset: float = 0.0) -> TrueOrbit:
+def conditioned_true_orbit(
+    problem, solution=None, offset: float = 0.0, integrator=None
+) -> TrueOrbit:
     """The true periodic orbit of the analytic solution's family member (see the module docstring).
 
     Parameters
@@ -251,6 +253,9 @@ def conditioned_true_orbit(problem, solution=None, offset: float = 0.0) -> TrueO
         The analytic solution giving the seed, the period guess and the section (default: order 1).
     offset : float
         Relative offset of the seed's P, dP (to check that the result does not depend on it).
+    integrator : perturb.oracle.IntegratorBase, optional
+        The shooting's integrator; default heyoka in :func:`extended_type` at its epsilon. The
+        result must not depend on it beyond its resolution (tests run it with other tolerances).
 
     Failures (heyoka missing, no convergence) are returned as a status with a message.
     """
@@ -308,7 +313,7 @@ def conditioned_true_orbit(problem, solution=None, offset: float = 0.0) -> TrueO
                 fixed_indices=(2, 3, 5),
                 direction=-1,
                 n_trivial=N_TRIVIAL,
-                integrator=Heyoka(fp_type=fp_name),
+                integrator=Heyoka(fp_type=fp_name) if integrator is None else integrator,
                 y_scale=1.0,
                 tol=TOL if centring == 0 else FINE_TOL,
             )

@@ -65,3 +65,44 @@ def test_plot_or_clear_import_error(table):
 def test_bad_input(kwargs, name):
     with pytest.raises(InvalidParameterError, match=f"`{name}`"):
         work_precision(get_problem("duffing").create(), **kwargs)
+
+
+def test_each_point_is_warmed_up_then_timed_at_its_best(monkeypatch):
+    """Issue 21.4: a point's one-time costs (imports, JIT, first-use caches) are paid by an untimed
+    warm-up call, and the best of the timed calls is reported. A fake clock makes it exact: the
+    first call of ``fn`` costs 100 s, the later ones 3, 1 and 2 s."""
+    import perturb.workprecision as wp
+
+    clock = {"now": 0.0}
+    costs = iter([100.0, 3.0, 1.0, 2.0])
+    calls = []
+
+    def fn():
+        calls.append(clock["now"])
+        clock["now"] += next(costs)
+        return len(calls)
+
+    monkeypatch.setattr(wp.time, "perf_counter", lambda: clock["now"])
+    seconds, result = wp._best_time(fn, repeat=3)
+    assert len(calls) == 4  # one warm-up + three timed
+    assert seconds == 1.0  # the best timed call; the 100 s warm-up is in no figure
+    assert result == 4
+
+
+def test_a_converging_method_falls_monotonically_as_its_setting_tightens():
+    """The error of DOP853 and of RK4 falls at every step of their settings (deterministic: the
+    error does not depend on the timing)."""
+    table = work_precision(
+        get_problem("duffing").create(eps=0.1),
+        periods=3,
+        orders=1,
+        rk4_steps=(10, 20, 40, 80),
+        scipy_methods=("DOP853",),
+        tolerances=(1e-6, 1e-8, 1e-10, 1e-12),
+        heyoka=False,
+        repeat=1,
+    )
+    for method in ("rk4", "scipy DOP853"):
+        errors = [p.error for p in table.points if p.method == method]
+        assert len(errors) == 4
+        assert all(b < a for a, b in zip(errors, errors[1:], strict=False)), (method, errors)
