@@ -242,10 +242,12 @@ def run_tasks(
     try:
         for future in as_completed(futures, loop=client.loop):
             number = futures[future]
-            if future.status != "finished":
-                lost.append((number, _failure(future)))
+            try:
+                # a result lost with its worker after it finished is recomputed: this waits for it
+                result = future.result()
+            except Exception as exc:  # noqa: BLE001 - a chunk that kept killing its workers
+                lost.append((number, " ".join(f"{type(exc).__name__}: {exc}".split())))
                 continue
-            result = future.result()
             busy.append(result.get("seconds", 0.0))
             write(number, result)
             done += _points(chunking, number)
@@ -257,14 +259,6 @@ def run_tasks(
     if os.environ.get("PERTURB_SWEEP_DEBUG"):
         print(f"tasks {len(busy)}, busy {sum(busy):.2f} s", file=sys.stderr)
     return lost
-
-
-def _failure(future) -> str:
-    try:
-        exc = future.exception()
-    except Exception as error:  # noqa: BLE001
-        exc = error
-    return " ".join(f"{type(exc).__name__}: {exc}".split())
 
 
 def _points(chunking: Chunking, number: int) -> int:

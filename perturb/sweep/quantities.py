@@ -97,6 +97,17 @@ def variables(validate: bool) -> tuple[Variable, ...]:
                 "verdict_reason", (), "str", "", {"long_name": "the verdict's sentence"}, True
             ),
             Variable(
+                "accurate_order",
+                (),
+                "int8",
+                NOT_COMPUTED,
+                {
+                    "long_name": "with the verdict lower_order: the k of 'accurate to "
+                    "O(eps^(k+1))' (-1 otherwise)"
+                },
+                True,
+            ),
+            Variable(
                 "completed",
                 (),
                 "int8",

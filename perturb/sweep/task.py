@@ -27,7 +27,7 @@ from perturb.sweep.evaluate import (
 )
 from perturb.sweep.quantities import CHECK_CODES, LEGACY_NONE, check_names, variables
 from perturb.sweep.spec import SweepJob
-from perturb.sweep.status import PointStatus, code_of
+from perturb.sweep.status import NOT_COMPUTED, PointStatus, code_of
 
 __all__ = ["ChunkResult", "run_chunk", "validate_point"]
 
@@ -206,6 +206,8 @@ def _store_validation(out, k: int, report) -> None:
     out["verdict"][k] = code_of(report.outcome)
     out["verdict_reason"][k] = report.verdict
     out["completed"][k] = int(bool(report.completed))
+    accurate = report.accurate_order
+    out["accurate_order"][k] = NOT_COMPUTED if accurate is None else int(accurate)
     out["trajectory_status"][k] = LEGACY_NONE if report.status is None else report.status.code
     orbit = report.periodic_orbit
     if orbit is not None:

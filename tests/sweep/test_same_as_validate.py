@@ -1,0 +1,91 @@
+"""A validated sweep's numbers at a grid point are ``perturb validate``'s there, to the last digit
+the JSON prints (both are read back from the JSON's repr of each float)."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from perturb.cli import main
+from perturb.sweep.derive import plan
+from perturb.sweep.grid import parse_axis
+from perturb.sweep.quantities import check_names
+from perturb.sweep.spec import SweepJob, check_spec
+from perturb.sweep.status import member_of
+from perturb.sweep.task import run_chunk
+from perturb.validation import Verdict
+from problems import get_problem
+
+
+def validate_json(capsys, problem: str, values: dict, order: int) -> dict:
+    argv = ["validate", problem, "--order", str(order), "--format", "json"]
+    for name, value in values.items():
+        argv += ["--set", f"{name}={value!r}"]
+    main(argv)
+    return json.loads(capsys.readouterr().out)
+
+
+def same(a, b) -> bool:
+    """Equal as the JSON prints them (NaN equal to NaN; None for a missing number)."""
+    if a is None or b is None:
+        return a is None and (b is None or (isinstance(b, float) and math.isnan(b)))
+    return json.loads(json.dumps(float(a))) == json.loads(json.dumps(float(b))) or (
+        math.isnan(a) and math.isnan(b)
+    )
+
+
+def check_point(out: dict, k: int, expected: dict) -> None:
+    assert member_of(Verdict, out["verdict"][k]).label == expected["outcome"]
+    assert out["verdict_reason"][k] == expected["verdict"]
+    assert bool(out["completed"][k]) == expected["completed"]
+    assert same(out["epsilon"][k], expected["epsilon"])
+    assert same(out["period"][k], expected["period"])
+    orbit = expected["periodic_orbit"]
+    for key in ("orbit_error", "period_error", "initial_state_error"):
+        assert same(out[key][k], orbit[key]), key
+    assert same(out["true_period"][k], orbit["period"])
+    assert out["orbit_status"][k] == orbit["status"]
+    assert out["trajectory_status"][k] == expected["status"]
+    floquet = [[out["floquet_real"][k][i], out["floquet_imag"][k][i]] for i in range(len(orbit["floquet"]))]
+    assert json.loads(json.dumps(floquet)) == orbit["floquet"]
+    assert same(out["order_slope"][k], expected["slope"]["value"])
+    for i, name in enumerate(check_names()):
+        assert same(out["check_value"][k][i], expected["checks"][name]["value"]), name
+        passed = {1: True, 0: False, -1: None}[int(out["check_passed"][k][i])]
+        assert passed == expected["checks"][name]["passed"], name
+    accurate = int(out["accurate_order"][k])
+    assert (None if accurate < 0 else accurate) == expected["accurate_order"]
+
+
+@pytest.mark.parametrize(
+    ("problem", "fixed", "axes", "order"),
+    [
+        ("duffing", {}, ["eps=0.05,0.2", "amplitude=0.8,1.3"], 1),
+        ("van-der-pol", {}, ["eps=0.1,0.4"], 2),
+    ],
+)
+def test_a_validated_point_is_perturb_validate(capsys, problem, fixed, axes, order):
+    model = get_problem(problem).create(**fixed)
+    spec = check_spec(model, [parse_axis(a) for a in axes], order=order, validate=True)
+    derivation, _ = plan(spec.model, spec.grid.axes, order)
+    out = run_chunk(SweepJob(spec, derivation, "test"), np.arange(spec.grid.size))
+    for k in range(spec.grid.size):
+        values = {**fixed, **spec.grid.point(k)}
+        check_point(out, k, validate_json(capsys, problem, values, order))
+
+
+def test_the_fast_spin_disk_is_perturb_validate(capsys):
+    fixed = {"R": 0.123299}
+    model = get_problem("disk").create(r0=0.755155, gamma3_0=0.25, **fixed)
+    spec = check_spec(
+        model, [parse_axis("r0=0.755155,0.9"), parse_axis("gamma3_0=0.25,0.3")], order=1, validate=True
+    )
+    derivation, _ = plan(spec.model, spec.grid.axes, 1)
+    out = run_chunk(SweepJob(spec, derivation, "test"), [0, 3])
+    for i, k in enumerate((0, 3)):
+        values = {**fixed, **spec.grid.point(k)}
+        expected = validate_json(capsys, "disk", values, 1)
+        check_point({name: value[[i]] for name, value in out.items() if name != "seconds"}, 0, expected)
