@@ -10,7 +10,8 @@ Rooms: :mod:`.grid` (axes, points, chunks), :mod:`.spec` (what a sweep computes)
 statuses), :mod:`.evaluate` and :mod:`.task` (the work of a task, on a worker), :mod:`.driver`
 (Dask), :mod:`.store` (Zarr, resume), :mod:`.memory` (results without a store), :mod:`.api`
 (the front door). Only :mod:`.driver`, :mod:`.store` and :mod:`.memory` import the extra
-``perturb[sweep]`` (dask, distributed, xarray, zarr), and only when a sweep runs.
+``perturb[sweep]`` (dask, distributed, xarray, zarr), and only when a sweep runs; importing this
+package (or :mod:`.grid`, which scenes use to read a ``[sweep]`` section) loads none of them.
 
 Examples
 --------
@@ -23,14 +24,27 @@ Examples
 
 from __future__ import annotations
 
+import importlib
 import sys
 import types
 
-from perturb.sweep.api import sweep
-from perturb.sweep.grid import Axis, Grid, parse_axis
-from perturb.sweep.status import PointStatus
-
 __all__ = ["Axis", "Grid", "PointStatus", "parse_axis", "sweep"]
+
+#: Public name -> the module defining it (imported on first use: PEP 562).
+_LAZY = {
+    "sweep": "perturb.sweep.api",
+    "Axis": "perturb.sweep.grid",
+    "Grid": "perturb.sweep.grid",
+    "parse_axis": "perturb.sweep.grid",
+    "PointStatus": "perturb.sweep.status",
+}
+
+
+def __getattr__(name: str):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'perturb.sweep' has no attribute {name!r}")
+    return getattr(importlib.import_module(module), name)
 
 
 class _CallableModule(types.ModuleType):
@@ -38,6 +52,8 @@ class _CallableModule(types.ModuleType):
     :func:`perturb.sweep.api.sweep`."""
 
     def __call__(self, *args, **kwargs):
+        from perturb.sweep.api import sweep
+
         return sweep(*args, **kwargs)
 
 
