@@ -238,6 +238,7 @@ def run_tasks(
         futures[future] = number
     lost: list[tuple[int, str]] = []
     busy: list[float] = []
+    writing = 0.0
     notify(label, done, total)
     try:
         for future in as_completed(futures, loop=client.loop):
@@ -248,8 +249,10 @@ def run_tasks(
             except Exception as exc:  # noqa: BLE001 - a chunk that kept killing its workers
                 lost.append((number, " ".join(f"{type(exc).__name__}: {exc}".split())))
                 continue
-            busy.append(result.get("seconds", 0.0))
+            busy.append(result.get("cpu", 0.0))
+            clock = time.perf_counter()
             write(number, result)
+            writing += time.perf_counter() - clock
             done += _points(chunking, number)
             notify(label, done, total)
             future.release()
@@ -257,7 +260,7 @@ def run_tasks(
         client.cancel(list(futures))
         raise
     if os.environ.get("PERTURB_SWEEP_DEBUG"):
-        print(f"tasks {len(busy)}, busy {sum(busy):.2f} s", file=sys.stderr)
+        print(f"tasks {len(busy)}, CPU {sum(busy):.2f} s, writing {writing:.2f} s", file=sys.stderr)
     return lost
 
 

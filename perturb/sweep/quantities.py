@@ -19,11 +19,14 @@ from perturb.sweep.status import NOT_COMPUTED, PointStatus, coding_attrs
 from perturb.validation import Verdict
 from perturb.validation.verdict import measurement_checks
 
-__all__ = ["LEGACY_NONE", "Variable", "check_names", "variables"]
+__all__ = ["LEGACY_NONE", "TIMINGS", "Variable", "check_names", "stored_name", "variables"]
 
 #: The value of a legacy status code (trajectory, orbit: 0 success, negative failure) where the
 #: JSON has null (nothing ran) or nothing was computed.
 LEGACY_NONE = 127
+
+#: What a task returns beside the variables: its wall and CPU seconds (not stored).
+TIMINGS = ("seconds", "cpu")
 
 #: Code of a check's outcome in ``check_passed``: passed, failed, could not run.
 CHECK_CODES = {True: 1, False: 0, None: NOT_COMPUTED}

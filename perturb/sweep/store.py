@@ -26,7 +26,7 @@ import numpy as np
 
 from perturb.errors import InvalidParameterError
 from perturb.sweep.grid import Chunking
-from perturb.sweep.quantities import check_names, stored_name, variables
+from perturb.sweep.quantities import TIMINGS, check_names, stored_name, variables
 from perturb.sweep.spec import STORE_FORMAT, SweepJob
 
 __all__ = ["SweepStore", "open_dataset", "remove_store", "write_dataset"]
@@ -214,7 +214,7 @@ class SweepStore:
         region = self.chunking.region(number)
         block = tuple(s.stop - s.start for s in region)
         session_name = stored_name("session", self.swept)
-        names = [n for n in result if n != "seconds"]
+        names = [n for n in result if n not in TIMINGS]
         names.sort(key=lambda n: stored_name(n, self.swept) == session_name)
         for name in names:
             array = self._arrays[stored_name(name, self.swept)]

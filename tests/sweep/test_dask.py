@@ -24,6 +24,7 @@ import perturb  # noqa: E402
 from perturb.cli import main  # noqa: E402
 from perturb.sweep.derive import plan  # noqa: E402
 from perturb.sweep.grid import parse_axis  # noqa: E402
+from perturb.sweep.quantities import TIMINGS  # noqa: E402
 from perturb.sweep.spec import SweepJob, check_spec  # noqa: E402
 from perturb.sweep.task import run_chunk  # noqa: E402
 from problems import get_problem  # noqa: E402
@@ -53,7 +54,7 @@ def reference(problem, axes, **settings) -> dict:
     derivation, _ = plan(spec.model, spec.grid.axes, spec.order, spec.derive)
     out = run_chunk(SweepJob(spec, derivation, "reference"), np.arange(spec.grid.size))
     shape = spec.grid.shape
-    return {k: np.asarray(v).reshape(shape + np.shape(v)[1:]) for k, v in out.items() if k != "seconds"}
+    return {k: np.asarray(v).reshape(shape + np.shape(v)[1:]) for k, v in out.items() if k not in TIMINGS}
 
 
 def assert_same(ds, expected: dict) -> None:
