@@ -87,6 +87,7 @@ def _cmd_sweep(args) -> int:
 
     try:
         from perturb.sweep.api import axes_of, require_extra, sweep
+        from perturb.sweep.grid import check_names
 
         require_extra()
     except (ImportError, MissingDependencyError) as exc:
@@ -95,12 +96,14 @@ def _cmd_sweep(args) -> int:
         raise _UsageError("--grid: give at least one, e.g. --grid eps=0.01:0.2:20")
     _check_output(args)
     cls = load_problem(args.problem)
-    problem = cls.create(**_parse_sets(args.sets))
+    overrides = _parse_sets(args.sets)
+    problem = cls.create(**overrides)
     order = _parse_order(args.order)
     if args.family is not None:
         problem.families(order).get(args.family)  # an unknown name exits 2 with the list
         problem = problem.with_family(args.family)
     axes = axes_of(args.grids)
+    check_names(axes, [spec.name for spec in cls.parameter_specs], cls.name, fixed=set(overrides))
     times = _parse_times(args.times)
     tol = DEFAULT_TOL if args.tol is None else _parse_positive("--tol", args.tol, float)
     store = args.output if args.format == "zarr" else None

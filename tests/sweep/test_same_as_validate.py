@@ -89,3 +89,32 @@ def test_the_fast_spin_disk_is_perturb_validate(capsys):
         values = {**fixed, **spec.grid.point(k)}
         expected = validate_json(capsys, "disk", values, 1)
         check_point({name: value[[i]] for name, value in out.items() if name not in TIMINGS}, 0, expected)
+
+
+@pytest.mark.slow
+def test_the_disk_at_order_2_per_point_and_symbolic(capsys):
+    """Per point: ``perturb validate``'s very numbers. Symbolic (derived once): the same exact
+    series evaluated in another form, so the same verdicts and the numbers to rounding."""
+    fixed = {"R": 0.123299}
+    model = get_problem("disk").create(r0=0.755155, gamma3_0=0.25, **fixed)
+    axes = [parse_axis("r0=0.755155,0.9"), parse_axis("gamma3_0=0.25,0.3")]
+    runs = {}
+    for derive in ("per-point", "auto"):
+        spec = check_spec(model, axes, order=2, validate=True, derive=derive)
+        derivation, _ = plan(spec.model, spec.grid.axes, 2, derive)
+        runs[derivation.mode.name] = run_chunk(SweepJob(spec, derivation, "test"), np.arange(4))
+    assert set(runs) == {"PER_POINT", "SYMBOLIC"}
+    per_point, symbolic = runs["PER_POINT"], runs["SYMBOLIC"]
+    for k in range(4):
+        values = {**fixed, **spec.grid.point(k)}
+        check_point(per_point, k, validate_json(capsys, "disk", values, 2))
+    assert per_point["verdict"].tolist() == symbolic["verdict"].tolist()
+    # the period is the same number (the frequency series is evaluated alike); the orbit errors
+    # are distances from true orbits each known to `resolution` of the amplitude (the shooting
+    # converges from seeds a few ulps apart), so they agree to within it
+    for name in ("period", "true_period", "period_error"):
+        np.testing.assert_array_equal(symbolic[name], per_point[name], err_msg=name)
+    assert np.all(np.abs(symbolic["orbit_error"] - per_point["orbit_error"]) <= per_point["resolution"])
+    # the slope is fitted to one-period errors down to ~1e-9, whose last digits the rounding
+    # moves: it agrees far inside the order check's band (SLOPE_TOLERANCE = 0.5)
+    assert np.all(np.abs(symbolic["order_slope"] - per_point["order_slope"]) < 1e-4)
