@@ -31,14 +31,12 @@ import argparse
 import json
 import os
 import shutil
-import statistics
 import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
 from _tree import ROOT, export, run_child
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
@@ -65,7 +63,9 @@ def _sweep(problem, axes, workers: int, store: Path | None = None, client=None, 
     import perturb
 
     clock = time.perf_counter()
-    ds = perturb.sweep(problem, list(axes), workers=workers, output=store, client=client, **settings)
+    ds = perturb.sweep(
+        problem, list(axes), workers=workers, output=store, client=client, **settings
+    )
     return time.perf_counter() - clock, float(ds.attrs["seconds"]), ds
 
 
@@ -73,8 +73,11 @@ def section_eval(workers: int) -> None:
     from problems import get_problem
 
     print(f"\n## evaluation-only sweeps, LocalCluster of {workers} workers, Zarr store\n")
-    print("| sweep | points | sweep phase [s] | points/s (sweep phase) | whole call [s] |")
-    print("|---|---:|---:|---:|---:|")
+    print(
+        "| sweep | points | sweep phase [s] | points/s (sweep phase) | points per task CPU-second "
+        "| whole call [s] |"
+    )
+    print("|---|---:|---:|---:|---:|---:|")
     cases = [
         ("duffing order 2, eps x amplitude 1000 x 1000", "duffing", ["eps=0.01:0.2:1000", "amplitude=0.5:1.5:1000"], 2),
         ("van der Pol order 3, eps 10^6 values", "van-der-pol", ["eps=0.01:0.5:1000000"], 3),
@@ -85,16 +88,20 @@ def section_eval(workers: int) -> None:
                 get_problem(name).create(), axes, workers, Path(folder) / "s.zarr", order=order
             )
             points = int(ds["status"].size)
-            print(f"| {label} | {points:,} | {phase:.1f} | {points / phase:,.0f} | {whole:.1f} |")
+            per_cpu = points / ds.attrs["task_cpu_seconds"]
+            print(
+                f"| {label} | {points:,} | {phase:.1f} | {points / phase:,.0f} | {per_cpu:,.0f} "
+                f"| {whole:.1f} |"
+            )
 
 
-def _loop(job, chunking) -> float:
+def _loop(job, chunking) -> tuple[float, float]:
     from perturb.sweep.task import run_chunk
 
-    clock = time.perf_counter()
+    clock, cpu = time.perf_counter(), time.process_time()
     for number in chunking:
         run_chunk(job, chunking.indices(number))
-    return time.perf_counter() - clock
+    return time.perf_counter() - clock, time.process_time() - cpu
 
 
 def section_overhead() -> None:
@@ -104,10 +111,15 @@ def section_overhead() -> None:
 
     print("\n## the Dask path against a plain loop (the same chunks, results kept in memory)\n")
     print(
-        "| work | points | chunks | loop [s] | workers | Dask wall [s] | tasks busy [s] | "
-        "overhead per point [ms] | scheduling share |"
+        "CPU seconds are counted where the work runs (workers, and this process for the loop and"
+        " the driver), so that they do not depend on what else the machine runs; the overhead per"
+        " point is (tasks' CPU + driver's CPU - loop's CPU) / points.\n"
     )
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print(
+        "| work | points | chunks | workers | loop wall [s] | loop CPU/point [ms] | Dask wall [s] "
+        "| tasks CPU/point [ms] | driver CPU/point [ms] | overhead/point [ms] | overhead share |"
+    )
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     cases = [
         ("evaluation, duffing order 2", ["eps=0.01:0.2:500", "amplitude=0.5:1.5:400"], {"order": 2}),
         ("validation, duffing order 1", ["eps=0.02:0.2:16", "amplitude=0.6:1.4:12"], {"validate": True}),
@@ -118,22 +130,23 @@ def section_overhead() -> None:
         seconds = pilot_seconds(job)
         for workers in (1, 2):
             chunking = Chunking.of(job.spec.grid.shape, chunk_points(seconds, size, workers))
-            loop = _loop(job, chunking) if workers == 1 else loop
-            busy = []
+            _loop(job, chunking)  # warm: every compiled integrator of the grid, in this process
+            loop_wall, loop_cpu = _loop(job, chunking)
             with Cluster(workers) as cluster:
                 cluster.client.wait_for_workers(workers)
-                # warm every worker (imports, derivation) before the timed run, as a long sweep does
-                run_tasks(cluster, job, chunking, list(chunking)[: 2 * workers], lambda n, r: None,
+                # warm every worker (imports, derivation, compiled integrators) as a long sweep does
+                run_tasks(cluster, job, chunking, list(chunking), lambda n, r: None,
                           session=1, done=0, label="warm")  # fmt: skip
-                clock = time.perf_counter()
-                run_tasks(cluster, job, chunking, list(chunking),
-                          lambda n, r: busy.append(r["seconds"]), session=1, done=0, label="b")  # fmt: skip
-                wall = time.perf_counter() - clock
-            per_point = (workers * wall - loop) / size * 1e3
-            share = (workers * wall - sum(busy)) / (workers * wall)
+                clock, cpu = time.perf_counter(), time.process_time()
+                stats = run_tasks(cluster, job, chunking, list(chunking), lambda n, r: None,
+                                  session=1, done=0, label="timed")  # fmt: skip
+                wall, driver = time.perf_counter() - clock, time.process_time() - cpu
+            overhead = (stats.cpu + driver - loop_cpu) / size
             print(
-                f"| {label} | {size:,} | {chunking.n_chunks} | {loop:.2f} | {workers} | {wall:.2f} "
-                f"| {sum(busy):.2f} | {per_point:.4f} | {share:.1%} |"
+                f"| {label} | {size:,} | {chunking.n_chunks} | {workers} | {loop_wall:.2f} | "
+                f"{loop_cpu / size * 1e3:.4f} | {wall:.2f} | {stats.cpu / size * 1e3:.4f} | "
+                f"{driver / size * 1e3:.4f} | {overhead * 1e3:.4f} | "
+                f"{overhead * size / loop_cpu:.1%} |"
             )
 
 
@@ -179,7 +192,9 @@ def section_point(before: str | None) -> None:
     try:
         for label, tree in trees:
             with tempfile.TemporaryDirectory() as cache:
-                _, out = run_child(tree, ["-c", _POINT], {"PERTURB_CACHE_DIR": cache}, CHILD_TIMEOUT)
+                _, out = run_child(
+                    tree, ["-c", _POINT], {"PERTURB_CACHE_DIR": cache}, CHILD_TIMEOUT
+                )
             if out.returncode != 0:
                 print(f"| {label} | failed: {out.stderr.strip().splitlines()[-1]} |")
                 continue
@@ -232,9 +247,15 @@ def section_ship() -> None:
         _, load = run_child(ROOT, ["-c", _LOAD, str(blob)], env, CHILD_TIMEOUT)
         load = json.loads(load.stdout.splitlines()[-1])
         size = blob.stat().st_size
-        print(f"| rebuild, cold (no disk cache) | derive + compile | {cold['derive'] + cold['compile']:.2f} |")
-        print(f"| rebuild, warm disk cache | derive + compile | {warm['derive'] + warm['compile']:.2f} |")
-        print(f"| ship ({size / 1e3:.0f} kB pickle) | load + compile | {load['load'] + load['compile']:.2f} |")
+        print(
+            f"| rebuild, cold (no disk cache) | derive + compile | {cold['derive'] + cold['compile']:.2f} |"
+        )
+        print(
+            f"| rebuild, warm disk cache | derive + compile | {warm['derive'] + warm['compile']:.2f} |"
+        )
+        print(
+            f"| ship ({size / 1e3:.0f} kB pickle) | load + compile | {load['load'] + load['compile']:.2f} |"
+        )
 
 
 def section_disk(quick: bool, workers: int) -> None:
@@ -259,7 +280,30 @@ def section_disk(quick: bool, workers: int) -> None:
         summary = out.stdout.splitlines()
         phase = summary[0].split("), ")[1].split(" s;")[0]
         verdicts = next((line for line in summary if line.startswith("verdicts")), "")
-        print(f"| {' x '.join(DISK_AXES).format(n=n)} | {n * n:,} | {wall:.0f} | {phase} | {verdicts} |")
+        print(
+            f"| {' x '.join(DISK_AXES).format(n=n)} | {n * n:,} | {wall:.0f} | {phase} | {verdicts} |"
+        )
+
+
+def _spin(n: int) -> float:
+    clock = time.perf_counter()
+    total = 0
+    for i in range(n):
+        total += i * i
+    return time.perf_counter() - clock
+
+
+def _parallelism(n: int = 5_000_000) -> float:
+    """Work done by two processes at once, in units of one alone (2 on two free cores)."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    alone = _spin(n)
+    with ProcessPoolExecutor(2) as pool:
+        pool.submit(_spin, 1000).result()  # started
+        clock = time.perf_counter()
+        list(pool.map(_spin, [n, n]))
+        together = time.perf_counter() - clock
+    return 2 * alone / together
 
 
 def main() -> None:
@@ -277,9 +321,12 @@ def main() -> None:
         "disk": lambda: section_disk(args.quick, args.workers),
     }
     print(f"# bench_sweep ({os.cpu_count()} cores, Python {sys.version.split()[0]})")
+    print(
+        f"\nparallelism of this machine now: {_parallelism():.2f} (2 processes of pure Python "
+        "against one; 2.00 = two free cores)"
+    )
     for name in args.only:
         sections[name]()
-    _ = statistics  # the module is kept for future medians
 
 
 if __name__ == "__main__":

@@ -67,7 +67,9 @@ def _summary(ds, label: str, store: str | None) -> str:
     if "verdict" in ds:
         verdicts = Counter(int(c) for c in ds["verdict"].values.ravel())
         counts = [
-            f"{member_of(Verdict, code).label} {n}" for code, n in sorted(verdicts.items()) if code >= 0
+            f"{member_of(Verdict, code).label} {n}"
+            for code, n in sorted(verdicts.items())
+            if code >= 0
         ]
         lines.append(f"verdicts: {', '.join(counts) or 'none'}")
     if store is not None:
@@ -76,9 +78,7 @@ def _summary(ds, label: str, store: str | None) -> str:
 
 
 def _dims(ds):
-    import json as _json
-
-    return [(axis["name"], len(axis["values"])) for axis in _json.loads(ds.attrs["grid"])]
+    return [(axis["name"], len(axis["values"])) for axis in json.loads(ds.attrs["grid"])]
 
 
 def _cmd_sweep(args) -> int:
@@ -91,7 +91,9 @@ def _cmd_sweep(args) -> int:
 
         require_extra()
     except (ImportError, MissingDependencyError) as exc:
-        raise _UsageError(f"{exc}" if str(exc) else "sweeps need pip install 'perturb[sweep]'") from None
+        raise _UsageError(
+            f"{exc}" if str(exc) else "sweeps need pip install 'perturb[sweep]'"
+        ) from None
     if not args.grids:
         raise _UsageError("--grid: give at least one, e.g. --grid eps=0.01:0.2:20")
     _check_output(args)
@@ -134,14 +136,19 @@ def _cmd_sweep(args) -> int:
         raise _RunFailed(str(exc)) from None
     except KeyboardInterrupt:
         where = f"; continue with the same command and --resume (store {store})" if store else ""
-        print(f"\nperturb: interrupted: the points finished so far are written{where}", file=sys.stderr)
+        print(
+            f"\nperturb: interrupted: the points finished so far are written{where}",
+            file=sys.stderr,
+        )
         return EXIT_INTERRUPTED
     if args.format == "zarr":
         print(_summary(ds, problem.label(), store))
         return EXIT_OK
     from perturb.report.sweep import sweep_as_csv, sweep_as_dict
 
-    text = sweep_as_csv(ds) if args.format == "csv" else json.dumps(sweep_as_dict(ds), allow_nan=True)
+    text = (
+        sweep_as_csv(ds) if args.format == "csv" else json.dumps(sweep_as_dict(ds), allow_nan=True)
+    )
     if args.output is not None:
         Path(args.output).write_text(text + "\n", encoding="utf-8")
     else:

@@ -212,7 +212,9 @@ def _sweep_lines(ds) -> list[str]:
 
     axes = [(a["name"], len(a["values"])) for a in json.loads(ds.attrs["grid"])]
     count = collections.Counter(int(c) for c in ds["status"].values.ravel())
-    parts = [f"{member_of(PointStatus, c).name.lower()} {n}" for c, n in sorted(count.items()) if c >= 0]
+    parts = [
+        f"{member_of(PointStatus, c).name.lower()} {n}" for c, n in sorted(count.items()) if c >= 0
+    ]
     lines = [
         f"- sweep: {int(ds['status'].size)} points over "
         + " × ".join(f"{n} ({k})" for n, k in axes)
@@ -222,7 +224,9 @@ def _sweep_lines(ds) -> list[str]:
         verdicts = collections.Counter(int(c) for c in ds["verdict"].values.ravel())
         lines.append(
             "- sweep verdicts: "
-            + ", ".join(f"{member_of(Verdict, c).label} {n}" for c, n in sorted(verdicts.items()) if c >= 0)
+            + ", ".join(
+                f"{member_of(Verdict, c).label} {n}" for c, n in sorted(verdicts.items()) if c >= 0
+            )
         )
     return lines
 

@@ -108,7 +108,9 @@ def sweep_as_dict(ds) -> dict:
         if "floquet_real" in names:
             re = arrays[names["floquet_real"]][where]
             im = arrays[names["floquet_imag"]][where]
-            point["floquet"] = [[float(a), float(b)] for a, b in zip(re, im, strict=True) if not math.isnan(a)]
+            point["floquet"] = [
+                [float(a), float(b)] for a, b in zip(re, im, strict=True) if not math.isnan(a)
+            ]
             passed = arrays[names["check_passed"]][where]
             values = arrays[names["check_value"]][where]
             point["checks"] = {

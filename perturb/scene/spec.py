@@ -425,9 +425,13 @@ def _sweep_section(table: dict, c: _Checker) -> SweepSettings:
         settings["validate"] = c.boolean("validate", table["validate"])
     if "times" in table:
         times = table["times"]
-        ok = isinstance(times, list) and times and all(
-            isinstance(t, int | float) and not isinstance(t, bool) and math.isfinite(t)
-            for t in times
+        ok = (
+            isinstance(times, list)
+            and times
+            and all(
+                isinstance(t, int | float) and not isinstance(t, bool) and math.isfinite(t)
+                for t in times
+            )
         )
         if not ok:
             raise c.fail("times", times, "write a list of finite times, e.g. [0.0, 1.5]")
@@ -453,7 +457,9 @@ def _check_maps(outputs: Outputs, sweep: SweepSettings | None, c: _Checker) -> N
             f"{asked} needs a [sweep] section (grid = [...])",
         )
     if maps and len(sweep.grid) != 2:
-        raise c.fail("plots", maps[0], f"a map needs a [sweep] over two axes, not {len(sweep.grid)}")
+        raise c.fail(
+            "plots", maps[0], f"a map needs a [sweep] over two axes, not {len(sweep.grid)}"
+        )
     needing = [p for p in maps if p in VALIDATED_MAPS]
     if needing and not sweep.validate:
         raise c.fail("plots", needing[0], "this map needs validate = true in [sweep]")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Mapping, Sequence
 
@@ -134,7 +135,7 @@ def sweep(
         The extra ``perturb[sweep]`` is not installed.
     perturb.errors.SweepError
         Some chunks could not be computed (their workers died repeatedly): every other point is
-        written; ``resume=True`` retries them.
+        written (the error's ``dataset`` holds them); ``resume=True`` retries them.
     """
     require_extra()
     spec = check_spec(
@@ -182,7 +183,7 @@ def sweep(
         session = sink.begin_session() if output is not None else 1
         done = spec.grid.size - sum(_chunk_size(sink.chunking, n) for n in pending)
         clock = time.perf_counter()
-        lost = run_tasks(
+        stats = run_tasks(
             cluster, job, sink.chunking, pending, sink.write, session=session, done=done,
             label=f"sweep {spec.label}",
         )  # fmt: skip
@@ -194,18 +195,26 @@ def sweep(
         dataset = open_dataset(output)
     else:
         dataset = sink.dataset()
-    dataset.attrs["seconds"] = elapsed
-    if lost:
-        number, reason = lost[0]
-        raise SweepError(
-            f"{len(lost)} chunk(s) of the sweep could not be computed (e.g. chunk {number}: "
+    # this run's figures (not stored): wall seconds of the tasks, their CPU on the workers, the
+    # seconds spent writing here, the points computed
+    dataset.attrs.update(
+        seconds=elapsed,
+        task_cpu_seconds=stats.cpu,
+        write_seconds=stats.writing,
+        points_computed=sum(_chunk_size(sink.chunking, n) for n in pending)
+        - sum(_chunk_size(sink.chunking, n) for n, _ in stats.lost),
+    )
+    if stats.lost:
+        number, reason = stats.lost[0]
+        error = SweepError(
+            f"{len(stats.lost)} chunk(s) of the sweep could not be computed (e.g. chunk {number}: "
             f"{reason}); every other point is written"
             + ("; run again with --resume to retry them" if output is not None else "")
         )
+        error.dataset = dataset
+        raise error
     return dataset
 
 
 def _chunk_size(chunking, number: int) -> int:
-    import math
-
     return math.prod(s.stop - s.start for s in chunking.region(number))

@@ -117,7 +117,9 @@ def plan(base: Model, axes, order: int, derive: str = "auto") -> tuple[Derivatio
         return Derivation(DeriveMode.PER_POINT, "asked for (derive='per-point')"), None
     own = base.solve(order)
     if own.system.parameters:
-        return Derivation(DeriveMode.OWN, "the problem's solution is symbolic in its parameters"), own
+        return Derivation(
+            DeriveMode.OWN, "the problem's solution is symbolic in its parameters"
+        ), own
     entering = _entering(base, axes)
     if not entering:
         return Derivation(

@@ -24,6 +24,8 @@ import time
 import uuid
 from collections.abc import Callable
 
+from attrs import frozen
+
 from perturb._defaults import (
     SWEEP_CHUNKS_PER_WORKER,
     SWEEP_CONNECT_SECONDS,
@@ -37,7 +39,15 @@ from perturb.sweep.grid import Chunking
 from perturb.sweep.spec import SweepJob
 from perturb.sweep.task import run_chunk
 
-__all__ = ["Cluster", "chunk_points", "pack", "pilot_seconds", "run_packed", "run_tasks"]
+__all__ = [
+    "Cluster",
+    "RunStats",
+    "chunk_points",
+    "pack",
+    "pilot_seconds",
+    "run_packed",
+    "run_tasks",
+]
 
 #: Per worker process: the jobs unpacked, by key.
 _JOBS: dict[str, SweepJob] = {}
@@ -200,6 +210,28 @@ def _worker_environment() -> dict[str, str]:
 
 
 # ---------------------------------------------------------------------------------- running
+@frozen
+class RunStats:
+    """How a run of tasks went.
+
+    Attributes
+    ----------
+    lost : tuple of (int, str)
+        Chunks that could not be computed (their workers died again and again), with the reason.
+    tasks : int
+        Chunks computed and written.
+    cpu : float
+        CPU seconds the tasks took on their workers.
+    writing : float
+        Seconds this process spent writing results.
+    """
+
+    lost: tuple
+    tasks: int
+    cpu: float
+    writing: float
+
+
 def run_tasks(
     cluster: Cluster,
     job: SweepJob,
@@ -210,18 +242,17 @@ def run_tasks(
     session: int,
     done: int,
     label: str,
-) -> list[tuple[int, str]]:
+) -> RunStats:
     """Run the chunks ``pending`` on the cluster, ``write`` each as it finishes.
 
-    Returns the chunks that could not be computed, with the reason (a worker died on them
-    again and again). ``done`` points are already written (for the progress report).
+    ``done`` points are already written (for the progress report).
     """
     from distributed import as_completed
 
     client = cluster.client
     blob = pack(job)
     token = uuid.uuid4().hex[:8]
-    total = chunking_total(chunking)
+    total = math.prod(chunking.shape)
     futures = {}
     for number in pending:
         future = client.submit(
@@ -237,8 +268,8 @@ def run_tasks(
         )
         futures[future] = number
     lost: list[tuple[int, str]] = []
-    busy: list[float] = []
-    writing = 0.0
+    cpu = writing = 0.0
+    tasks = 0
     notify(label, done, total)
     try:
         for future in as_completed(futures, loop=client.loop):
@@ -249,27 +280,22 @@ def run_tasks(
             except Exception as exc:  # noqa: BLE001 - a chunk that kept killing its workers
                 lost.append((number, " ".join(f"{type(exc).__name__}: {exc}".split())))
                 continue
-            busy.append(result.get("cpu", 0.0))
+            cpu += result.get("cpu", 0.0)
             clock = time.perf_counter()
             write(number, result)
             writing += time.perf_counter() - clock
+            tasks += 1
             done += _points(chunking, number)
             notify(label, done, total)
             future.release()
     except BaseException:
         client.cancel(list(futures))
         raise
-    if os.environ.get("PERTURB_SWEEP_DEBUG"):
-        print(f"tasks {len(busy)}, CPU {sum(busy):.2f} s, writing {writing:.2f} s", file=sys.stderr)
-    return lost
+    return RunStats(tuple(lost), tasks, cpu, writing)
 
 
 def _points(chunking: Chunking, number: int) -> int:
     return math.prod(s.stop - s.start for s in chunking.region(number))
-
-
-def chunking_total(chunking: Chunking) -> int:
-    return math.prod(chunking.shape)
 
 
 def importable(name: str) -> bool:

@@ -225,7 +225,9 @@ class DomainScreen:
         shape = eps.shape
         with np.errstate(all="ignore"):
             frequency, orders = self.function(*args)
-            freq = np.array([np.broadcast_to(np.abs(np.asarray(f, float)), shape) for f in frequency])
+            freq = np.array(
+                [np.broadcast_to(np.abs(np.asarray(f, float)), shape) for f in frequency]
+            )
             freq = freq * np.abs(eps) ** np.arange(len(frequency))[:, None]
             sizes = []
             for k, coeffs in enumerate(orders):
@@ -284,5 +286,7 @@ def group_arrays(points: Sequence) -> tuple[np.ndarray, dict[str, np.ndarray]]:
     pv = np.array([float(m.parameter_value()) for m in points])
     rows = [m.symbol_values() for m in points]
     names = dict.fromkeys(name for row in rows for name in row)
-    columns = {name: np.array([row.get(name, np.nan) for row in rows], dtype=float) for name in names}
+    columns = {
+        name: np.array([row.get(name, np.nan) for row in rows], dtype=float) for name in names
+    }
     return pv, columns

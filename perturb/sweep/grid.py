@@ -124,7 +124,9 @@ def parse_axis(text: str) -> Axis:
             raise _fail(text, "give at least one value")
         values = np.array([_number(text, item) for item in items])
     if len(set(values.tolist())) != len(values):
-        raise _fail(text, "the values repeat (a point would be computed twice); give distinct values")
+        raise _fail(
+            text, "the values repeat (a point would be computed twice); give distinct values"
+        )
     return Axis(name, values, text.strip())
 
 

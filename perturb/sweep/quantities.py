@@ -67,7 +67,10 @@ def check_names() -> tuple[str, ...]:
 def _legacy(enum_type, what: str) -> dict:
     meanings = {str(LEGACY_NONE): f"no {what} ran"}
     meanings.update({str(m.code): str(m.value) for m in enum_type})
-    return {"long_name": f"{what} status (the JSON's integer code)", "meanings": json.dumps(meanings)}
+    return {
+        "long_name": f"{what} status (the JSON's integer code)",
+        "meanings": json.dumps(meanings),
+    }
 
 
 def variables(validate: bool) -> tuple[Variable, ...]:
@@ -75,7 +78,9 @@ def variables(validate: bool) -> tuple[Variable, ...]:
     nan = np.nan
     out = [
         Variable("status", (), "int8", NOT_COMPUTED, coding_attrs(PointStatus, "point status")),
-        Variable("reason", (), "str", "", {"long_name": "why the point failed (empty if it did not)"}),
+        Variable(
+            "reason", (), "str", "", {"long_name": "why the point failed (empty if it did not)"}
+        ),
         Variable("warnings", (), "str", "", {"long_name": "warnings raised at the point"}),
         Variable("epsilon", (), "float64", nan, {"long_name": "expansion parameter ε"}),
         Variable("period", (), "float64", nan, {"long_name": "analytic period (physical time)"}),
@@ -89,9 +94,7 @@ def variables(validate: bool) -> tuple[Variable, ...]:
             nan,
             {"long_name": "half the range of each component over one analytic period"},
         ),
-        Variable(
-            "state", ("time", "component"), "float64", nan, {"long_name": "analytic state"}
-        ),
+        Variable("state", ("time", "component"), "float64", nan, {"long_name": "analytic state"}),
     ]
     if validate:
         out += [
@@ -119,9 +122,16 @@ def variables(validate: bool) -> tuple[Variable, ...]:
                 True,
             ),
             Variable(
-                "trajectory_status", (), "int8", LEGACY_NONE, _legacy(TrajectoryStatus, "integration"), True
+                "trajectory_status",
+                (),
+                "int8",
+                LEGACY_NONE,
+                _legacy(TrajectoryStatus, "integration"),
+                True,
             ),
-            Variable("orbit_status", (), "int8", LEGACY_NONE, _legacy(OrbitStatus, "shooting"), True),
+            Variable(
+                "orbit_status", (), "int8", LEGACY_NONE, _legacy(OrbitStatus, "shooting"), True
+            ),
             Variable(
                 "orbit_error",
                 (),

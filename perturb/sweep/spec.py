@@ -184,7 +184,9 @@ def check_spec(
             )
     check_size(grid.size, bool(yes))
     try:
-        sweepable = model.with_parameters(dict(zip(grid.names, model_values(model, grid))))
+        sweepable = model.with_parameters(
+            dict(zip(grid.names, model_values(model, grid), strict=True))
+        )
     except (PerturbError, ValueError):
         sweepable = True  # it can be re-created; these values it refuses (each point says so)
     if sweepable is None:

@@ -145,11 +145,16 @@ def _collection_paused():
 def _points(job: SweepJob, indices: Sequence[int]) -> list[_Point]:
     grid = job.spec.grid
     where = np.unravel_index(np.asarray(indices, dtype=np.int64), grid.shape)
-    columns = [np.asarray(axis.values)[w].tolist() for axis, w in zip(grid.axes, where, strict=True)]
+    columns = [
+        np.asarray(axis.values)[w].tolist() for axis, w in zip(grid.axes, where, strict=True)
+    ]
     names = grid.names
     with _collection_paused(), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        return [_build(job, dict(zip(names, row, strict=True)), caught) for row in zip(*columns)]
+        return [
+            _build(job, dict(zip(names, row, strict=True)), caught)
+            for row in zip(*columns, strict=True)
+        ]
 
 
 def _store_evaluation(out, k: int, result: dict) -> None:
@@ -161,7 +166,9 @@ def _store_evaluation(out, k: int, result: dict) -> None:
 
 def _domain(point: _Point, reasons) -> None:
     if reasons:
-        point.fail(PointStatus.OUTSIDE_DOMAIN, "the series is outside its domain: " + "; ".join(reasons))
+        point.fail(
+            PointStatus.OUTSIDE_DOMAIN, "the series is outside its domain: " + "; ".join(reasons)
+        )
 
 
 def _evaluate_vectorised(job, points: list[_Point], where: list[int], out) -> list[int]:
@@ -193,7 +200,9 @@ def _evaluate_single(job, point: _Point, out, k: int) -> None:
         values = model.symbol_values()
         omega = _recorded(point, solution.coefficients, pv, values)[0]
         result = _recorded(point, evaluate_one, model, solution, times)
-        reasons = _recorded(point, _screen(solution).check, pv, {n: np.asarray(v) for n, v in values.items()}, omega)[0]
+        reasons = _recorded(
+            point, _screen(solution).check, pv, {n: np.asarray(v) for n, v in values.items()}, omega
+        )[0]
     except SolutionFailed as exc:
         point.fail(PointStatus.NOT_FINITE, _describe(exc))
         return

@@ -54,7 +54,11 @@ def reference(problem, axes, **settings) -> dict:
     derivation, _ = plan(spec.model, spec.grid.axes, spec.order, spec.derive)
     out = run_chunk(SweepJob(spec, derivation, "reference"), np.arange(spec.grid.size))
     shape = spec.grid.shape
-    return {k: np.asarray(v).reshape(shape + np.shape(v)[1:]) for k, v in out.items() if k not in TIMINGS}
+    return {
+        k: np.asarray(v).reshape(shape + np.shape(v)[1:])
+        for k, v in out.items()
+        if k not in TIMINGS
+    }
 
 
 def assert_same(ds, expected: dict) -> None:
@@ -71,7 +75,9 @@ def assert_same(ds, expected: dict) -> None:
 def test_a_local_cluster_computes_the_points_of_this_process(client, tmp_path):
     problem = get_problem("duffing").create()
     store = tmp_path / "duffing.zarr"
-    ds = perturb.sweep(problem, DUFFING, validate=True, times=[0.0, 1.5], client=client, output=store)
+    ds = perturb.sweep(
+        problem, DUFFING, validate=True, times=[0.0, 1.5], client=client, output=store
+    )
     expected = reference(problem, DUFFING, validate=True, times=[0.0, 1.5])
     assert ds.sizes["eps"] == 4 and ds.sizes["amplitude"] == 3
     assert list(ds["component"].values) == ["x", "xdot"] and list(ds["time"].values) == [0.0, 1.5]
@@ -83,7 +89,9 @@ def test_a_local_cluster_computes_the_points_of_this_process(client, tmp_path):
     assert reopened.attrs["perturb_version"] == perturb.__version__
     assert np.all(reopened["session"].values == 1)
     # in memory (no store) the same numbers
-    assert_same(perturb.sweep(problem, DUFFING, validate=True, times=[0.0, 1.5], client=client), expected)
+    assert_same(
+        perturb.sweep(problem, DUFFING, validate=True, times=[0.0, 1.5], client=client), expected
+    )
 
 
 def _written(store) -> int:
@@ -127,7 +135,16 @@ def test_a_worker_killed_mid_sweep_loses_nothing(client, tmp_path):
 def test_an_interrupted_driver_resumes_where_it_stopped(tmp_path, capsys):
     store = tmp_path / "interrupted.zarr"
     axes = ["eps=0.02:0.2:6", "amplitude=0.6:1.4:6"]
-    command = ["sweep", "duffing", "--validate", "--workers", "1", "--output", str(store), "--quiet"]
+    command = [
+        "sweep",
+        "duffing",
+        "--validate",
+        "--workers",
+        "1",
+        "--output",
+        str(store),
+        "--quiet",
+    ]
     for axis in axes:
         command += ["--grid", axis]
     argv = [sys.executable, "-m", "perturb", *command]

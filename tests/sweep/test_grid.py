@@ -57,7 +57,9 @@ def test_bad_axes_are_one_line_naming_the_axis(text, words):
 
 def test_names_are_checked_against_the_problem():
     axes = [parse_axis("epss=0.1:0.2:2")]
-    with pytest.raises(UnknownNameError, match=r"'epss' is not a parameter of duffing \(did you mean 'eps'\?\)"):
+    with pytest.raises(
+        UnknownNameError, match=r"'epss' is not a parameter of duffing \(did you mean 'eps'\?\)"
+    ):
         check_names(axes, ["eps", "amplitude"], "duffing")
     twice = [parse_axis("eps=0.1:0.2:2"), parse_axis("eps=0.3,0.4")]
     with pytest.raises(InvalidParameterError, match="swept twice"):
@@ -105,7 +107,10 @@ def test_chunks_tile_the_grid_once(shape, points):
         flat += indices.tolist()
         # the flat indices are those of the block, in C order
         expected = np.ravel_multi_index(
-            tuple(m.ravel() for m in np.meshgrid(*[np.arange(s.start, s.stop) for s in region], indexing="ij")),
+            tuple(
+                m.ravel()
+                for m in np.meshgrid(*[np.arange(s.start, s.stop) for s in region], indexing="ij")
+            ),
             tuple(shape),
         )
         assert indices.tolist() == expected.tolist()
@@ -130,4 +135,9 @@ def test_enums_are_coded_by_position_with_their_meanings():
     assert [code_of(m) for m in Grown] == [0, 1, 2]
     import json
 
-    assert json.loads(coding_attrs(Grown, "x")["meanings"]) == {"-1": "x not computed", "0": "a", "1": "b", "2": "c"}
+    assert json.loads(coding_attrs(Grown, "x")["meanings"]) == {
+        "-1": "x not computed",
+        "0": "a",
+        "1": "b",
+        "2": "c",
+    }

@@ -12,7 +12,7 @@ pytest.importorskip("zarr")
 
 from perturb.cli import main  # noqa: E402
 from perturb.errors import InvalidParameterError  # noqa: E402
-from perturb.sweep.derive import DeriveMode, Derivation, SymbolicModel  # noqa: E402
+from perturb.sweep.derive import Derivation, DeriveMode, SymbolicModel  # noqa: E402
 from perturb.sweep.grid import parse_axis  # noqa: E402
 from perturb.sweep.memory import MemoryResult  # noqa: E402
 from perturb.sweep.spec import SweepJob, check_spec  # noqa: E402
@@ -45,7 +45,10 @@ def one_line_error(code, err) -> str:
         (["--grid", "eps=0.1:0.2:3", "--format", "zarr", "--no-output"], None),
         (["--grid", "eps=0.1:0.2:3", "--order", "0"], "--order 0"),
         (["--grid", "eps=0.1:0.2:3", "--workers", "0"], "--workers"),
-        (["--grid", "eps=0.1:0.2:3", "--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "drop --workers"),
+        (
+            ["--grid", "eps=0.1:0.2:3", "--workers", "2", "--scheduler", "tcp://127.0.0.1:1"],
+            "drop --workers",
+        ),
         (["--grid", "eps=0.1:0.2:3", "--format", "csv", "--resume"], "--resume"),
         (["--grid", "eps=0.1:0.2:3", "--integrator", "euler"], "integrator"),
     ],
@@ -76,29 +79,42 @@ def test_yes_confirms_a_large_grid_then_the_store_is_checked(capsys, tmp_path):
 def _store(path, axes=("eps=0.05:0.1:3",), **settings):
     spec = check_spec(get_problem("duffing").create(), [parse_axis(a) for a in axes], **settings)
     job = SweepJob(spec, Derivation(DeriveMode.OWN, "test"), spec.fingerprint("0.1.0"))
-    return SweepStore.prepare(path, job, resume=False, version="0.1.0", chunk_points=lambda: 2, extra={})
+    return SweepStore.prepare(
+        path, job, resume=False, version="0.1.0", chunk_points=lambda: 2, extra={}
+    )
 
 
 def _listing(folder):
-    return sorted((p.relative_to(folder).as_posix(), p.read_bytes()) for p in folder.rglob("*") if p.is_file())
+    return sorted(
+        (p.relative_to(folder).as_posix(), p.read_bytes()) for p in folder.rglob("*") if p.is_file()
+    )
 
 
 def test_a_store_is_never_overwritten(capsys, tmp_path):
     folder = tmp_path / "data"
     folder.mkdir()
     (folder / "notes.txt").write_text("results of last year")
-    err = one_line_error(*run(capsys, "sweep", "duffing", "--grid", "eps=0.05:0.1:3", "--output", str(folder))[::2])
-    assert "not a perturb sweep store" in err and (folder / "notes.txt").read_text() == "results of last year"
+    err = one_line_error(
+        *run(capsys, "sweep", "duffing", "--grid", "eps=0.05:0.1:3", "--output", str(folder))[::2]
+    )
+    assert (
+        "not a perturb sweep store" in err
+        and (folder / "notes.txt").read_text() == "results of last year"
+    )
 
     store = tmp_path / "old.zarr"
     _store(store)
     before = _listing(store)
     # the same sweep without --resume
-    err = one_line_error(*run(capsys, "sweep", "duffing", "--grid", "eps=0.05:0.1:3", "--output", str(store))[::2])
+    err = one_line_error(
+        *run(capsys, "sweep", "duffing", "--grid", "eps=0.05:0.1:3", "--output", str(store))[::2]
+    )
     assert "--resume" in err
     # another grid, or another problem's settings, even with --resume
     for argv in (["--grid", "eps=0.05:0.1:4"], ["--grid", "eps=0.05:0.1:3", "--order", "2"]):
-        err = one_line_error(*run(capsys, "sweep", "duffing", *argv, "--output", str(store), "--resume")[::2])
+        err = one_line_error(
+            *run(capsys, "sweep", "duffing", *argv, "--output", str(store), "--resume")[::2]
+        )
         assert "holds another sweep" in err and ("grid" in err or "settings" in err)
     assert _listing(store) == before
 
@@ -119,7 +135,9 @@ def test_points_as_csv_and_json(tmp_path):
     from perturb.sweep.grid import Chunking
 
     problem = get_problem("duffing").create()
-    spec = check_spec(problem, [parse_axis("eps=0.05,0.1"), parse_axis("amplitude=-1,1")], times=[0.0, 1.0])
+    spec = check_spec(
+        problem, [parse_axis("eps=0.05,0.1"), parse_axis("amplitude=-1,1")], times=[0.0, 1.0]
+    )
     job = SweepJob(spec, Derivation(DeriveMode.OWN, "test"), "k")
     result = MemoryResult(job, Chunking.of(spec.grid.shape, 3), {})
     for number in result.chunking:

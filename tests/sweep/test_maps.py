@@ -67,9 +67,17 @@ def test_slope_and_period_maps():
     [
         (lambda: plot_verdict_map(X, Y, _codes()[:2], LABELS, xname="a", yname="b"), "codes"),
         (lambda: plot_verdict_map(X, Y, _codes() + 7, LABELS, xname="a", yname="b"), "codes"),
-        (lambda: plot_error_map(X[::-1][[0, 2, 1, 3, 4, 5]], Y, np.ones((6, 5)), tol=0.1, xname="a", yname="b"), "x"),
+        (
+            lambda: plot_error_map(
+                X[::-1][[0, 2, 1, 3, 4, 5]], Y, np.ones((6, 5)), tol=0.1, xname="a", yname="b"
+            ),
+            "x",
+        ),
         (lambda: plot_error_map(X, Y, np.ones((6, 5)), tol=0, xname="a", yname="b"), "tol"),
-        (lambda: plot_slope_map(X, Y, np.ones((6, 5)), expected=np.nan, xname="a", yname="b"), "expected"),
+        (
+            lambda: plot_slope_map(X, Y, np.ones((6, 5)), expected=np.nan, xname="a", yname="b"),
+            "expected",
+        ),
         (lambda: plot_period_map(X, Y, np.ones((6, 5)), xname="", yname="b"), "xname"),
     ],
 )
@@ -111,13 +119,19 @@ def test_a_map_needs_a_sweep_over_two_axes():
     one_axis = '[problem]\nname = "duffing"\n[sweep]\ngrid = ["eps=0.1:0.2:3"]\n[outputs]\nplots = ["period_map"]'
     with pytest.raises(SceneError, match="two axes, not 1"):
         parse_scene(one_axis)
-    bad_axis = '[problem]\nname = "duffing"\n[sweep]\ngrid = ["eps=0.1:0.2:0"]\n[outputs]\nsweep = true'
-    with pytest.raises(SceneError, match="line 4: \\[sweep\\] grid = 'eps=0.1:0.2:0' is invalid: N = 0"):
+    bad_axis = (
+        '[problem]\nname = "duffing"\n[sweep]\ngrid = ["eps=0.1:0.2:0"]\n[outputs]\nsweep = true'
+    )
+    with pytest.raises(
+        SceneError, match="line 4: \\[sweep\\] grid = 'eps=0.1:0.2:0' is invalid: N = 0"
+    ):
         parse_scene(bad_axis, "s.toml")
 
 
 def test_sweep_names_are_checked_against_the_problem():
-    scene = parse_scene(SCENE.format(extra="", outputs="sweep = true").replace("amplitude=", "amplitud="), "s.toml")
+    scene = parse_scene(
+        SCENE.format(extra="", outputs="sweep = true").replace("amplitude=", "amplitud="), "s.toml"
+    )
     with pytest.raises(SceneError, match="did you mean 'amplitude'"):
         check_sweep_names(scene, ["eps", "amplitude"], "duffing")
 
@@ -130,7 +144,9 @@ def test_a_scene_with_a_sweep_writes_its_store_table_and_maps(tmp_path, capsys):
 
     scene = tmp_path / "scene.toml"
     scene.write_text(
-        SCENE.format(extra="workers = 1\ntimes = [0.0, 0.5]", outputs='sweep = true\nplots = ["period_map"]')
+        SCENE.format(
+            extra="workers = 1\ntimes = [0.0, 0.5]", outputs='sweep = true\nplots = ["period_map"]'
+        )
     )
     folder = tmp_path / "report"
     assert main(["report", str(scene), "--output", str(folder)]) == 0
@@ -147,3 +163,16 @@ def test_a_scene_with_a_sweep_writes_its_store_table_and_maps(tmp_path, capsys):
     scene.write_text('[problem]\nname = "duffing"\n[outputs]\ntable = true\n')
     assert main(["report", str(scene), "--output", str(folder)]) == 0
     assert not (folder / "sweep.zarr").exists() and (folder / "mine.txt").read_text() == "keep"
+
+
+def test_the_example_map_scene_is_valid():
+    from pathlib import Path
+
+    from perturb.scene import read_scene
+
+    root = Path(__file__).resolve().parents[2]
+    scene = read_scene(root / "examples" / "scenes" / "disk-validity-map.toml")
+    from problems import get_problem
+
+    check_sweep_names(scene, [p.name for p in get_problem("disk").parameter_specs], "disk")
+    assert scene.sweep.validate and scene.outputs.needs_sweep and len(scene.sweep.grid) == 2

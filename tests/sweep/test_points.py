@@ -54,8 +54,12 @@ def _extreme(f, t0, dt, sign):
     """sign * max of sign * f near t0 (scipy's bounded Brent search, to its tolerance 1e-13)."""
     from scipy.optimize import minimize_scalar
 
-    found = minimize_scalar(lambda t: -sign * f(t), bounds=(t0 - dt, t0 + dt), method="bounded",
-                            options={"xatol": 1e-13})
+    found = minimize_scalar(
+        lambda t: -sign * f(t),
+        bounds=(t0 - dt, t0 + dt),
+        method="bounded",
+        options={"xatol": 1e-13},
+    )
     return sign * -found.fun
 
 
@@ -69,7 +73,8 @@ def test_amplitudes_are_half_the_range_over_a_period():
         t = np.linspace(0, point.period(solution), 20_001)
         dt = t[1] - t[0]
         for j, name in enumerate(("x", "xdot")):
-            def f(time, name=name):
+
+            def f(time, name=name, point=point, solution=solution):
                 return float(point.state(solution, np.array([time]))[name][0])
 
             values = point.state(solution, t)[name]
@@ -101,7 +106,10 @@ def test_a_point_the_problem_refuses_is_recorded_and_the_rest_computed():
     model = get_problem("duffing").create()
     job = job_of(model, ["amplitude=-1,1"])
     out = run_all(job)
-    assert out["status"].tolist() == [code_of(PointStatus.INVALID_PARAMETERS), code_of(PointStatus.OK)]
+    assert out["status"].tolist() == [
+        code_of(PointStatus.INVALID_PARAMETERS),
+        code_of(PointStatus.OK),
+    ]
     assert "`amplitude` = -1 is invalid: give a value > 0" in out["reason"][0]
     assert math.isnan(out["period"][0]) and math.isfinite(out["period"][1])
 
@@ -117,7 +125,9 @@ def test_outside_the_domain_is_series_domains_verdict_and_reason():
         expected = PointStatus.OK if domain.ok else PointStatus.OUTSIDE_DOMAIN
         assert out["status"][k] == code_of(expected)
         if not domain.ok:
-            assert out["reason"][k] == "the series is outside its domain: " + "; ".join(domain.reasons)
+            assert out["reason"][k] == "the series is outside its domain: " + "; ".join(
+                domain.reasons
+            )
     assert out["status"][2] == code_of(PointStatus.OUTSIDE_DOMAIN)  # negative period at eps = 5
 
 

@@ -49,7 +49,9 @@ def check_point(out: dict, k: int, expected: dict) -> None:
     assert same(out["true_period"][k], orbit["period"])
     assert out["orbit_status"][k] == orbit["status"]
     assert out["trajectory_status"][k] == expected["status"]
-    floquet = [[out["floquet_real"][k][i], out["floquet_imag"][k][i]] for i in range(len(orbit["floquet"]))]
+    floquet = [
+        [out["floquet_real"][k][i], out["floquet_imag"][k][i]] for i in range(len(orbit["floquet"]))
+    ]
     assert json.loads(json.dumps(floquet)) == orbit["floquet"]
     assert same(out["order_slope"][k], expected["slope"]["value"])
     for i, name in enumerate(check_names()):
@@ -81,14 +83,19 @@ def test_the_fast_spin_disk_is_perturb_validate(capsys):
     fixed = {"R": 0.123299}
     model = get_problem("disk").create(r0=0.755155, gamma3_0=0.25, **fixed)
     spec = check_spec(
-        model, [parse_axis("r0=0.755155,0.9"), parse_axis("gamma3_0=0.25,0.3")], order=1, validate=True
+        model,
+        [parse_axis("r0=0.755155,0.9"), parse_axis("gamma3_0=0.25,0.3")],
+        order=1,
+        validate=True,
     )
     derivation, _ = plan(spec.model, spec.grid.axes, 1)
     out = run_chunk(SweepJob(spec, derivation, "test"), [0, 3])
     for i, k in enumerate((0, 3)):
         values = {**fixed, **spec.grid.point(k)}
         expected = validate_json(capsys, "disk", values, 1)
-        check_point({name: value[[i]] for name, value in out.items() if name not in TIMINGS}, 0, expected)
+        check_point(
+            {name: value[[i]] for name, value in out.items() if name not in TIMINGS}, 0, expected
+        )
 
 
 @pytest.mark.slow
@@ -114,7 +121,9 @@ def test_the_disk_at_order_2_per_point_and_symbolic(capsys):
     # converges from seeds a few ulps apart), so they agree to within it
     for name in ("period", "true_period", "period_error"):
         np.testing.assert_array_equal(symbolic[name], per_point[name], err_msg=name)
-    assert np.all(np.abs(symbolic["orbit_error"] - per_point["orbit_error"]) <= per_point["resolution"])
+    assert np.all(
+        np.abs(symbolic["orbit_error"] - per_point["orbit_error"]) <= per_point["resolution"]
+    )
     # the slope is fitted to one-period errors down to ~1e-9, whose last digits the rounding
     # moves: it agrees far inside the order check's band (SLOPE_TOLERANCE = 0.5)
     assert np.all(np.abs(symbolic["order_slope"] - per_point["order_slope"]) < 1e-4)

@@ -77,7 +77,9 @@ def _edges(values: np.ndarray, log: bool) -> np.ndarray:
         edges = np.array([v[0] - step, v[0] + step])
     else:
         middle = (v[1:] + v[:-1]) / 2
-        edges = np.concatenate([[v[0] - (middle[0] - v[0])], middle, [v[-1] + (v[-1] - middle[-1])]])
+        edges = np.concatenate(
+            [[v[0] - (middle[0] - v[0])], middle, [v[-1] + (v[-1] - middle[-1])]]
+        )
     return np.exp(edges) if log else edges
 
 
@@ -143,7 +145,11 @@ def plot_verdict_map(x, y, codes, labels: Mapping, *, xname: str, yname: str, ti
         fig, ax, xe, ye = _map_axes(x, y, xname, yname, title)
         ax.pcolormesh(xe, ye, field.T, cmap=cmap, norm=BoundaryNorm(bounds, cmap.N), shading="flat")
         handles = [
-            Patch(facecolor=colours[codes_all.index(c)], edgecolor="0.5", label=known[c].replace("_", " "))
+            Patch(
+                facecolor=colours[codes_all.index(c)],
+                edgecolor="0.5",
+                label=known[c].replace("_", " "),
+            )
             for c in present
         ]
         ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
@@ -180,7 +186,9 @@ def plot_error_map(
         level = math.log10(tol)
         finite = logs[np.isfinite(logs)]
         if x.size > 1 and y.size > 1 and finite.size and finite.min() < level < finite.max():
-            lines = ax.contour(x, y, logs.T, levels=[level], colors="k", linewidths=1.2, linestyles="solid")
+            lines = ax.contour(
+                x, y, logs.T, levels=[level], colors="k", linewidths=1.2, linestyles="solid"
+            )
             ax.clabel(lines, fmt={level: f"tol {tol:g}"}, fontsize=8)
     return fig
 
@@ -200,7 +208,9 @@ def plot_slope_map(
     field = _field(slope, x, y, "slope")
     if not (isinstance(expected, int | float) and math.isfinite(expected)):
         raise bad_value("expected", expected, "pass order + 1")
-    if band is not None and not (isinstance(band, int | float) and math.isfinite(band) and band > 0):
+    if band is not None and not (
+        isinstance(band, int | float) and math.isfinite(band) and band > 0
+    ):
         raise bad_value("band", band, "pass the slope tolerance, a number > 0")
     with publication_style():
         from matplotlib.colors import TwoSlopeNorm
@@ -214,7 +224,9 @@ def plot_slope_map(
         if band is not None and x.size > 1 and y.size > 1 and finite.size:
             level = expected - band
             if finite.min() < level < finite.max():
-                lines = ax.contour(x, y, field.T, levels=[level], colors="k", linewidths=1.2, linestyles="solid")
+                lines = ax.contour(
+                    x, y, field.T, levels=[level], colors="k", linewidths=1.2, linestyles="solid"
+                )
                 ax.clabel(lines, fmt={level: f"{level:g}"}, fontsize=8)
     return fig
 
