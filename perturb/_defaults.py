@@ -193,17 +193,21 @@ SWEEP_MAX_POINTS = 10_000_000_000
 #: exact to rounding; the samples only find which extreme is the highest.
 SWEEP_AMPLITUDE_SAMPLES = 256
 
-#: Wall time one task (a chunk of points) should take: Dask's scheduling costs about 1 to 5 ms a
-#: task (``benchmarks/bench_sweep.md``), so 0.5 s keeps it under 1 %, well inside the 5 % allowed.
-SWEEP_TASK_SECONDS = 0.5
+#: Work one task (a chunk of points) should hold: Dask's scheduling costs a few ms a task and the
+#: driver's write of a chunk's results about 30-50 ms (``benchmarks/bench_sweep.md``), so 2 s
+#: keeps both under 3 %, inside the 5 % allowed, while a 10^4-point validated map still makes
+#: hundreds of chunks to share among the workers.
+SWEEP_TASK_SECONDS = 2.0
 
 #: Fewest chunks per worker when the grid allows it: with four, the last chunks to finish keep
 #: every worker busy, and an interrupted sweep loses at most a quarter of a worker's share.
 SWEEP_CHUNKS_PER_WORKER = 4
 
-#: Points evaluated on the driver to time one point before the chunks are sized (evaluation only;
-#: a validated sweep times one validation): enough to average the per-call overheads.
+#: Points evaluated on the driver to time one point before the chunks are sized (evaluation; a
+#: validated sweep times SWEEP_PILOT_VALIDATIONS points one by one and takes the median, after a
+#: first one that pays the one-time costs): enough to average the per-call overheads.
 SWEEP_PILOT_POINTS = 64
+SWEEP_PILOT_VALIDATIONS = 3
 
 #: Most points of one chunk: a chunk's results travel back to the driver in one message, and its
 #: state at many times grows as points x times x components.

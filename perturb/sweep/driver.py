@@ -19,6 +19,7 @@ import importlib.util
 import logging
 import math
 import os
+import statistics
 import sys
 import time
 import uuid
@@ -31,6 +32,7 @@ from perturb._defaults import (
     SWEEP_CONNECT_SECONDS,
     SWEEP_MAX_CHUNK_POINTS,
     SWEEP_PILOT_POINTS,
+    SWEEP_PILOT_VALIDATIONS,
     SWEEP_TASK_SECONDS,
 )
 from perturb.errors import InvalidParameterError
@@ -102,10 +104,18 @@ def run_packed(blob: bytes, key: str, shape, chunk, number: int, session: int) -
 
 # ---------------------------------------------------------------------------------- sizing
 def pilot_seconds(job: SweepJob) -> float:
-    """Seconds one point takes, timed here on the grid's first points (a run to warm up, then
-    the one timed)."""
-    n = 1 if job.spec.validate else SWEEP_PILOT_POINTS
+    """Seconds one point takes, timed here on the grid's first points after a run that pays the
+    one-time costs (compiling, caches): a batch of :data:`SWEEP_PILOT_POINTS` for an evaluation,
+    the median of :data:`SWEEP_PILOT_VALIDATIONS` single points for a validation."""
     size = job.spec.grid.size
+    if job.spec.validate:
+        times = []
+        for index in range(min(1 + SWEEP_PILOT_VALIDATIONS, size)):
+            clock = time.perf_counter()
+            run_chunk(job, [index])
+            times.append(time.perf_counter() - clock)
+        return statistics.median(times[1:] or times)
+    n = SWEEP_PILOT_POINTS
     first = list(range(min(n, size)))
     second = list(range(min(n, size), min(2 * n, size))) or first
     run_chunk(job, first)

@@ -24,7 +24,7 @@ import sympy as sp
 
 from perturb._defaults import SWEEP_AMPLITUDE_SAMPLES, SWEEP_DOMAIN_MARGIN
 from perturb._lambdify import numpy_lambdify
-from perturb.domain import series_domain
+from perturb.domain import DomainCheck, series_domain
 from perturb.errors import PerturbError
 from perturb.solution import PeriodicSolution, SolutionFailed
 from perturb.system import Regime
@@ -193,64 +193,65 @@ def evaluate_one(model, solution: PeriodicSolution, times: np.ndarray) -> Evalua
 class DomainScreen:
     """:func:`perturb.domain.series_domain` for many points at once, where it is clear.
 
-    The sizes of the series' terms are evaluated in float64 for all points (one compiled
-    function of the solution's parameters); a point is cleared when every test passes by more
-    than :data:`SWEEP_DOMAIN_MARGIN` (relative) and no term that may vanish is near zero. Every
-    other point gets ``series_domain`` itself.
+    The sizes of the series' terms — each coordinate's own, order by order, and the frequency's —
+    are evaluated in float64 for all points (one compiled function of the solution's
+    parameters). A point is cleared when every test ``series_domain`` makes passes by more than
+    :data:`SWEEP_DOMAIN_MARGIN` (relative) and no term that may vanish is near zero; every other
+    point gets ``series_domain`` itself. Either way the outcome is that function's.
     """
 
     def __init__(self, solution: PeriodicSolution):
         self.solution = solution
-        system = solution.system
-        self.parameters = list(system.parameters)
+        self.parameters = list(solution.system.parameters)
         frequency = [sp.sympify(f) for f in solution.frequency]
-        orders = []
-        for k in range(solution.order + 1):
-            coeffs = []
-            for row in solution.terms:
-                if k < len(row):
-                    term = row[k]
-                    coeffs += [
-                        sp.sympify(c)
-                        for j in range(term.max_harmonic + 1)
-                        for c in term.coefficient(j)
-                    ]
-            orders.append(coeffs)
-        #: orders whose every coefficient is the number 0: their size is exactly zero either way
-        self.zero_orders = [all(c == 0 for c in coeffs) for coeffs in orders]
+        coordinates = []
+        for row in solution.terms:
+            orders = []
+            for term in row:
+                orders.append(
+                    [sp.sympify(c) for j in range(term.max_harmonic + 1) for c in term.coefficient(j)]
+                )
+            coordinates.append(orders)
+        #: terms whose every coefficient is the number 0: their size is exactly zero either way
         self.zero_frequency = [f == 0 for f in frequency]
-        self.function = numpy_lambdify(self.parameters, [frequency, orders], cse=True)
+        self.zero_terms = [[all(c == 0 for c in coeffs) for coeffs in orders] for orders in coordinates]
+        self.function = numpy_lambdify(self.parameters, [frequency, coordinates], cse=True)
 
     def _sizes(self, eps: np.ndarray, args: Sequence[np.ndarray]):
         shape = eps.shape
         with np.errstate(all="ignore"):
-            frequency, orders = self.function(*args)
-            freq = np.array(
-                [np.broadcast_to(np.abs(np.asarray(f, float)), shape) for f in frequency]
-            )
+            frequency, coordinates = self.function(*args)
+            freq = np.array([np.broadcast_to(np.abs(np.asarray(f, float)), shape) for f in frequency])
             freq = freq * np.abs(eps) ** np.arange(len(frequency))[:, None]
-            sizes = []
-            for k, coeffs in enumerate(orders):
-                top = np.zeros(shape)
-                for c in coeffs:
-                    top = np.maximum(top, np.broadcast_to(np.abs(np.asarray(c, float)), shape))
-                sizes.append(np.abs(eps) ** k * top)
-        return freq, np.array(sizes)
+            own = []
+            for orders in coordinates:
+                sizes = []
+                for k, coeffs in enumerate(orders):
+                    top = np.zeros(shape)
+                    for c in coeffs:
+                        top = np.maximum(top, np.broadcast_to(np.abs(np.asarray(c, float)), shape))
+                    sizes.append(np.abs(eps) ** k * top)
+                own.append(np.array(sizes))
+        return freq, own
 
-    def _clear(self, terms: np.ndarray, structural_zero: list[bool]) -> np.ndarray:
-        """Points whose terms (rows: orders) clearly decrease, none near zero unless zero by form."""
+    @staticmethod
+    def _clear(terms: np.ndarray, structural_zero: list[bool]) -> np.ndarray:
+        """Points whose terms (rows: orders) clearly decrease, none near zero unless zero by form
+        (``series_domain`` skips the zero terms; a float zero that is not zero by form, or a term
+        near its neighbour, is left to it)."""
         margin = SWEEP_DOMAIN_MARGIN
         ok = np.all(np.isfinite(terms), axis=0)
         kept = [k for k in range(terms.shape[0]) if not structural_zero[k]]
         for k in kept:
-            ok &= terms[k] > 0  # a float zero that is not zero by form: uncertain
+            ok &= terms[k] > 0
         for k0, k1 in zip(kept, kept[1:], strict=False):
             ok &= terms[k1] < terms[k0] * (1 - margin)
         return ok
 
     def check(self, parameter_values, values: Mapping[str, np.ndarray], omega) -> list:
-        """For each point: None when it is clearly inside the domain, else the reasons
-        (``series_domain``'s, empty when that function finds it inside after all).
+        """For each point, its :class:`perturb.domain.DomainCheck`: built from the screen's
+        numbers when the point is clearly inside the domain (``ok``, no reasons), else
+        ``series_domain``'s own.
 
         ``omega`` are the points' frequencies (from the evaluation), ``values`` the solution's
         parameters by name.
@@ -261,23 +262,27 @@ class DomainScreen:
             eps = 1.0 / pv if large else pv
         args = [np.asarray(values.get(p.name, np.nan), dtype=float) for p in self.parameters]
         args = [np.broadcast_to(a, pv.shape) for a in args]
-        freq, sizes = self._sizes(eps, args)
+        freq, own = self._sizes(eps, args)
         omega = np.broadcast_to(np.asarray(omega, dtype=float), pv.shape)
         scale = np.max(np.where(np.isfinite(freq), freq, 0.0), axis=0)
         clear = np.isfinite(omega) & (omega > SWEEP_DOMAIN_MARGIN * scale)
-        clear &= self._clear(freq, self.zero_frequency) & self._clear(sizes, self.zero_orders)
+        clear &= self._clear(freq, self.zero_frequency)
+        for sizes, zeros in zip(own, self.zero_terms, strict=True):
+            clear &= self._clear(sizes, zeros)
+        names = self.solution.coordinates
         out: list = []
         for i in range(pv.size):
             if clear[i]:
-                out.append(None)
+                per_coordinate = {n: tuple(sizes[:, i]) for n, sizes in zip(names, own, strict=True)}
+                depth = max((len(t) for t in per_coordinate.values()), default=0)
+                overall = [
+                    max([0.0, *(t[k] for t in per_coordinate.values() if k < len(t))])
+                    for k in range(depth)
+                ]
+                out.append(DomainCheck(True, (), omega[i], overall, freq[:, i], per_coordinate))
                 continue
             point = {name: float(np.asarray(a).ravel()[i]) for name, a in values.items()}
-            try:
-                domain = series_domain(self.solution, float(pv[i]), point)
-            except (PerturbError, ValueError, ArithmeticError) as exc:
-                out.append([f"the domain could not be checked: {exc}"])
-                continue
-            out.append(list(domain.reasons))
+            out.append(series_domain(self.solution, float(pv[i]), point))
         return out
 
 

@@ -77,11 +77,12 @@ def _describe(exc: BaseException) -> str:
 class _Point:
     """One point's model, solution, status and notes while its chunk is computed."""
 
-    __slots__ = ("model", "solution", "status", "reason", "notes")
+    __slots__ = ("model", "solution", "status", "reason", "notes", "domain")
 
     def __init__(self):
         self.model = None
         self.solution = None
+        self.domain = None
         self.status = PointStatus.OK
         self.reason = ""
         self.notes: list[str] = []
@@ -164,11 +165,12 @@ def _store_evaluation(out, k: int, result: dict) -> None:
     out["state"][k] = result["state"]
 
 
-def _domain(point: _Point, reasons) -> None:
-    if reasons:
-        point.fail(
-            PointStatus.OUTSIDE_DOMAIN, "the series is outside its domain: " + "; ".join(reasons)
-        )
+def _domain(point: _Point, check) -> None:
+    """The point's domain check (kept for its validation), and its status."""
+    point.domain = check
+    if not check.ok:
+        reasons = "; ".join(check.reasons)
+        point.fail(PointStatus.OUTSIDE_DOMAIN, f"the series is outside its domain: {reasons}")
 
 
 def _evaluate_vectorised(job, points: list[_Point], where: list[int], out) -> list[int]:
@@ -192,7 +194,9 @@ def _evaluate_vectorised(job, points: list[_Point], where: list[int], out) -> li
     return []
 
 
-def _evaluate_single(job, point: _Point, out, k: int) -> None:
+def _evaluate_single(job, point: _Point, out, k: int):
+    """The point through its model's own maps; returns ``(parameter value, values, omega)`` for
+    its domain check (made for all such points of a solution at once), or None if it failed."""
     times = np.asarray(job.spec.times)
     model, solution = point.model, point.solution
     try:
@@ -200,31 +204,58 @@ def _evaluate_single(job, point: _Point, out, k: int) -> None:
         values = model.symbol_values()
         omega = _recorded(point, solution.coefficients, pv, values)[0]
         result = _recorded(point, evaluate_one, model, solution, times)
-        reasons = _recorded(
-            point, _screen(solution).check, pv, {n: np.asarray(v) for n, v in values.items()}, omega
-        )[0]
     except SolutionFailed as exc:
         point.fail(PointStatus.NOT_FINITE, _describe(exc))
-        return
+        return None
     except Exception as exc:  # noqa: BLE001 - recorded, the sweep goes on
         point.fail(PointStatus.FAILED, _describe(exc))
-        return
+        return None
     _store_evaluation(out, k, result)
     if not (np.all(np.isfinite(result["state"])) and math.isfinite(result["period"])):
         point.fail(
             PointStatus.NOT_FINITE,
             "the solution is not finite at these parameter values (NaN or inf)",
         )
-    _domain(point, reasons)
+    return pv, values, float(np.asarray(omega))
 
 
-def validate_point(job: SweepJob, model):
-    """The validation of one point: exactly ``perturb validate``'s call."""
+def _check_domains(points: list[_Point], pending: dict[int, tuple]) -> None:
+    """The domain checks of the points evaluated one by one, per solution in one screen."""
+    by_solution: dict[int, list[int]] = {}
+    for k in pending:
+        by_solution.setdefault(id(points[k].solution), []).append(k)
+    for where in by_solution.values():
+        solution = points[where[0]].solution
+        pv = np.array([pending[k][0] for k in where], dtype=float)
+        names = dict.fromkeys(name for k in where for name in pending[k][1])
+        values = {n: np.array([pending[k][1].get(n, np.nan) for k in where]) for n in names}
+        omega = np.array([pending[k][2] for k in where])
+        try:
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                checks = _screen(solution).check(pv, values, omega)
+        except Exception as exc:  # noqa: BLE001 - recorded, the sweep goes on
+            for k in where:
+                points[k].fail(PointStatus.FAILED, "domain check: " + _describe(exc))
+            continue
+        for k, check in zip(where, checks, strict=True):
+            points[k].note(str(w.message) for w in caught)
+            _domain(points[k], check)
+
+
+def validate_point(job: SweepJob, model, domain=None):
+    """The validation of one point: exactly ``perturb validate``'s call (``domain``: the point's
+    :func:`perturb.domain.series_domain`, when the evaluation has it already)."""
     from perturb.validation import validate
 
     spec = job.spec
     return validate(
-        model, order=spec.order, integrator=spec.integrator, periods=spec.periods, tol=spec.tol
+        model,
+        order=spec.order,
+        integrator=spec.integrator,
+        periods=spec.periods,
+        tol=spec.tol,
+        domain=domain,
     )
 
 
@@ -281,8 +312,12 @@ def run_chunk(job: SweepJob, indices: Sequence[int], session: int = 1) -> ChunkR
             single.append(k)
     for where in groups.values():
         single += _evaluate_vectorised(job, points, where, out)
+    pending = {}
     for k in sorted(single):
-        _evaluate_single(job, points[k], out, k)
+        found = _evaluate_single(job, points[k], out, k)
+        if found is not None:
+            pending[k] = found
+    _check_domains(points, pending)
     epsilon = out["epsilon"]
     for k, point in enumerate(points):
         if point.model is None:
@@ -293,7 +328,7 @@ def run_chunk(job: SweepJob, indices: Sequence[int], session: int = 1) -> ChunkR
             point.fail(PointStatus.FAILED, _describe(exc))
         if spec.validate:
             try:
-                report = _recorded(point, validate_point, job, point.model)
+                report = _recorded(point, validate_point, job, point.model, point.domain)
             except Exception as exc:  # noqa: BLE001 - recorded, the sweep goes on
                 point.fail(PointStatus.FAILED, "validation: " + _describe(exc))
             else:

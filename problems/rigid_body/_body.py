@@ -46,6 +46,10 @@ EPSILON_WARN = 0.1
 ORACLE_RTOL = 1e-12
 #: Periods followed by :meth:`FastSpinBody.true_motion_errors` by default.
 TRACK_PERIODS = 5
+#: Reductions found for solutions (:meth:`FastSpinBody._reduction_of`), by solution, class and
+#: (for a solution specialised to numbers) the body's values; at most REDUCTIONS_KEPT of them.
+_REDUCTIONS: dict[tuple, tuple] = {}
+REDUCTIONS_KEPT = 256
 #: The values the Euler–Poisson equations contain (the initial state's r0, gamma3_0 do not).
 _BODY_DATA = ("A", "B", "C", "M", "g", "R", "x0", "y0", "z0")
 
@@ -267,8 +271,22 @@ class FastSpinBody(Problem):
         return _SOLUTION_CACHE[key]
 
     def _reduction_of(self, solution: PeriodicSolution) -> Reduction:
-        orders = [solution.order, *range(1, solution.order)]
+        """The reduction whose system ``solution`` solves (kept per solution: the comparison of
+        two systems is sympy's, and every state asks for it)."""
         symbolic = bool(solution.system.parameters)
+        values = None if symbolic else tuple(sorted(self.symbol_values().items()))
+        key = (id(solution), type(self), values)
+        kept = _REDUCTIONS.get(key)
+        if kept is not None and kept[0] is solution:
+            return kept[1]
+        reduction = self._find_reduction(solution, symbolic)
+        if len(_REDUCTIONS) >= REDUCTIONS_KEPT:
+            _REDUCTIONS.clear()
+        _REDUCTIONS[key] = (solution, reduction)  # the solution kept: its id is not reused
+        return reduction
+
+    def _find_reduction(self, solution: PeriodicSolution, symbolic: bool) -> Reduction:
+        orders = [solution.order, *range(1, solution.order)]
         for order in orders:
             if symbolic and order > self.SYMBOLIC_MAX_ORDER:
                 # that candidate is specialised (no parameters left), so it cannot be this

@@ -15,6 +15,8 @@ the several hundred array operations of a compiled expression.
 
 from __future__ import annotations
 
+import operator
+
 from collections.abc import Mapping, Sequence
 from fractions import Fraction
 
@@ -132,6 +134,16 @@ def _with_divisors(monomials: set[tuple[int, ...]]) -> set[tuple[int, ...]]:
     return out
 
 
+def _picker(indices: list[int]):
+    """``monom -> tuple(monom[i] for i in indices)``, fast (:func:`operator.itemgetter`)."""
+    if not indices:
+        return lambda monom: ()
+    if len(indices) == 1:
+        (index,) = indices
+        return lambda monom: (monom[index],)
+    return operator.itemgetter(*indices)
+
+
 def compile_polynomials(
     ring: SeriesRing,
     polys: Sequence[PolyElement],
@@ -150,16 +162,13 @@ def compile_polynomials(
     stray = [s for s in keep if s not in first and s not in second]
     split = []
     stray_at = [where[s] for s in stray]
-    first_at = [where[s] for s in first]
-    second_at = [where[s] for s in second]
+    first_of, second_of = _picker([where[s] for s in first]), _picker([where[s] for s in second])
     for poly in polys:
         component: dict[tuple[tuple[int, ...], tuple[int, ...]], float] = {}
         for monom, coeff in ring.evaluate_float(poly, numbers, keep).items():
-            if any(monom[i] for i in stray_at):
+            if stray_at and any(monom[i] for i in stray_at):
                 raise AssertionError(f"the series still depends on one of {stray}")
-            mz = tuple(monom[i] for i in first_at)
-            m0 = tuple(monom[i] for i in second_at)
-            component[mz, m0] = coeff
+            component[first_of(monom), second_of(monom)] = coeff
         split.append(component)
     needed = _with_divisors({mz for component in split for mz, _ in component})
     if needed:  # register the divisors as zero terms of the first component

@@ -181,3 +181,42 @@ def test_derive_once_picks_the_symbolic_derivation_where_it_is_needed():
     assert first.mode is DeriveMode.OWN
     asked, solution = plan(disk, [parse_axis("gamma3_0=0.2:0.3:3")], 2, "per-point")
     assert asked.mode is DeriveMode.PER_POINT and solution is None
+
+
+@pytest.mark.parametrize(
+    ("name", "order", "parameter", "low", "high"),
+    [
+        ("van-der-pol", 3, "eps", -6.0, 6.0),
+        ("duffing", 3, "eps", -3.0, 3.0),
+        ("resonant-pair", 2, None, None, None),
+    ],
+)
+def test_the_domain_screen_is_series_domain(name, order, parameter, low, high):
+    """Where the screen clears a point, series_domain does too; elsewhere it is series_domain."""
+    from perturb.sweep.evaluate import DomainScreen, group_arrays
+
+    problem = get_problem(name).create()
+    solution = problem.solve(order)
+    specs = [s for s in type(problem).parameter_specs]
+    rng = np.random.default_rng(21)
+    models = []
+    for _ in range(200):
+        values = {}
+        for spec in specs:
+            scale = abs(spec.default) or 1.0
+            lo, hi = (low, high) if spec.name == parameter else (-4 * scale, 4 * scale)
+            values[spec.name] = float(rng.uniform(lo, hi))
+        try:
+            models.append(problem.with_parameters(values))
+        except ValueError:
+            continue
+    pv, arrays = group_arrays(models)
+    omega = np.array([float(np.asarray(solution.coefficients(m.parameter_value(), m.symbol_values())[0]))
+                      if np.isfinite(m.parameter_value()) else np.nan for m in models])  # fmt: skip
+    checks = DomainScreen(solution).check(pv, arrays, omega)
+    cleared = 0
+    for model, check in zip(models, checks, strict=True):
+        exact = series_domain(solution, model.parameter_value(), model.symbol_values())
+        assert check.ok == exact.ok and tuple(check.reasons) == tuple(exact.reasons)
+        cleared += check.ok
+    assert 0 < cleared < len(models) or name == "resonant-pair"
