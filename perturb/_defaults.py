@@ -209,6 +209,13 @@ SWEEP_CHUNKS_PER_WORKER = 4
 SWEEP_PILOT_POINTS = 64
 SWEEP_PILOT_VALIDATIONS = 3
 
+#: A sweep whose swept parameters enter the problem's derivation makes each distinct derivation
+#: once (per point) rather than one symbolic derivation when each serves this many points on
+#: average: the disk at order 2 (measured, benchmarks/bench_sweep.md) derives one parameter set in
+#: ~2.5 s and then validates a point in ~0.07 s, against ~0.18 s a point from the symbolic
+#: solution, so a derivation pays for itself after ~20 points.
+SWEEP_POINTS_PER_DERIVATION = 20
+
 #: Most points of one chunk: a chunk's results travel back to the driver in one message, and its
 #: state at many times grows as points x times x components.
 SWEEP_MAX_CHUNK_POINTS = 100_000

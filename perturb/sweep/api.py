@@ -178,7 +178,7 @@ def sweep(
         else:
             from perturb.sweep.memory import MemoryResult
 
-            sink = MemoryResult(job, Chunking.of(spec.grid.shape, size()), extra)
+            sink = MemoryResult(job, Chunking.of(spec.grid.shape, size(), job.fill_first()), extra)
         pending = sink.pending()
         session = sink.begin_session() if output is not None else 1
         done = spec.grid.size - sum(_chunk_size(sink.chunking, n) for n in pending)

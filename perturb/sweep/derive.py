@@ -15,8 +15,10 @@ Three ways, chosen on the driver (:class:`Derivation`):
     to rounding (``docs/sweeps.md``); ask for ``per-point`` to get its very numbers.
 ``per-point``
     Each point's own derivation, as ``perturb validate`` does it, kept by the problem's caches:
-    once per distinct derivation and worker process (the default when neither of the above
-    applies, or when asked for).
+    once per distinct derivation and worker process — when asked for, when the problem offers
+    no symbolic derivation, or when each distinct derivation serves many points (a map over one
+    entering parameter and one that does not enter: the disk's ``gamma3_0`` and ``r0``), which
+    is then cheaper than evaluating the heavier symbolic solution everywhere.
 
 A worker rebuilds the derivation once per process from this small description (the problem's
 memory and disk caches keep it); shipping the pickled solution instead was measured and is
@@ -27,10 +29,12 @@ from __future__ import annotations
 
 import enum
 import inspect
+import math
 from collections.abc import Mapping
 
 from attrs import frozen
 
+from perturb._defaults import SWEEP_POINTS_PER_DERIVATION
 from perturb.errors import InvalidParameterError, PerturbError
 from perturb.solution import PeriodicSolution
 from perturb.validation.model import Model
@@ -63,6 +67,8 @@ class Derivation:
 
     mode: DeriveMode
     reason: str
+    #: The swept parameters that enter the derivation (per point: chunks keep them fixed).
+    entering: tuple = ()
 
     def model_at(self, base: Model, values: Mapping[str, float]) -> Model:
         """The model of the point ``values`` (raises the model's own error for bad values)."""
@@ -84,25 +90,34 @@ def _offers_symbolic(model: Model) -> bool:
     return "symbolic" in parameters
 
 
-def _entering(base: Model, axes) -> list[str]:
-    """The axes whose values change the numbers the derivation is made for (symbol_values)."""
-    reference = base.symbol_values()
-    names = []
+def _entering(base: Model, axes) -> dict[str, int]:
+    """The axes whose values change the numbers the derivation is made for (symbol_values),
+    with how many distinct sets of those numbers each gives."""
+    reference = tuple(sorted(base.symbol_values().items()))
+    found = {}
     for axis in axes:
+        seen = {reference}
         for value in axis.values:
             try:
                 other = base.with_parameters({axis.name: value})
             except (PerturbError, ValueError):
                 continue  # a value the problem refuses: that point will say so
-            if other is not None and other.symbol_values() != reference:
-                names.append(axis.name)
-                break
-    return names
+            if other is not None:
+                seen.add(tuple(sorted(other.symbol_values().items())))
+        if len(seen) > 1:
+            found[axis.name] = len(seen - {reference}) or 1
+    return found
 
 
 def plan(base: Model, axes, order: int, derive: str = "auto") -> tuple[Derivation, object]:
     """The derivation for a sweep of ``base`` over ``axes`` at ``order``, and the solution
     derived here (which also fills the caches the workers of this machine read).
+
+    With ``derive="auto"``, a problem whose derivation the swept parameters enter and that
+    offers a symbolic one is derived once symbolically — unless its own derivations would each
+    serve :data:`SWEEP_POINTS_PER_DERIVATION` points or more (a map over one entering parameter
+    and one that only scales ε): then each distinct derivation is made once, which is cheaper
+    and gives ``perturb validate``'s very numbers.
 
     Raises
     ------
@@ -113,27 +128,40 @@ def plan(base: Model, axes, order: int, derive: str = "auto") -> tuple[Derivatio
         raise InvalidParameterError(
             f"`derive` = {derive!r} is invalid: choose from {list(DERIVE_CHOICES)}"
         )
+    entering = _entering(base, axes)
     if derive == "per-point":
-        return Derivation(DeriveMode.PER_POINT, "asked for (derive='per-point')"), None
+        return Derivation(
+            DeriveMode.PER_POINT, "asked for (derive='per-point')", tuple(entering)
+        ), None
     own = base.solve(order)
     if own.system.parameters:
         return Derivation(
             DeriveMode.OWN, "the problem's solution is symbolic in its parameters"
         ), own
-    entering = _entering(base, axes)
     if not entering:
         return Derivation(
             DeriveMode.OWN, "the swept parameters do not enter the problem's derivation"
+        ), own
+    names = ", ".join(entering)
+    points = math.prod(axis.size for axis in axes)
+    derivations = math.prod(entering.values())
+    if points >= SWEEP_POINTS_PER_DERIVATION * derivations:
+        return Derivation(
+            DeriveMode.PER_POINT,
+            f"{names} enter the derivation, {derivations} distinct derivations serve "
+            f"{points} points: each made once",
+            tuple(entering),
         ), own
     if _offers_symbolic(base):
         solution = base.solve(order, symbolic=True)
         return Derivation(
             DeriveMode.SYMBOLIC,
-            f"{', '.join(entering)} enter the derivation: derived once, symbolic in them",
+            f"{names} enter the derivation: derived once, symbolic in them",
         ), solution
     return Derivation(
         DeriveMode.PER_POINT,
-        f"{', '.join(entering)} enter the derivation and the problem offers no symbolic one",
+        f"{names} enter the derivation and the problem offers no symbolic one",
+        tuple(entering),
     ), own
 
 

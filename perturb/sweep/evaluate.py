@@ -209,19 +209,27 @@ class DomainScreen:
             orders = []
             for term in row:
                 orders.append(
-                    [sp.sympify(c) for j in range(term.max_harmonic + 1) for c in term.coefficient(j)]
+                    [
+                        sp.sympify(c)
+                        for j in range(term.max_harmonic + 1)
+                        for c in term.coefficient(j)
+                    ]
                 )
             coordinates.append(orders)
         #: terms whose every coefficient is the number 0: their size is exactly zero either way
         self.zero_frequency = [f == 0 for f in frequency]
-        self.zero_terms = [[all(c == 0 for c in coeffs) for coeffs in orders] for orders in coordinates]
+        self.zero_terms = [
+            [all(c == 0 for c in coeffs) for coeffs in orders] for orders in coordinates
+        ]
         self.function = numpy_lambdify(self.parameters, [frequency, coordinates], cse=True)
 
     def _sizes(self, eps: np.ndarray, args: Sequence[np.ndarray]):
         shape = eps.shape
         with np.errstate(all="ignore"):
             frequency, coordinates = self.function(*args)
-            freq = np.array([np.broadcast_to(np.abs(np.asarray(f, float)), shape) for f in frequency])
+            freq = np.array(
+                [np.broadcast_to(np.abs(np.asarray(f, float)), shape) for f in frequency]
+            )
             freq = freq * np.abs(eps) ** np.arange(len(frequency))[:, None]
             own = []
             for orders in coordinates:
@@ -273,7 +281,9 @@ class DomainScreen:
         out: list = []
         for i in range(pv.size):
             if clear[i]:
-                per_coordinate = {n: tuple(sizes[:, i]) for n, sizes in zip(names, own, strict=True)}
+                per_coordinate = {
+                    n: tuple(sizes[:, i]) for n, sizes in zip(names, own, strict=True)
+                }
                 depth = max((len(t) for t in per_coordinate.values()), default=0)
                 overall = [
                     max([0.0, *(t[k] for t in per_coordinate.values() if k < len(t))])

@@ -235,12 +235,15 @@ class Chunking:
     chunk: tuple = field(converter=lambda v: tuple(int(x) for x in v))
 
     @classmethod
-    def of(cls, shape: Sequence[int], points: int) -> Chunking:
-        """Blocks of at most ``max(points, 1)`` points (fewer only where the grid ends)."""
+    def of(cls, shape: Sequence[int], points: int, first: Sequence[int] = ()) -> Chunking:
+        """Blocks of at most ``max(points, 1)`` points (fewer only where the grid ends), filled
+        along the axes ``first`` before the others (a per-point derivation keeps its entering
+        axes fixed within a block), then from the last axis."""
         points = max(int(points), 1)
         chunk = [1] * len(shape)
         inner = 1
-        for axis in range(len(shape) - 1, -1, -1):
+        order = [*first, *(a for a in range(len(shape) - 1, -1, -1) if a not in first)]
+        for axis in order:
             if inner * shape[axis] <= points:
                 chunk[axis] = shape[axis]
                 inner *= shape[axis]

@@ -119,6 +119,16 @@ class SweepJob:
     derivation: Derivation
     key: str
 
+    def fill_first(self) -> tuple[int, ...]:
+        """The axes a chunk spans first: with one derivation per distinct parameter set, those
+        that do not enter it (a chunk then needs one derivation)."""
+        if not self.derivation.entering:
+            return ()
+        names = self.spec.grid.names
+        return tuple(
+            i for i in range(len(names) - 1, -1, -1) if names[i] not in self.derivation.entering
+        )
+
 
 def model_values(model: Model, grid: Grid) -> list[float]:
     """The model's own values of the swept parameters (a point it accepts, to probe with)."""

@@ -139,7 +139,7 @@ class SweepStore:
         zarr = _zarr()
         spec = job.spec
         grid = spec.grid
-        chunking = Chunking.of(grid.shape, points)
+        chunking = Chunking.of(grid.shape, points, job.fill_first())
         names = tuple(spec.model.state_names())
         try:
             group = zarr.open_group(str(path), mode="w-")

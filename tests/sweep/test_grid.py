@@ -92,9 +92,11 @@ def test_points_are_numbered_in_c_order():
 @given(
     shape=st.lists(st.integers(1, 7), min_size=1, max_size=4),
     points=st.integers(1, 60),
+    data=st.data(),
 )
-def test_chunks_tile_the_grid_once(shape, points):
-    chunking = Chunking.of(shape, points)
+def test_chunks_tile_the_grid_once(shape, points, data):
+    first = data.draw(st.lists(st.sampled_from(range(len(shape))), unique=True))
+    chunking = Chunking.of(shape, points, first)
     seen = np.zeros(shape, dtype=int)
     flat = []
     for number in chunking:
@@ -141,3 +143,9 @@ def test_enums_are_coded_by_position_with_their_meanings():
         "1": "b",
         "2": "c",
     }
+
+
+def test_chunks_keep_the_entering_axes_fixed_when_asked():
+    chunking = Chunking.of((100, 100), 30, first=(0,))  # fill along axis 0 first
+    assert chunking.chunk == (30, 1)
+    assert Chunking.of((100, 100), 30).chunk == (1, 30)

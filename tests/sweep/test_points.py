@@ -181,6 +181,12 @@ def test_derive_once_picks_the_symbolic_derivation_where_it_is_needed():
     assert first.mode is DeriveMode.OWN
     asked, solution = plan(disk, [parse_axis("gamma3_0=0.2:0.3:3")], 2, "per-point")
     assert asked.mode is DeriveMode.PER_POINT and solution is None
+    # each of 3 derivations would serve 20 points: made once each, chunks along r0
+    axes = [parse_axis("r0=0.6:0.9:20"), parse_axis("gamma3_0=0.2:0.3:3")]
+    cheaper, _ = plan(disk, axes, 2)
+    assert cheaper.mode is DeriveMode.PER_POINT and cheaper.entering == ("gamma3_0",)
+    spec = check_spec(disk, axes, order=2)
+    assert SweepJob(spec, cheaper, "k").fill_first() == (0,)
 
 
 @pytest.mark.parametrize(
