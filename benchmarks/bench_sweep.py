@@ -157,9 +157,11 @@ from perturb.validation import Model, validate
 cls = get_problem("disk")
 base = dict(R=0.123299, r0=0.755155, gamma3_0=0.25)
 
-class Symbolic(Model):  # what a sweep's symbolic derivation does: solve(order, symbolic=True)
+SYMBOLIC = sys.argv[1] == "symbolic"
+class Symbolic(Model):  # a sweep's derivations: solve(order, symbolic=True), or the problem's own
     def __init__(self, p): self.p = p
-    def solve(self, order=1): return self.p.solve(order, symbolic=True)
+    def solve(self, order=1):
+        return self.p.solve(order, symbolic=True) if SYMBOLIC else self.p.solve(order)
     def with_epsilon(self, eps):
         q = self.p.with_epsilon(eps)
         return None if q is None else Symbolic(q)
@@ -169,21 +171,22 @@ for name in ["state_names", "state", "period", "epsilon", "system", "symbol_valu
              "shooting_setup", "euler_angles"]:
     setattr(Symbolic, name, (lambda n: lambda self, *a, **k: getattr(self.p, n)(*a, **k))(name))
 Symbolic.__abstractmethods__ = frozenset()
-r0s, g3s = [0.5 + 0.5 * i / 9 for i in range(10)], [0.1 + 0.3 * i / 9 for i in range(10)]
-points = [(r, g) for r in r0s for g in g3s]
-for r, g in points[:3]:  # warm: derivation, compiled integrators
+r0s = [0.5 + 0.5 * i / 19 for i in range(20)]
+points = [(r, g) for g in (0.25, 0.3) for r in r0s]  # per point: one derivation per gamma3_0
+for r, g in points[:3] + points[20:23]:  # warm: derivations, compiled integrators
     validate(Symbolic(cls.create(**{**base, "r0": r, "gamma3_0": g})), order=2)
+timed = points[3:20] + points[23:]
 clock = time.process_time()
-for r, g in points[3:]:
+for r, g in timed:
     validate(Symbolic(cls.create(**{**base, "r0": r, "gamma3_0": g})), order=2)
-print(json.dumps({"cpu_per_point": (time.process_time() - clock) / (len(points) - 3)}))
+print(json.dumps({"cpu_per_point": (time.process_time() - clock) / len(timed)}))
 """
 
 
 def section_point(before: str | None) -> None:
-    print("\n## one validated point of the disk map (order 2, symbolic solution, warm), CPU\n")
-    print("| tree | CPU per point [s] |")
-    print("|---|---:|")
+    print("\n## one validated point of the disk map (order 2, warm: derivations made), CPU\n")
+    print("| tree | derivation | CPU per point [s] |")
+    print("|---|---|---:|")
     trees = [("this tree", ROOT)]
     tmp = None
     if before:
@@ -191,15 +194,15 @@ def section_point(before: str | None) -> None:
         trees.append((f"before ({before})", export(before, tmp)))
     try:
         for label, tree in trees:
-            with tempfile.TemporaryDirectory() as cache:
-                _, out = run_child(
-                    tree, ["-c", _POINT], {"PERTURB_CACHE_DIR": cache}, CHILD_TIMEOUT
-                )
-            if out.returncode != 0:
-                print(f"| {label} | failed: {out.stderr.strip().splitlines()[-1]} |")
-                continue
-            cpu = json.loads(out.stdout.strip().splitlines()[-1])["cpu_per_point"]
-            print(f"| {label} | {cpu:.3f} |")
+            for mode in ("symbolic", "per point"):
+                with tempfile.TemporaryDirectory() as cache:
+                    env = {"PERTURB_CACHE_DIR": cache}
+                    _, out = run_child(tree, ["-c", _POINT, mode.split()[0]], env, CHILD_TIMEOUT)
+                if out.returncode != 0:
+                    print(f"| {label} | {mode} | failed: {out.stderr.strip().splitlines()[-1]} |")
+                    continue
+                cpu = json.loads(out.stdout.strip().splitlines()[-1])["cpu_per_point"]
+                print(f"| {label} | {mode} | {cpu:.3f} |")
     finally:
         if tmp:
             shutil.rmtree(tmp, ignore_errors=True)
