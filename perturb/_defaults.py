@@ -116,6 +116,12 @@ SHOOTING_MAX_HALVINGS = 8
 #: residual is then dominated by the integration error, and the iteration stops as stalled.
 SHOOTING_STALL_STEP = 1e-14
 
+#: Largest p and q of a driven system's resonance Omega = (p/q) omega + eps sigma
+#: (perturb.excitation): the response's period is p forcing periods, and a harmonic q*m of Omega/p
+#: is what the reference coordinate responds at; beyond 9 the periodicity conditions are of so
+#: high an order that the first non-trivial one lies past any order a construction reaches.
+MAX_RESONANCE_INTEGER = 9
+
 #: The shooting's precision floor (perturb.oracle.shooting): a tolerance below what the working
 #: precision can show is not a convergence test. The float64 defect y(T) - y(0) carries a few ulps
 #: of the states subtracted (one for each rounding of y(T), y(0) and the difference, one spare);

@@ -23,6 +23,7 @@ from perturb._defaults import MAX_ORDER
 from perturb._lambdify import numpy_lambdify
 from perturb.analytic import maclaurin_coefficients, polynomial_coefficients
 from perturb.errors import InvalidSystemError, bad_value
+from perturb.excitation import Excitation
 
 __all__ = ["QuasilinearSystem", "Regime"]
 
@@ -106,6 +107,13 @@ def _as_regime(value) -> Regime:
         ) from None
 
 
+def _check_excitation(instance, attribute, value) -> None:
+    if value is not None and not isinstance(value, Excitation):
+        raise bad_value(
+            "excitation", value, "give a perturb.Excitation or None", InvalidSystemError
+        )
+
+
 def _check_name(instance, attribute, value) -> None:
     if not isinstance(value, str):
         raise bad_value("name", value, "give a string label", InvalidSystemError)
@@ -146,6 +154,11 @@ class QuasilinearSystem:
         For right-hand sides that are themselves truncated series (reduced systems): the first power
         of ε that was neglected. The construction then refuses any order that would need it, rather
         than return coefficients computed from a missing term.
+    excitation : Excitation, optional
+        Makes the system driven: the right-hand sides may hold ``excitation.phase`` (standing for
+        :math:`\\Omega t`) through cos/sin of its integer multiples, and the construction looks for
+        the response with the forcing's period (:mod:`perturb.method.driven`). None (default): a
+        free, autonomous system.
 
     Raises
     ------
@@ -167,6 +180,7 @@ class QuasilinearSystem:
     first_integrals: tuple[sp.Expr, ...] = field(default=(), converter=_exprs_of("first_integrals"))
     name: str = field(default="system", validator=_check_name)
     truncation: int | None = None
+    excitation: Excitation | None = field(default=None, validator=_check_excitation)
 
     def __attrs_post_init__(self):
         n = len(self.coordinates)
@@ -192,6 +206,11 @@ class QuasilinearSystem:
             (self.parameter.name, "parameter"),
             *((s.name, "parameters") for s in self.parameters),
             *((s.name, "initial_values") for s in self.initial_values),
+            *(
+                [(self.excitation.phase.name, "excitation.phase")]
+                if self.excitation is not None
+                else []
+            ),
         ]
         names = [name for name, _ in roles]
         duplicates = sorted({n_ for n_ in names if names.count(n_) > 1})
@@ -211,6 +230,7 @@ class QuasilinearSystem:
                 "epsilon, an integer >= 2, or None"
             )
         self._check_frequencies()
+        self._check_excitation()
         self._check_symbols()
         self._check_real()
         self._check_vanishing()
@@ -236,6 +256,41 @@ class QuasilinearSystem:
                     f"`frequencies[{i}]` = {w} cannot be positive: give a positive frequency"
                 )
 
+    def _check_excitation(self):
+        drive = self.excitation
+        if drive is None:
+            return
+        names = [c.name for c in self.coordinates]
+        if drive.reference is not None and drive.reference not in names:
+            raise bad_value(
+                "excitation.reference", drive.reference, f"name a coordinate, one of {names}",
+                InvalidSystemError,
+            )  # fmt: skip
+        stray = drive.detuning.free_symbols - set(self.parameters)
+        if stray:
+            raise bad_value(
+                "excitation.detuning", drive.detuning,
+                f"it depends on {sorted(map(str, stray))}: declare them in `parameters`",
+                InvalidSystemError,
+            )  # fmt: skip
+        taken = {drive.cos_symbol.name, drive.sin_symbol.name}
+        clash = sorted(taken & {s.name for s in self._all_symbols()})
+        if clash:
+            raise bad_value(
+                "excitation.phase", drive.phase,
+                f"{clash} stand for its cosine and sine inside the engine: rename that symbol",
+                InvalidSystemError,
+            )  # fmt: skip
+        for i, f in enumerate(self.rhs):
+            drive.polynomial_form(f, f"rhs[{i}]")  # refuses a forcing not periodic in t
+
+    @property
+    def reference_index(self) -> int:
+        """The coordinate whose frequency the excitation's ratio refers to (driven systems)."""
+        if self.excitation is None or self.excitation.reference is None:
+            return 0
+        return [c.name for c in self.coordinates].index(self.excitation.reference)
+
     def _check_real(self):
         """A right-hand side holding the imaginary unit must still be real for real arguments."""
         real = {s: sp.Dummy(s.name, real=True) for s in self._all_symbols()}
@@ -254,6 +309,8 @@ class QuasilinearSystem:
     def _check_symbols(self):
         allowed = set(self.state_symbols) | set(self.parameters) | set(self.initial_values)
         allowed.add(self.parameter)
+        if self.excitation is not None:
+            allowed.add(self.excitation.phase)
         for i, f in enumerate(self.rhs):
             stray = f.free_symbols - allowed
             if stray:
@@ -293,10 +350,15 @@ class QuasilinearSystem:
 
     @cached_property
     def rhs_in_epsilon(self) -> tuple[sp.Expr, ...]:
-        """The right-hand sides written in the engine's small parameter ε (ε = 1/μ when LARGE)."""
+        """The right-hand sides written in the engine's small parameter ε (ε = 1/μ when LARGE);
+        a driven system's excitation as a polynomial in cos θ and sin θ
+        (:meth:`Excitation.polynomial_form`)."""
+        rhs = self.rhs
+        if self.excitation is not None:
+            rhs = tuple(self.excitation.polynomial_form(f) for f in rhs)
         if self.regime is Regime.LARGE:
-            return tuple(sp.expand(f.subs(self.parameter, 1 / EPS)) for f in self.rhs)
-        return tuple(f.subs(self.parameter, EPS) for f in self.rhs)
+            return tuple(sp.expand(f.subs(self.parameter, 1 / EPS)) for f in rhs)
+        return tuple(f.subs(self.parameter, EPS) for f in rhs)
 
     def expansion(self, order: int) -> tuple[tuple[sp.Expr, ...], ...]:
         """Coefficients :math:`f_{i,k}` for ``k = 0..order``: ``result[i][k]``.
@@ -400,12 +462,16 @@ class QuasilinearSystem:
             self._symbol(k): real_number(f"values[{k!r}]", v, InvalidSystemError)
             for k, v in values.items()
         }
+        drive = self.excitation
+        if drive is not None:
+            drive = attrs.evolve(drive, detuning=drive.detuning.subs(subs))
         return attrs.evolve(
             self,
             frequencies=tuple(w.subs(subs) for w in self.frequencies),
             rhs=tuple(f.subs(subs) for f in self.rhs),
             parameters=tuple(p for p in self.parameters if p not in subs),
             first_integrals=tuple(h.subs(subs) for h in self.first_integrals),
+            excitation=drive,
         )
 
     def _symbol(self, key) -> sp.Symbol:

@@ -55,6 +55,8 @@ from perturb.validation import (
     Model,
     OrbitEstimate,
     ShootingSetup,
+    quasilinear_state_names,
+    state_along,
 )
 
 __all__ = ["ParameterSpec", "Problem"]
@@ -229,9 +231,14 @@ class Problem(Model, ABC):
         return self.system(), options
 
     def families(self, order: int = 1) -> FamilyList:
-        """Every family of periodic solutions (:func:`perturb.find_families`), carried to ``order``."""
+        """Every family of periodic solutions (:func:`perturb.find_families`), carried to ``order``.
+
+        For a driven problem: every branch of the steady-state response at these parameter
+        values (``trivial``, ``lower``, ``middle``, ``upper``, …), each with its stability."""
         from perturb import find_families
 
+        if self.system().excitation is not None:
+            return self._driven_families(order)
         system, options = self.family_options(order)
         key = (type(self).__qualname__, order, system, repr(sorted(options.items())))
         if key not in _FAMILY_CACHE:
@@ -265,9 +272,13 @@ class Problem(Model, ABC):
         """The symbolic periodic solution (cached per class, order and method options).
 
         ``family`` (or the problem's :attr:`family`) names a family of :meth:`families` to follow
-        instead of the one :meth:`method_options` selects.
+        instead of the one :meth:`method_options` selects. A driven problem's solution is the
+        branch of its steady-state response at these parameter values (default: the largest
+        amplitude; :meth:`families` lists them all).
         """
         name = family if family is not None else self.family
+        if self.system().excitation is not None:
+            return self._driven_solution(order, name)
         if name is not None:
             return self.family_solution(order, name)
         options = self.method_options()
@@ -277,13 +288,38 @@ class Problem(Model, ABC):
         return _SOLUTION_CACHE[key]
 
     def state_names(self) -> tuple[str, ...]:
-        """Names of the state components :meth:`state` returns."""
-        return self.system().state_names
+        """Names of the state components :meth:`state` returns (a driven problem's phase
+        θ = Ωt last)."""
+        return quasilinear_state_names(self.system())
 
     def state(self, solution: PeriodicSolution, t) -> dict[str, np.ndarray]:
         """The state along ``solution`` at physical times ``t``, by name."""
-        y = solution.evaluate(t, self.parameter_value(), self.symbol_values())
-        return dict(zip(solution.state_names, y, strict=True))
+        return state_along(solution, t, self.parameter_value(), self.symbol_values())
+
+    def with_parameters(self, **values) -> Problem:
+        """The same problem with some parameters changed (validated as by :meth:`create`), on the
+        same family (the Model hook a sweep makes its points with)."""
+        problem = type(self).create(**{**self.values, **values})
+        return problem if self.family is None else problem.with_family(self.family)
+
+    # ------------------------------------------------------------------ driven problems
+    def steady_state(self, order: int = 1):
+        """Every branch of a driven problem's response at these values
+        (:func:`perturb.response.steady_state`, cached per class, order and values)."""
+        from perturb.response import steady_state
+
+        key = ("driven", type(self).__qualname__, order, tuple(sorted(self.values.items())))
+        if key not in _FAMILY_CACHE:
+            _FAMILY_CACHE[key] = steady_state(
+                self.system(), self.symbol_values(), self.epsilon(), order
+            )
+        return _FAMILY_CACHE[key]
+
+    def _driven_solution(self, order: int, name: str | None) -> PeriodicSolution:
+        return self.steady_state(order).solution(name)
+
+    def _driven_families(self, order: int) -> FamilyList:
+        return self.steady_state(order).families(self.name, order)
 
     def period(self, solution: PeriodicSolution) -> float:
         """The period in physical time."""
@@ -367,16 +403,11 @@ class Problem(Model, ABC):
         factor = (eps / float(self.epsilon())) ** (1.0 / exponent)
         return type(self).create(**{**self.values, name: self.values[name] * factor})
 
-    def with_parameters(self, values: Mapping[str, float]) -> Problem:
-        """The problem with some parameters set to ``values`` (the others kept), on the same
-        family; the parameters are checked as :meth:`create` checks them."""
-        problem = type(self).create(**{**self.values, **values})
-        return problem if self.family is None else problem.with_family(self.family)
-
     def evaluates_solution_directly(self) -> bool:
         """True unless the class maps the solution to its own state or period (``state``,
         ``period`` overridden)."""
-        return type(self).state is Problem.state and type(self).period is Problem.period
+        own = type(self).state is Problem.state and type(self).period is Problem.period
+        return own and self.system().excitation is None  # a driven state adds the phase
 
     def _epsilon_knob(self) -> tuple[str, float] | None:
         """``(name, exponent)`` of a parameter with ε ∝ p^exponent that leaves ``symbol_values()``

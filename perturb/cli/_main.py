@@ -150,6 +150,7 @@ _COMMANDS = {
     "reproduce": _command("_cmd_reproduce"),
     "work-precision": _command("_cmd_work_precision"),
     "families": _command("_cmd_families"),
+    "response": _command("_cmd_response", "_response"),
     "report": _command("_cmd_report", "_report"),
     "sweep": _command("_cmd_sweep", "_sweep"),
 }

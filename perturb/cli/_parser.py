@@ -14,6 +14,7 @@ _EPILOG = """examples:
   perturb solve my_oscillator.py:MyOscillator --set eps=0.05   (your own Problem subclass)
   perturb validate duffing --set eps=0.05
   perturb families resonant-pair --order 2
+  perturb response forced-duffing --sweep Omega=0.9:1.3:81 --set F=1 --validate 2
   perturb solve resonant-pair --family anti-phase
   perturb reproduce paper
   perturb work-precision duffing --periods 10 --orders 3 --format csv
@@ -165,6 +166,7 @@ def _build_parser() -> argparse.ArgumentParser:
         "--output", default=None, metavar="DIR", help="also write the report files into DIR"
     )
     _add_family_arguments(sub, solve, validate)
+    _add_response(sub)
     report = sub.add_parser(
         "report",
         help="write a scene's report folder: only the tables, checks and plots it asks for",
@@ -191,6 +193,33 @@ def _build_parser() -> argparse.ArgumentParser:
             help="no progress bar on stderr (it is shown only on a terminal anyway)",
         )
     return parser
+
+
+def _add_response(sub) -> None:
+    """``perturb response``: a driven problem's frequency response."""
+    response = sub.add_parser(
+        "response",
+        help="a driven problem's frequency response: every branch, its stability, the folds",
+        description="Sweep one parameter of a driven (forced, damped, parametrically excited) "
+        "PROBLEM and find, at each value, every steady-state branch of its response (all real "
+        "roots of the amplitude equations, continued to --order), each branch's stability (slow "
+        "flow), the folds where the response jumps, and the backbone of the free system; with "
+        "--validate K, the true orbit is shot at K points of every branch.",
+    )
+    _add_problem_arguments(response)
+    response.add_argument(
+        "--sweep", required=True, metavar="NAME=START:STOP:N",
+        help="the parameter swept and its grid (N >= 2 values, START < STOP), e.g. Omega=0.9:1.2:61",
+    )  # fmt: skip
+    response.add_argument(
+        "--validate", default="0", metavar="K",
+        help="shoot the true orbit at K points of every branch (default 0)",
+    )  # fmt: skip
+    response.add_argument(
+        "--plot", default=None, metavar="FILE",
+        help="also save the frequency-response plot (needs matplotlib)",
+    )  # fmt: skip
+    _add_format(response, ["table", "csv", "json", "latex"])
 
 
 def _add_family_arguments(sub, solve, validate) -> None:

@@ -27,7 +27,13 @@ from perturb.method.exact import exact_if_close, is_zero, probe_values, vanishes
 from perturb.method.steps import GeneratingSolution
 from perturb.solution import Status
 
-__all__ = ["ConditionSolver", "OrderFailed", "groebner_real_roots", "solve_bounded"]
+__all__ = [
+    "ConditionSolver",
+    "OrderFailed",
+    "compatibility_conditions",
+    "groebner_real_roots",
+    "solve_bounded",
+]
 
 
 class OrderFailed(Exception):
@@ -37,9 +43,13 @@ class OrderFailed(Exception):
     :class:`~perturb.solution.PeriodicSolution`, never lets it escape.
     """
 
-    def __init__(self, status: Status, message: str):
+    def __init__(self, status: Status, message: str, residual_conditions: tuple = ()):
         super().__init__(message)
         self.status, self.message = status, message
+        #: For INCONSISTENT: polynomials free of the order's unknowns that would have to vanish
+        #: for the conditions to hold (they restrict a family's free amplitudes; see
+        #: :func:`compatibility_conditions`).
+        self.residual_conditions = tuple(residual_conditions)
 
 
 @frozen
@@ -54,11 +64,16 @@ class ConditionSolver:
         Time budget of one sympy ``solve`` (and of one Groebner root search).
     phase : int
         Index of the phase coordinate (its amplitude orders the default branch choice).
+    driven : bool
+        A driven system: the forcing fixes the phase, so the phase coordinate's cosine amplitude
+        may vanish (no Rabinowitsch condition), and the default branch is the one of largest
+        amplitude sqrt(a**2 + b**2) of that coordinate.
     """
 
     branch: object
     solve_seconds: float
     phase: int
+    driven: bool = False
 
     def solve(
         self,
@@ -99,7 +114,9 @@ class ConditionSolver:
             residual = [e for e in eqs if not vanishes(e)]
             if residual:
                 raise OrderFailed(
-                    Status.INCONSISTENT, f"order {k}: conditions {residual} cannot vanish"
+                    Status.INCONSISTENT,
+                    f"order {k}: conditions {residual} cannot vanish",
+                    tuple(residual),
                 )
             return {}, ()
         unknown_set = set(unknowns)
@@ -179,7 +196,11 @@ class ConditionSolver:
             return None
         system, variables = list(eqs), list(unknowns)
         phase_amplitude = generating.cos_amplitudes[self.phase]
-        if isinstance(phase_amplitude, sp.Symbol) and phase_amplitude in unknowns:
+        if (
+            not self.driven
+            and isinstance(phase_amplitude, sp.Symbol)
+            and phase_amplitude in unknowns
+        ):
             inverse = sp.Dummy("w")
             system.append(inverse * phase_amplitude - 1)
             variables = [inverse, *variables]
@@ -277,6 +298,8 @@ class ConditionSolver:
         ]
         pool = isolated or roots
         phase_amp = generating.cos_amplitudes[self.phase]
+        if self.driven:  # the forcing fixes the phase: order by the amplitude itself
+            phase_amp = phase_amp**2 + generating.sin_amplitudes[self.phase] ** 2
 
         def key(root):
             value = sp.sympify(phase_amp).xreplace(root)
@@ -308,6 +331,7 @@ def _solve_linear(eqs, unknowns, k) -> dict:
         raise OrderFailed(
             Status.INCONSISTENT,
             f"order {k}: the linear periodicity conditions have no solution",
+            compatibility_conditions(matrix, rhs),
         )
     (values,) = tuple(result)
     solution = {}
@@ -319,6 +343,28 @@ def _solve_linear(eqs, unknowns, k) -> dict:
             continue
         solution[sym] = val
     return {s: sp.expand(v) if v.is_polynomial(*unknowns) else v for s, v in solution.items()}
+
+
+def compatibility_conditions(matrix: sp.Matrix, rhs: sp.Matrix) -> tuple:
+    """What the parameters must satisfy for ``matrix @ u = rhs`` to have a solution.
+
+    For each vector ``y`` of the left null space of ``matrix`` (over the rational functions of
+    its parameters), ``y . rhs`` must vanish: the numerator of each non-zero one, as a factored
+    polynomial without constant factors. Empty when the system is solvable for generic
+    parameters. These are the conditions a degenerate family's free amplitudes must meet (the
+    directions of Hénon–Heiles's straight and bowed orbits, selected at order 4).
+    """
+    out = []
+    for y in matrix.T.nullspace():
+        value = sp.together(sp.expand((y.T * rhs)[0]))
+        numerator = sp.numer(value)
+        if numerator == 0:
+            continue
+        _, factors = sp.factor_list(sp.expand(numerator))
+        poly = sp.Mul(*(f for f, _ in factors if f.free_symbols))
+        if poly != 1 and poly.free_symbols:
+            out.append(poly)
+    return tuple(out)
 
 
 # ---------------------------------------------------------------------- root finders

@@ -53,6 +53,11 @@ def state_series(
     for j, sym in enumerate(system.initial_values):
         value = variables[system.state_symbols[j]]
         variables[sym] = TrigSeries([poly.constant(c.at_zero()) for c in value.coefficients], poly)
+    drive = system.excitation
+    if drive is not None:  # theta = Omega t = p s: cos(theta), sin(theta) are harmonic p in s
+        one, zero = poly.ring.coerce(1), poly.ring.zero
+        variables[drive.cos_symbol] = TrigSeries([poly.harmonic(drive.p, one, zero)], poly)
+        variables[drive.sin_symbol] = TrigSeries([poly.harmonic(drive.p, zero, one)], poly)
     return {sym: series.truncate(k) for sym, series in variables.items()}
 
 

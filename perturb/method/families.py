@@ -42,6 +42,7 @@ import attrs
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._defaults import SOLVE_SECONDS
 from perturb.errors import InvalidSystemError, UnknownNameError, bad_value
 from perturb.method.components import Component, solution_components
 from perturb.method.conditions import ConditionSolver, OrderFailed
@@ -56,6 +57,13 @@ __all__ = ["Family", "FamilyList", "find_families"]
 
 #: The two kinds of family, as reported to users.
 ISOLATED, CONTINUUM = "isolated", "continuum"
+#: How many orders past the requested one a continuum with several free amplitudes is carried to
+#: see whether a later order restricts it (Hénon–Heiles: the directions of its lines are fixed by
+#: the conditions of order 4, i.e. carrying order 2, from the requested order 1: one order more;
+#: two leave room for a family order of 2 on a quadratic right-hand side's neighbour).
+PROBE_ORDERS = 2
+#: Successive restrictions of one continuum (each removes at least one free amplitude).
+MAX_RESTRICTIONS = 4
 
 
 @frozen
@@ -376,6 +384,7 @@ def _describe(solution: PeriodicSolution, free_names: tuple, members: dict) -> t
 
 
 def _carry(system, order, options, phase, k, component, members) -> tuple:
+    """The family of ``component`` carried to ``order``: (amplitudes, free, solution, failure)."""
     passes = phase is not None
     renames = {s: sp.Symbol(_user_name(s)) for s in component.free}
     carried_system = attrs.evolve(system, parameters=(*system.parameters, *renames.values()))
@@ -390,7 +399,73 @@ def _carry(system, order, options, phase, k, component, members) -> tuple:
     solution = runner.run()
     names = tuple(s.name for s in renames.values())
     amplitudes, free = _describe(solution, names, members)
-    return amplitudes, free, solution
+    return amplitudes, free, solution, runner.failure
+
+
+def _restriction(solution, failure, component) -> tuple:
+    """The conditions a later order puts on a continuum's free amplitudes (empty: none)."""
+    if not component.free or solution.status is not Status.INCONSISTENT or failure is None:
+        return ()
+    names = {sp.Symbol(_user_name(s)) for s in component.free}
+    return tuple(c for c in failure.residual_conditions if c.free_symbols & names)
+
+
+def _restricted(component: Component, conditions: tuple, phase_amplitude, seconds) -> list:
+    """The components of a continuum that meet ``conditions`` (in the free amplitudes' user
+    names): each with fewer free amplitudes, the phase amplitude kept free and non-zero."""
+    user = {sp.Symbol(_user_name(s)): s for s in component.free}
+    unknowns = sorted(user, key=lambda u: (user[u] != phase_amplitude, u.name))
+    try:
+        parts = solution_components(list(conditions), unknowns, unknowns, seconds)
+    except (TimeoutError, sp.PolynomialError, NotImplementedError, ValueError):
+        return []
+    out = []
+    for part in parts:
+        values = {user[u]: sp.sympify(v).xreplace(user) for u, v in part.values.items()}
+        if phase_amplitude in values and is_zero(values[phase_amplitude]):
+            continue  # the phase coordinate at rest: another pass's family
+        if all(is_zero(v) for v in values.values()) and not part.free:
+            continue  # the trivial equilibrium
+        merged = {u: sp.sympify(v).xreplace(values) for u, v in component.values.items()}
+        merged.update(values)
+        free = tuple(user[u] for u in part.free if u in user)
+        out.append(Component(merged, free))
+    return out
+
+
+def _carry_restricted(system, order, options, phase, k, component, members, depth=0) -> list:
+    """:func:`_carry`, and a continuum that later orders restrict split into what survives.
+
+    A continuum with several free amplitudes (Hénon–Heiles's lines in every direction at order 2)
+    can be a degenerate family: the conditions of a later order (there 4) hold only for some
+    directions. The conditions that fail are solved for the free amplitudes (every real
+    component) and each surviving family is carried on its own; a continuum carried to ``order``
+    with more than one free amplitude is probed up to :data:`PROBE_ORDERS` orders further, so
+    that the low orders a user asks for never report a direction that no periodic orbit has.
+    """
+    amplitudes, free, solution, failure = _carry(
+        system, order, options, phase, k, component, members
+    )
+    conditions = _restriction(solution, failure, component)
+    if not conditions and solution.success and len(component.free) > 1:
+        for probe in range(order + 1, order + PROBE_ORDERS + 1):
+            _, _, probed, probe_failure = _carry(
+                system, probe, options, phase, k, component, members
+            )
+            conditions = _restriction(probed, probe_failure, component)
+            if conditions or not probed.success:
+                break
+    if not conditions or depth >= MAX_RESTRICTIONS:
+        return [(amplitudes, free, solution)]
+    phase_amplitude = sp.Symbol(f"a_{solution.generating.phase_coordinate}0")
+    seconds = options.get("solve_seconds", SOLVE_SECONDS)
+    survivors = _restricted(component, conditions, phase_amplitude, seconds)
+    if not survivors:
+        return [(amplitudes, free, solution)]
+    out = []
+    for restricted in survivors:
+        out += _carry_restricted(system, order, options, phase, k, restricted, members, depth + 1)
+    return out
 
 
 def find_families(system: QuasilinearSystem, order: int = 1, **options) -> FamilyList:
@@ -437,10 +512,7 @@ def find_families(system: QuasilinearSystem, order: int = 1, **options) -> Famil
         except _Found as exc:
             family_order = exc.k if family_order is None else min(family_order, exc.k)
             for component in exc.components:
-                amplitudes, free, carried = _carry(
-                    system, order, options, phase, exc.k, component, members
-                )
-                found.append((amplitudes, free, carried))
+                found += _carry_restricted(system, order, options, phase, exc.k, component, members)
             continue
         if solution.status is Status.NO_ROOT and not fixed:
             continue  # no family oscillates in this coordinate first
@@ -448,9 +520,8 @@ def find_families(system: QuasilinearSystem, order: int = 1, **options) -> Famil
         if any(not is_zero(v) for v in amplitudes.values()):
             found.append((amplitudes, free, solution))
     families = []
-    for name, (amplitudes, free, solution) in zip(
-        name_families([(a, f) for a, f, _ in found]), found, strict=True
-    ):
+    described = [(a, f, straight_orbit(solution)) for a, f, solution in found]
+    for name, (amplitudes, free, solution) in zip(name_families(described), found, strict=True):
         families.append(
             Family(
                 name=name,
@@ -468,6 +539,39 @@ def find_families(system: QuasilinearSystem, order: int = 1, **options) -> Famil
         family_order=family_order,
         families=tuple(families),
     )
+
+
+def straight_orbit(solution: PeriodicSolution) -> bool | None:
+    """Whether the orbit stays on the line of its generating amplitudes at every order computed.
+
+    The generating solution of a line has cosine amplitudes only (a direction ``d`` in the
+    coordinates); the orbit is straight when every term of every order and harmonic is parallel
+    to ``d`` (exact zero tests of the 2 x 2 minors). None when the generating solution is not a
+    line (sine amplitudes, non-resonant coordinates) or the solution failed.
+    """
+    if not solution.success:
+        return None
+    generating = solution.generating
+    if any(m is None for m in generating.harmonics):
+        return None
+    if any(not is_zero(b) for b in generating.sin_amplitudes):
+        return None
+    direction = [sp.sympify(a) for a in generating.cos_amplitudes]
+    rows = solution.terms
+    top = max(len(row) for row in rows)
+    for k in range(top):
+        terms = [row[k] if k < len(row) else None for row in rows]
+        harmonics = {j for t in terms if t is not None for j in t.terms}
+        for j in harmonics:
+            for part in (0, 1):
+                values = [t.coefficient(j)[part] if t is not None else 0 for t in terms]
+                for i in range(len(values)):
+                    for m in range(i + 1, len(values)):
+                        if not is_zero(
+                            sp.expand(direction[m] * values[i] - direction[i] * values[m])
+                        ):
+                            return False
+    return True
 
 
 def _canonical_key(family: Family) -> tuple:

@@ -26,7 +26,17 @@ coordinate's generating amplitudes are not identically zero on the family.
 
    The phase coordinate is the one with no sine amplitude (its velocity vanishes at t = 0).
 
-3. Anything else: ``family-1``, ``family-2``, … in canonical order.
+3. A line whose direction is a fixed number (a continuum restricted by a later order, or an
+   isolated root), when the solution tells whether it stays straight (``straight`` given by
+   :func:`perturb.method.families.find_families`): ``line-θ`` for an orbit that stays on its line
+   at every order, ``bowed-θ`` for one that leaves it (the higher harmonics bend it), θ the
+   direction in degrees in [0, 180) in the plane of the first two resonant coordinates. The
+   names above win where they apply: a straight orbit on an axis stays ``c-line``, a line with
+   r = ±1 stays ``in-phase``/``anti-phase``. Hénon–Heiles: ``y-line`` (the axis, straight),
+   ``line-30``, ``line-150`` (straight: 210° and 330° point the other way along them),
+   ``bowed-0``, ``bowed-60``, ``bowed-120``, ``circle-ccw``, ``circle-cw``.
+
+4. Anything else: ``family-1``, ``family-2``, … in canonical order.
 
 Signs of expressions are read at generic positive values of the symbols (those of
 :func:`perturb.method.exact.probe_values`). Two families that would get the same name are told
@@ -36,6 +46,7 @@ amplitudes (``str`` of the items), which is deterministic.
 
 from __future__ import annotations
 
+import math
 from collections import Counter
 
 import sympy as sp
@@ -61,7 +72,23 @@ def _coordinates(amplitudes: dict) -> list[str]:
     return out
 
 
-def _structural(amplitudes: dict, free: tuple) -> str | None:
+def _angle(coords: list, direction: dict) -> str | None:
+    """The direction of a line in the plane of the first two coordinates, in degrees in [0, 180)
+    (an integer when it is one to 1e-9, else one decimal); None off that plane."""
+    if len(coords) < 2 or any(not is_zero(direction.get(c, 0)) for c in coords[2:]):
+        return None
+    u, v = (sp.sympify(direction.get(c, 0)) for c in coords[:2])
+    free = (u.free_symbols | v.free_symbols) - set()
+    point = probe_values(u + v) if free else {}
+    x, y = (complex(sp.N(w.xreplace(point), 30)).real for w in (u, v))
+    degrees = math.degrees(math.atan2(y, x)) % 180.0
+    whole = round(degrees)
+    if abs(degrees - whole) < 1e-9:
+        return str(whole % 180)
+    return f"{degrees:.1f}"
+
+
+def _structural(amplitudes: dict, free: tuple, straight: bool | None = None) -> str | None:
     coords = _coordinates(amplitudes)
 
     def value(key):
@@ -70,6 +97,10 @@ def _structural(amplitudes: dict, free: tuple) -> str | None:
     moving = [c for c in coords if not (is_zero(value(f"a_{c}")) and is_zero(value(f"b_{c}")))]
     if len(moving) == 1:
         if len(coords) > 1:
+            if straight is False and all(is_zero(value(f"b_{c}")) for c in coords):
+                angle = _angle(coords, {c: value(f"a_{c}") for c in coords})
+                if angle is not None:
+                    return f"bowed-{angle}"
             return f"{moving[0]}-line"
         return "continuum" if free else "limit-cycle"
     if len(moving) != 2:
@@ -83,7 +114,12 @@ def _structural(amplitudes: dict, free: tuple) -> str | None:
         ratio = sp.simplify(a_c / a_p)
         if not ratio.is_number:
             return "line"
-        return "in-phase" if _sign(ratio) > 0 else "anti-phase"
+        if straight is None or (is_zero(ratio - 1) or is_zero(ratio + 1)) and straight:
+            return "in-phase" if _sign(ratio) > 0 else "anti-phase"
+        angle = _angle(coords, {c: value(f"a_{c}") for c in coords})
+        if angle is None:
+            return "in-phase" if _sign(ratio) > 0 else "anti-phase"
+        return f"{'line' if straight else 'bowed'}-{angle}"
     if is_zero(a_c):
         shape = "circle" if is_zero(sp.expand(b_c**2 - a_p**2)) else "ellipse"
         return f"{shape}-ccw" if _sign(b_c / a_p) > 0 else f"{shape}-cw"
@@ -97,9 +133,11 @@ def _canonical(amplitudes: dict) -> str:
     return str(sorted((k, str(v)) for k, v in amplitudes.items()))
 
 
-def name_families(described: list[tuple[dict, tuple]]) -> list[str]:
-    """Names for families given as ``(amplitudes, free)``, in the same order (see module notes)."""
-    raw = [_structural(a, f) for a, f in described]
+def name_families(described: list[tuple]) -> list[str]:
+    """Names for families given as ``(amplitudes, free)`` or ``(amplitudes, free, straight)``
+    (``straight``: whether the orbit stays on the line of its generating amplitudes at every
+    order; None when unknown), in the same order (see module notes)."""
+    raw = [_structural(*item) for item in described]
     order = sorted(range(len(described)), key=lambda i: _canonical(described[i][0]))
     counts = Counter(raw)
     seen: Counter = Counter()

@@ -158,8 +158,9 @@ class PoincareMethod:
             if isinstance(self.branch, Mapping)
             else repr(self.branch)
         )
+        drive = () if system.excitation is None else (repr(system.excitation),)
         return (
-            tuple(sp.srepr(f) for f in fields),
+            tuple(sp.srepr(f) for f in fields) + drive,
             system.regime.value,
             system.name,
             system.truncation,
@@ -178,11 +179,16 @@ def solve(system: QuasilinearSystem, order: int = 1, **options) -> PeriodicSolut
 
 
 def _construct(method: PoincareMethod, system: QuasilinearSystem) -> PeriodicSolution:
-    """One run on the native backend; again on sympy if an expression cannot be held natively."""
+    """One run on the native backend; again on sympy if an expression cannot be held natively.
+
+    A driven system (``excitation`` set) runs the template of :mod:`perturb.method.driven`."""
+    template = _OrderByOrder
+    if system.excitation is not None:
+        from perturb.method.driven import _DrivenOrderByOrder as template
     try:
-        return _OrderByOrder(method, system).run()
+        return template(method, system).run()
     except NotNative:
-        return _OrderByOrder(method, system, SympyRing).run()
+        return template(method, system, SympyRing).run()
 
 
 class _OrderByOrder:
@@ -206,9 +212,14 @@ class _OrderByOrder:
         self._setup_phase_and_harmonics()
         self.conv = Converter(ring or self._ring())
         self._setup_unknowns()
-        self.solver = ConditionSolver(method.branch, method.solve_seconds, self.phase)
+        self.solver = self._make_solver()
 
     # ------------------------------------------------------------------ setup
+    def _make_solver(self) -> ConditionSolver:
+        """The solver of the periodicity conditions (hook: a driven system's knows the forcing
+        fixes the phase)."""
+        return ConditionSolver(self.method.branch, self.method.solve_seconds, self.phase)
+
     def _setup_phase_and_harmonics(self):
         method, names = self.method, self.names
         for key in method.amplitudes:
@@ -288,6 +299,7 @@ class _OrderByOrder:
         self.pending: list = []
         self.dependent: list[PeriodicityCondition] = []
         self.frequency_top: int | None = None  # the order whose Omega_k is the last one kept
+        self.failure: OrderFailed | None = None  # why the run stopped, when it failed
 
     def _new(self, label: str) -> sp.Symbol:
         sym = sp.Symbol(label)
@@ -305,7 +317,7 @@ class _OrderByOrder:
                 a = b = sp.S.Zero
             else:
                 a = self._initial_cos(i, 0)
-                b = sp.S.Zero if i == self.phase else self._new(f"b_{name}0")
+                b = sp.S.Zero if self._phase_fixed_by(i) else self._new(f"b_{name}0")
             cos_amp.append(a)
             sin_amp.append(b)
             self.x[i].append(
@@ -343,9 +355,18 @@ class _OrderByOrder:
         return total
 
     # ------------------------------------------------------------------ order k
+    def _phase_fixed_by(self, i: int) -> bool:
+        """Whether coordinate ``i``'s sine amplitudes vanish because its velocity fixes the phase
+        (hook: the phase coordinate of an autonomous system; none of a driven one)."""
+        return i == self.phase
+
+    def _frequency_coefficient(self, k: int):
+        """:math:`\\Omega_k` in the native ring: an unknown of order k (hook: a driven system's
+        frequency is given)."""
+        return self.conv.to_native(self._new(f"Omega{k}"))
+
     def _forcing(self, k: int) -> list[TrigPoly]:
-        omega_new = self._new(f"Omega{k}")
-        omega_new = self.conv.to_native(omega_new)
+        omega_new = self._frequency_coefficient(k)
         result = forcing(
             k,
             self.system,
@@ -403,7 +424,11 @@ class _OrderByOrder:
             quadratures[name] = conv.trig(g)
             self._initial_cos(i, k)
             a = self.init_cos[i][-1]
-            b = conv.ring.zero if i == self.phase else conv.to_native(self._new(f"b_{name}{k}"))
+            b = (
+                conv.ring.zero
+                if self._phase_fixed_by(i)
+                else conv.to_native(self._new(f"b_{name}{k}"))
+            )
             self.x[i].append((g + poly.harmonic(m, a, b)).expand())
         return quadratures, conditions
 
@@ -442,6 +467,7 @@ class _OrderByOrder:
                 raise OrderFailed(
                     Status.INCONSISTENT,
                     f"order {k}: condition {to_sympy(before)} = 0 cannot hold",
+                    (to_sympy(after),),
                 )
         self.pending = []
         return solution, branches
@@ -450,7 +476,11 @@ class _OrderByOrder:
     def run(self) -> PeriodicSolution:
         method, system = self.method, self.system
         lead = system.leading_order
-        max_k = method.order + max(lead, 1) + 1
+        # the orders a run may take: order N's terms, the deeper ones of coordinates that start
+        # at a power of eps (one lead more), and the corrections a degenerate family's
+        # conditions fix only at twice its family order (Hénon–Heiles's lines: the correction
+        # of order j at order j + 4; the bowed line along x, whose y starts at eps: N + 5)
+        max_k = method.order + 3 * max(lead, 1) + 2
         self.expansion = system.expansion(max_k)
         generating = self._generating()
         status, message = Status.SUCCESS, ""
@@ -488,6 +518,7 @@ class _OrderByOrder:
             status, message = Status.NOT_POLYNOMIAL, str(exc)
         except OrderFailed as exc:
             status, message = exc.status, exc.message
+            self.failure = exc
         if status is Status.SUCCESS and isinstance(method.branch, Mapping):
             stray = sorted({str(key) for key in method.branch} - self.created)
             if stray:
@@ -515,9 +546,21 @@ class _OrderByOrder:
         """
         depths = []
         for row in self.x:
-            lead = next((q for q, term in enumerate(row) if not term.is_zero()), 0)
+            lead = next((q for q, term in enumerate(row) if self._known_nonzero(term)), 0)
             depths.append(self.method.order + lead)
         return depths
+
+    def _known_nonzero(self, term) -> bool:
+        """Whether a term is non-zero whatever its open unknowns turn out to be: a term made of
+        open unknowns alone (a correction not yet fixed, an invariant coordinate's zero) does not
+        decide where a coordinate starts."""
+        if term.is_zero():
+            return False
+        open_ = self.conv.poly_symbols(term) & self.unknowns
+        if not open_:
+            return True
+        zero = self.conv.mapping(dict.fromkeys(open_, sp.S.Zero))
+        return not term.subs(zero).is_zero()
 
     def _open_unknowns(self, uniform: bool = False) -> set:
         """The unknowns left in the terms each coordinate keeps and in the frequency to order N

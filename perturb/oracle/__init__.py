@@ -7,12 +7,14 @@ Layout: :mod:`~perturb.oracle.base` (the result, its status and the template eve
 follows), one module per backend (:mod:`~perturb.oracle.rk4`, :mod:`~perturb.oracle.scipy`,
 :mod:`~perturb.oracle.heyoka`), :mod:`~perturb.oracle.registry` (names and :func:`choose`),
 :mod:`~perturb.oracle.symbolic` (sympy rhs and the heyoka translation),
-:mod:`~perturb.oracle.orbit` and :mod:`~perturb.oracle.shooting` (periodic orbits).  Code outside
+:mod:`~perturb.oracle.orbit`, :mod:`~perturb.oracle.shooting` (periodic orbits) and
+:mod:`~perturb.oracle.forced` (the periodic responses of driven systems, period given).  Code outside
 the oracle imports from this package only.
 """
 
 from perturb.oracle.base import Integrator, IntegratorBase, Trajectory, TrajectoryStatus
 from perturb.oracle.floquet import expected_trivial_multipliers
+from perturb.oracle.forced import find_forced_orbit
 from perturb.oracle.heyoka import Heyoka, heyoka_available
 from perturb.oracle.orbit import OrbitStatus, PeriodicOrbit
 from perturb.oracle.registry import INTEGRATORS, choose, default_integrator, get_integrator
@@ -37,6 +39,7 @@ __all__ = [
     "choose",
     "default_integrator",
     "expected_trivial_multipliers",
+    "find_forced_orbit",
     "find_periodic_orbit",
     "finite_difference_jacobian",
     "get_integrator",

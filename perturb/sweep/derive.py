@@ -72,7 +72,7 @@ class Derivation:
 
     def model_at(self, base: Model, values: Mapping[str, float]) -> Model:
         """The model of the point ``values`` (raises the model's own error for bad values)."""
-        model = base.with_parameters(values)
+        model = base.with_parameters(**values)
         if model is None:
             raise InvalidParameterError(
                 f"`problem` = {base.label()!r} cannot be re-created at other parameter values "
@@ -99,7 +99,7 @@ def _entering(base: Model, axes) -> dict[str, int]:
         seen = {reference}
         for value in axis.values:
             try:
-                other = base.with_parameters({axis.name: value})
+                other = base.with_parameters(**{axis.name: value})
             except (PerturbError, ValueError):
                 continue  # a value the problem refuses: that point will say so
             if other is not None:
@@ -185,8 +185,8 @@ class SymbolicModel(Model):
         other = self.model.with_epsilon(eps)
         return None if other is None else SymbolicModel(other)
 
-    def with_parameters(self, values) -> Model | None:
-        other = self.model.with_parameters(values)
+    def with_parameters(self, **values) -> Model | None:
+        other = self.model.with_parameters(**values)
         return None if other is None else SymbolicModel(other)
 
     # ------------------------------------------------------------------ the model's own

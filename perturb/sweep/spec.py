@@ -93,7 +93,7 @@ class SweepSpec:
         model at the grid's first point, which names its family and fixed values), the grid, the
         settings and the perturb version."""
         try:
-            first = self.model.with_parameters(self.grid.point(0))
+            first = self.model.with_parameters(**self.grid.point(0))
         except (PerturbError, ValueError):  # a point the problem refuses: the model as given
             first = None
         text = json.dumps(
@@ -195,7 +195,7 @@ def check_spec(
     check_size(grid.size, bool(yes))
     try:
         sweepable = model.with_parameters(
-            dict(zip(grid.names, model_values(model, grid), strict=True))
+            **dict(zip(grid.names, model_values(model, grid), strict=True))
         )
     except (PerturbError, ValueError):
         sweepable = True  # it can be re-created; these values it refuses (each point says so)

@@ -35,6 +35,8 @@ from perturb._defaults import (
     STIFFNESS_THRESHOLD,
 )
 from perturb.validation._compat import OriginalSystem, original_system
+from perturb.validation._quasilinear import state_along
+from perturb.validation._quasilinear import state_names as quasilinear_state_names
 from perturb.validation.checks import stiffness_indicator
 from perturb.validation.model import (
     Equations,
@@ -87,6 +89,8 @@ __all__ = [
     "Integrals",
     "InvariantDrift",
     "Model",
+    "quasilinear_state_names",
+    "state_along",
     "OrbitCheck",
     "OrbitEstimate",
     "OriginalSystem",

@@ -16,7 +16,44 @@ from perturb._lambdify import numpy_lambdify
 from perturb.oracle import SymbolicRHS
 from perturb.system import QuasilinearSystem
 
-__all__ = ["conservative_energy", "first_order_form", "lambdify_integrals", "substitutions"]
+__all__ = [
+    "conservative_energy",
+    "excitation_frequency",
+    "first_order_form",
+    "lambdify_integrals",
+    "state_along",
+    "state_names",
+    "substitutions",
+]
+
+
+def state_names(system: QuasilinearSystem) -> tuple[str, ...]:
+    """The state the oracle integrates: ``(x..., xdot...)``, and the phase θ = Ωt of a driven
+    system last (its equations are made autonomous with θ' = Ω)."""
+    if system.excitation is None:
+        return system.state_names
+    return (*system.state_names, system.excitation.phase.name)
+
+
+def state_along(solution, t, parameter_value: float, values: Mapping) -> dict[str, np.ndarray]:
+    """The quasilinear state along ``solution`` at times ``t`` by name (θ = Ωt of a driven system
+    included, as :func:`state_names` orders it)."""
+    system = solution.system
+    y = solution.evaluate(t, parameter_value, values)
+    state = dict(zip(solution.state_names, y, strict=True))
+    if system.excitation is not None:
+        subs = substitutions(system, values, parameter_value, None) or {}
+        omega = float(excitation_frequency(system, subs))
+        state[system.excitation.phase.name] = omega * np.asarray(t, dtype=float)
+    return state
+
+
+def excitation_frequency(system: QuasilinearSystem, subs: Mapping) -> sp.Expr:
+    """Ω = (p/q) ω_ref + ε σ of a driven system, with ``subs`` put in (ε included)."""
+    drive = system.excitation
+    w_ref = system.frequencies[system.reference_index]
+    eps = system.parameter if system.regime.value == "small" else 1 / system.parameter
+    return sp.sympify(drive.ratio * w_ref + eps * drive.detuning).subs(subs)
 
 
 def substitutions(
@@ -39,12 +76,16 @@ def substitutions(
 
 
 def first_order_form(system: QuasilinearSystem, subs: Mapping) -> SymbolicRHS:
-    """y' = (ẋ, f(x, ẋ) − ω² x) of the quasilinear system, with ``subs`` put in."""
+    """y' = (ẋ, f(x, ẋ) − ω² x) of the quasilinear system, with ``subs`` put in; a driven
+    system's phase θ is appended with θ' = Ω (autonomous form)."""
     n = system.n
     state = system.state_symbols
     forces = [sp.sympify(f).subs(subs) for f in system.rhs]
     w2 = [sp.sympify(w**2).subs(subs) for w in system.frequencies]
     exprs = list(state[n:]) + [forces[i] - w2[i] * state[i] for i in range(n)]
+    if system.excitation is not None:
+        state = (*state, system.excitation.phase)
+        exprs.append(excitation_frequency(system, subs))
     return SymbolicRHS(state, exprs)
 
 
@@ -55,6 +96,8 @@ def conservative_energy(system: QuasilinearSystem, subs: Mapping) -> sp.Expr | N
     \\omega_i^2 x_i^2/2 + V` and :math:`V(x) = -\\int_0^1 f(s x)\\cdot x\\,ds`.
     """
     n = system.n
+    if system.excitation is not None:
+        return None  # a driven system exchanges energy with its drive
     xs, vs = system.state_symbols[:n], system.state_symbols[n:]
     forces = [sp.sympify(f).subs(subs) for f in system.rhs]
     if any(f.free_symbols & set(vs) for f in forces):

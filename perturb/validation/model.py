@@ -23,8 +23,10 @@ from perturb.validation._quasilinear import (
     conservative_energy,
     first_order_form,
     lambdify_integrals,
+    state_along,
     substitutions,
 )
+from perturb.validation._quasilinear import state_names as quasilinear_state_names
 from perturb.validation.report import Condition
 
 __all__ = [
@@ -255,7 +257,7 @@ class Model(ABC):
         """The same model with ε replaced by ``eps`` (default: None, not rescalable)."""
         return None
 
-    def with_parameters(self, values: Mapping[str, float]) -> Model | None:
+    def with_parameters(self, **values: float) -> Model | None:
         """The same model with some parameters (names of :meth:`parameters_in_force`) set to
         ``values`` — a point of a sweep (default: None, the model cannot be re-created).
 
@@ -383,25 +385,33 @@ class SystemModel(Model):
 
     def solve(self, order: int = 1) -> PeriodicSolution:
         key = (self.quasilinear, order, repr(sorted(self.options.items(), key=str)))
+        if self.quasilinear.excitation is not None:  # a branch of the steady state at the values
+            key = (*key, repr(sorted(self.symbol_values().items())), self.parameter_value())
         if key not in _SOLUTIONS:
-            _SOLUTIONS[key] = PoincareMethod(order=order, **self.options).solve(self.quasilinear)
+            if self.quasilinear.excitation is not None:
+                from perturb.response import steady_state
+
+                state = steady_state(self.quasilinear, self.symbol_values(), self.epsilon(), order)
+                _SOLUTIONS[key] = state.solution(self.options.get("family"))
+            else:
+                method = PoincareMethod(order=order, **self.options)
+                _SOLUTIONS[key] = method.solve(self.quasilinear)
         return _SOLUTIONS[key]
 
     def state_names(self) -> tuple[str, ...]:
-        return self.quasilinear.state_names
+        return quasilinear_state_names(self.quasilinear)
 
     def state(self, solution: PeriodicSolution, t) -> dict[str, np.ndarray]:
-        y = solution.evaluate(t, self.parameter_value(), self.symbol_values())
-        return dict(zip(solution.state_names, y, strict=True))
+        return state_along(solution, t, self.parameter_value(), self.symbol_values())
 
     def period(self, solution: PeriodicSolution) -> float:
         return float(solution.period_at(self.parameter_value(), self.symbol_values()))
 
-    def with_parameters(self, values: Mapping[str, float]) -> SystemModel:
+    def with_parameters(self, **values: float) -> SystemModel:
         return evolve(self, values={**self.values, **values})
 
     def evaluates_solution_directly(self) -> bool:
-        return True
+        return self.quasilinear.excitation is None  # a driven state adds the phase
 
     def with_epsilon(self, eps: float) -> SystemModel:
         value = 1.0 / eps if self.quasilinear.regime is Regime.LARGE else eps

@@ -33,6 +33,7 @@ from perturb.validation.checks import (
     one_period_error,
     stiffness_indicator,
 )
+from perturb.validation.forced import analytic_stability, forced_orbit_check, stability_check
 from perturb.validation.model import Model, ShootingSetup, as_model
 from perturb.validation.orbit import orbit_check, with_model_true_orbit
 from perturb.validation.report import SlopeFit, ValidationReport, Verdict
@@ -337,7 +338,14 @@ def validate(
 
     # existence and accuracy: the true orbit
     orbit = None
-    if measurable and shoot is not False:
+    driven = model.system().excitation is not None
+    if measurable and shoot is not False and driven:
+        clock = time.perf_counter()
+        orbit = forced_orbit_check(
+            model, solution, equations, y_analytic0, period, integrator, rtol, stiffness.stiff
+        )
+        timings["shooting"] = time.perf_counter() - clock
+    elif measurable and shoot is not False:
         clock = time.perf_counter()
         setup = _setup(model, shooting_setup, equations, y_analytic0, len(invariants), samples)
         orbit = orbit_check(
@@ -362,6 +370,10 @@ def validate(
     if shoot is not False:
         why_no_orbit = "the true motion was not measurable, so no orbit was searched for"
     checks = measurement_checks(orbit, fit, tol, why_no_fit, why_no_orbit)
+    if driven:  # the period is the forcing's: stability is the fourth measurement
+        existence, accuracy, _, order_check = checks
+        stable = analytic_stability(model, solution) if orbit is not None else None
+        checks = (existence, accuracy, stability_check(orbit, stable, why_no_orbit), order_check)
 
     completed, message = traj.success, traj.message
     failure = None

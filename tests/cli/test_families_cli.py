@@ -84,3 +84,39 @@ def test_unknown_family_exits_2_with_the_list(capsys, command):
 def test_families_bad_order_exits_2(capsys):
     code, _, err = run(capsys, "families", "duffing", "--order", "0")
     assert code == 2 and "--order" in err
+
+
+HENON_HEILES_FILE = """
+import sympy as sp
+from perturb import EPS, QuasilinearSystem
+from problems.base import ParameterSpec, Problem
+
+X, Y, XD, YD = sp.symbols("x y xdot ydot")
+
+
+class HenonHeiles(Problem):
+    name = "henon-heiles"
+    summary = "Henon-Heiles near the origin"
+    parameter_specs = (ParameterSpec("eps", 0.05, "size of the cubic terms"),)
+
+    @classmethod
+    def build_system(cls):
+        return QuasilinearSystem(
+            [X, Y], [XD, YD], [1, 1], [-2 * EPS * X * Y, -EPS * (X**2 - Y**2)]
+        )
+"""
+
+
+def test_henon_heiles_from_a_users_file_lists_its_eight_families(capsys, tmp_path):
+    """Issue 21.3: at the default order the degenerate line continuum is restricted by the
+    order-4 conditions; 8 families, each fixed (SUCCESS) with one free amplitude."""
+    path = tmp_path / "henon.py"
+    path.write_text(HENON_HEILES_FILE)
+    code, out, err = run(capsys, "families", f"{path}:HenonHeiles", "--format", "json")
+    assert code == 0, err
+    families = {f["name"]: f for f in json.loads(out)["families"]}
+    assert set(families) == {
+        "y-line", "line-30", "line-150", "bowed-0", "bowed-60", "bowed-120",
+        "circle-ccw", "circle-cw",
+    }  # fmt: skip
+    assert all(f["status"] == "SUCCESS" for f in families.values())

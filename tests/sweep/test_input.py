@@ -154,7 +154,7 @@ def test_points_as_csv_and_json(tmp_path):
         {"eps": e, "amplitude": a} for e in (0.05, 0.1) for a in (-1.0, 1.0)
     ]
     ok = data["points"][1]
-    point = problem.with_parameters({"eps": 0.05, "amplitude": 1.0})
+    point = problem.with_parameters(eps=0.05, amplitude=1.0)
     assert ok["status"] == "ok" and ok["period"] == point.period(point.solve(1))
     assert set(ok["state"]) == {"x", "xdot"} and len(ok["state"]["x"]) == 2
     assert data["points"][0]["status"] == "invalid_parameters"
@@ -178,7 +178,7 @@ def test_a_model_that_cannot_be_recreated_cannot_be_swept():
     from perturb.validation import SystemModel
 
     class Fixed(SystemModel):
-        def with_parameters(self, values):
+        def with_parameters(self, **values):
             return None
 
     import sympy as sp

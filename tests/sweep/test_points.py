@@ -37,7 +37,7 @@ def test_duffing_points_are_the_problems_own_numbers():
     out = run_all(job)
     assert np.all(out["status"] == code_of(PointStatus.OK)) and np.all(out["session"] == 1)
     for k in range(job.spec.grid.size):
-        point = model.with_parameters(job.spec.grid.point(k))
+        point = model.with_parameters(**job.spec.grid.point(k))
         solution = point.solve(2)
         assert out["epsilon"][k] == point.epsilon()
         # period and state: the vectorised route gives the scalar route's numbers to rounding
@@ -68,7 +68,7 @@ def test_amplitudes_are_half_the_range_over_a_period():
     job = job_of(model, ["eps=0.05,0.3"], order=3)
     out = run_all(job)
     for k, eps in enumerate((0.05, 0.3)):
-        point = model.with_parameters({"eps": eps})
+        point = model.with_parameters(eps=eps)
         solution = point.solve(3)
         t = np.linspace(0, point.period(solution), 20_001)
         dt = t[1] - t[0]
@@ -120,7 +120,7 @@ def test_outside_the_domain_is_series_domains_verdict_and_reason():
     job = job_of(model, [f"eps={','.join(map(str, eps))}"], order=2)
     out = run_all(job)
     for k, value in enumerate(eps):
-        point = model.with_parameters({"eps": value})
+        point = model.with_parameters(eps=value)
         domain = series_domain(point.solve(2), point.parameter_value(), point.symbol_values())
         expected = PointStatus.OK if domain.ok else PointStatus.OUTSIDE_DOMAIN
         assert out["status"][k] == code_of(expected)
@@ -146,7 +146,7 @@ def test_a_bare_system_is_swept_and_a_singular_point_is_not_finite():
     assert "not finite" in out["reason"][1]
     # the points around it are the model's own numbers
     for k in (0, 2):
-        point = model.with_parameters({"a": [0.0, 1.0, 3.0][k]})
+        point = model.with_parameters(a=[0.0, 1.0, 3.0][k])
         assert out["period"][k] == pytest.approx(point.period(point.solve(1)), rel=4e-16)
 
 
@@ -213,7 +213,7 @@ def test_the_domain_screen_is_series_domain(name, order, parameter, low, high):
             lo, hi = (low, high) if spec.name == parameter else (-4 * scale, 4 * scale)
             values[spec.name] = float(rng.uniform(lo, hi))
         try:
-            models.append(problem.with_parameters(values))
+            models.append(problem.with_parameters(**values))
         except ValueError:
             continue
     pv, arrays = group_arrays(models)

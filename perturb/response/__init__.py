@@ -1,0 +1,39 @@
+"""Frequency responses of driven systems: every branch, its stability, its folds.
+
+:func:`frequency_response` sweeps a parameter and solves the amplitude equations of
+:mod:`perturb.method.driven` for every real root at each value (:func:`real_roots`).
+"""
+
+from perturb.response.branches import (
+    BranchPoint,
+    SteadyState,
+    branch_names,
+    branch_solution,
+    branches_at,
+    steady_state,
+)
+from perturb.response.curve import (
+    Fold,
+    FrequencyResponse,
+    ResponsePoint,
+    frequency_response,
+    trace_branches,
+)
+from perturb.response.roots import RootSet, RootStatus, real_roots
+
+__all__ = [
+    "BranchPoint",
+    "SteadyState",
+    "branch_names",
+    "branch_solution",
+    "branches_at",
+    "Fold",
+    "FrequencyResponse",
+    "ResponsePoint",
+    "RootSet",
+    "RootStatus",
+    "frequency_response",
+    "real_roots",
+    "steady_state",
+    "trace_branches",
+]

@@ -1,0 +1,338 @@
+"""The frequency response of a driven system: every branch, its stability, its folds.
+
+For each value of the swept parameter (the detuning σ, the excitation frequency Ω, the forcing
+level …), the first-order amplitude equations :math:`P_1(a, b) = 0`
+(:func:`perturb.method.driven.amplitude_equations`, derived once with every parameter symbolic)
+are solved for **every** real root with exact rational coefficients
+(:func:`perturb.response.roots.real_roots`: the count is proved). Each root is
+
+* continued to order N on the displacement function :math:`D_N = \\sum_{k\\le N+1}
+  \\varepsilon^{k-1} P_k` by Newton's method started at that exact root (ε small: the root moves by
+  O(ε)); near a fold, where the first-order roots merge, the continuation may not converge and the
+  point keeps its first-order amplitudes with that said in its ``note``;
+* judged stable or not by the slow flow's Jacobian (:func:`perturb.method.driven.slow_flow`, Malkin).
+
+The **folds** (saddle-node points, where a branch turns and the response jumps) are where the
+first-order roots meet: the real solutions of :math:`\\{P_1 = 0, \\det \\partial P_1/\\partial(a,
+b) = 0\\}` in (a, b, σ), found by the same exact elimination. Branches are traced across the grid
+by the nearest root (:func:`trace_branches`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+
+import sympy as sp
+from attrs import field, frozen
+
+from perturb.errors import InvalidParameterError, bad_value
+from perturb.method.driven import AmplitudeEquations
+from perturb.response.branches import BranchPoint, branches_at, exact_number
+from perturb.response.roots import RootStatus, real_roots
+
+__all__ = ["Fold", "FrequencyResponse", "ResponsePoint", "frequency_response", "trace_branches"]
+
+
+@frozen
+class ResponsePoint:
+    """One steady-state response at one value of the swept parameter.
+
+    Attributes
+    ----------
+    value : float
+        The swept parameter's value.
+    amplitudes : dict
+        ``{"a_x": ..., "b_x": ...}``: the cosine and sine amplitudes (strained time) at order N.
+    norms : dict
+        ``{coordinate: sqrt(a**2 + b**2)}`` of each resonant coordinate's first harmonic.
+    stable : bool or None
+        From the slow flow (None: on a fold, or undamped).
+    eigenvalues : tuple of complex
+        The slow flow's eigenvalues (per unit of ε per period).
+    multipliers : tuple of complex
+        The Floquet multipliers they predict.
+    first_order : dict
+        The first-order root it was continued from.
+    note : str
+        Empty, or why the order-N continuation kept the first-order amplitudes.
+    """
+
+    value: float = field(converter=float)
+    amplitudes: dict
+    norms: dict
+    stable: bool | None
+    eigenvalues: tuple = field(converter=tuple)
+    multipliers: tuple = field(converter=tuple)
+    first_order: dict = field(factory=dict)
+    note: str = ""
+
+    @classmethod
+    def of(cls, value: float, branch: BranchPoint) -> ResponsePoint:
+        """The branch point ``branch`` at the swept value ``value``."""
+        return cls(
+            value, branch.amplitudes, branch.norms, branch.stable, branch.eigenvalues,
+            branch.multipliers, branch.first_order, branch.note,
+        )  # fmt: skip
+
+    def norm(self, coordinate: str | None = None) -> float:
+        """The response amplitude of ``coordinate`` (default: the first resonant one)."""
+        if coordinate is None:
+            return next(iter(self.norms.values()))
+        return self.norms[coordinate]
+
+
+@frozen
+class Fold:
+    """A saddle-node point of the response: where two branches meet.
+
+    ``value`` is the fold of the order-N response (continued from the exact first-order fold,
+    ``first_order``); ``note`` says when the continuation did not converge (then both agree).
+    """
+
+    value: float = field(converter=float)
+    amplitudes: dict
+    norms: dict
+    first_order: float = field(default=math.nan, converter=float)
+    note: str = ""
+
+
+@frozen
+class FrequencyResponse:
+    """Every steady-state branch over a sweep (see the module docstring).
+
+    Attributes
+    ----------
+    system : str
+    parameter : str
+        The swept parameter's name.
+    order : int
+    epsilon : float
+    values : dict
+        The other parameters' values.
+    grid : tuple of float
+        The swept values.
+    points : tuple of ResponsePoint
+        Every root at every grid value, in grid order.
+    folds : tuple of Fold
+        Inside the swept range, sorted.
+    failures : tuple of str
+        Grid values where the roots could not be enumerated, with the reason (never dropped
+        silently).
+    """
+
+    system: str
+    parameter: str
+    order: int
+    epsilon: float = field(converter=float)
+    values: dict
+    grid: tuple = field(converter=tuple)
+    points: tuple = field(converter=tuple)
+    folds: tuple = field(converter=tuple)
+    failures: tuple = field(converter=tuple, factory=tuple)
+    coordinates: tuple = field(converter=tuple, factory=tuple)
+
+    def at(self, value: float) -> tuple[ResponsePoint, ...]:
+        """The responses at the grid value nearest ``value``."""
+        nearest = min(self.grid, key=lambda g: abs(g - value))
+        return tuple(p for p in self.points if p.value == nearest)
+
+    def branches(self, coordinate: str | None = None) -> list[list[ResponsePoint]]:
+        """The points traced into continuous branches (:func:`trace_branches`)."""
+        return trace_branches(self.points, self.grid, coordinate)
+
+
+def frequency_response(
+    equations: AmplitudeEquations,
+    parameter: str,
+    grid: Sequence[float],
+    values: Mapping[str, float],
+    epsilon: float,
+    order: int = 1,
+) -> FrequencyResponse:
+    """Every branch of the steady-state response over ``grid`` values of ``parameter``.
+
+    Parameters
+    ----------
+    equations : AmplitudeEquations
+        Of the driven system, to at least ``order`` (:func:`amplitude_equations`).
+    parameter : str
+        The swept parameter: one of the system's parameters (σ, a forcing level…).
+    grid : sequence of float
+    values : mapping
+        Values of every other parameter of the system.
+    epsilon : float
+        ε (> 0).
+    order : int
+        The order of the state (0: the first-order response equations only).
+
+    Returns
+    -------
+    FrequencyResponse
+    """
+    system = equations.system
+    names = {p.name: p for p in system.parameters}
+    if parameter not in names:
+        raise bad_value(
+            "parameter", parameter, f"sweep one of the system's parameters {sorted(names)}",
+            InvalidParameterError,
+        )  # fmt: skip
+    missing = sorted(set(names) - {parameter} - set(values))
+    if missing:
+        raise bad_value("values", dict(values), f"give values for {missing}", InvalidParameterError)
+    swept = names[parameter]
+    fixed = {names[k]: exact_number(v) for k, v in values.items() if k in names and k != parameter}
+    first = [sp.expand(e.xreplace(fixed)) for e in equations.displacement(0)]
+    unknowns = list(equations.amplitudes)
+    points, failures = [], []
+    for value in grid:
+        at = {**{k.name: v for k, v in fixed.items()}, parameter: exact_number(value)}
+        found, why = branches_at(equations, at, epsilon, order)
+        if why:
+            failures.append(f"{parameter} = {value:g}: {why}")
+        points.extend(ResponsePoint.of(float(value), branch) for branch in found)
+    folds = _folds(first, unknowns, swept, min(grid), max(grid), equations)
+    return FrequencyResponse(
+        system=system.name,
+        parameter=parameter,
+        order=order,
+        epsilon=float(epsilon),
+        values={k.name: float(v) for k, v in fixed.items()},
+        grid=tuple(float(g) for g in grid),
+        points=tuple(points),
+        folds=tuple(folds),
+        failures=tuple(failures),
+        coordinates=equations.coordinates,
+    )
+
+
+def _folds(first, unknowns, swept, low, high, equations) -> list[Fold]:
+    """Where two first-order roots meet: {P1 = 0, det J = 0} in (amplitudes, swept), exactly."""
+    if swept not in set().union(*(e.free_symbols for e in first)):
+        return []
+    jac = sp.Matrix([[sp.diff(e, u) for u in unknowns] for e in first])
+    det = sp.expand(jac.det(method="berkowitz"))
+    found = real_roots([*first, det], [*unknowns, swept])
+    if found.status is not RootStatus.SOLVED:
+        return []
+    out = []
+    for root in found.roots:
+        value = float(root[swept])
+        if not (low <= value <= high):
+            continue
+        amplitudes = {u.name: float(root[u]) for u in unknowns}
+        norms = {
+            c: math.hypot(amplitudes[f"a_{c}"], amplitudes[f"b_{c}"]) for c in equations.coordinates
+        }
+        if all(n == 0 for n in norms.values()):
+            continue  # the trivial branch's own crossing is a pitchfork, reported by stability
+        out.append(Fold(value, amplitudes, norms, value))
+    return sorted(out, key=lambda f: f.value)
+
+
+#: Newton iterations of a fold's continuation to order N.
+FOLD_ITERATIONS = 20
+
+
+def continue_fold(fold: Fold, equations, order: int, fixed: dict, swept, epsilon: float) -> Fold:
+    """The order-N fold near a first-order one: Newton on {D_N = 0, det dD_N/d(a, b) = 0} in the
+    amplitudes and the swept parameter, started at the exact first-order fold."""
+    import numpy as np
+
+    from perturb._lambdify import numpy_lambdify
+    from perturb.system import EPS
+
+    if order == 0:
+        return fold
+    rows = [sp.expand(r.xreplace(fixed).subs(EPS, epsilon)) for r in equations.displacement(order)]
+    unknowns = [*equations.amplitudes, swept]
+    jac = sp.Matrix([[sp.diff(r, a) for a in equations.amplitudes] for r in rows])
+    system = [*rows, sp.expand(jac.det(method="berkowitz"))]
+    f = numpy_lambdify(unknowns, system)
+    df = numpy_lambdify(unknowns, [[sp.diff(e, u) for u in unknowns] for e in system])
+    x = np.array([*(fold.amplitudes[a.name] for a in equations.amplitudes), fold.value])
+    start = x.copy()
+    for _ in range(FOLD_ITERATIONS):
+        residual = np.asarray(f(*x), dtype=float)
+        if np.max(np.abs(residual)) <= 1e-12 * max(1.0, float(np.max(np.abs(x)))):
+            break
+        try:
+            x = x + np.linalg.lstsq(np.asarray(df(*x), dtype=float), -residual, rcond=None)[0]
+        except np.linalg.LinAlgError:
+            break
+    residual = np.asarray(f(*x), dtype=float)
+    moved = float(np.max(np.abs(x - start)))
+    if (
+        not np.all(np.isfinite(x))
+        or np.max(np.abs(residual)) > 1e-9
+        or moved > 0.5 * max(1.0, float(np.max(np.abs(start))))
+    ):
+        return Fold(fold.value, fold.amplitudes, fold.norms, fold.value,
+                    f"the order-{order} fold did not converge: first-order value kept")  # fmt: skip
+    amplitudes = {a.name: float(v) for a, v in zip(equations.amplitudes, x, strict=False)}
+    norms = {
+        c: math.hypot(amplitudes[f"a_{c}"], amplitudes[f"b_{c}"]) for c in equations.coordinates
+    }
+    return Fold(float(x[-1]), amplitudes, norms, fold.value)
+
+
+def trace_branches(points, grid, coordinate: str | None = None) -> list[list[ResponsePoint]]:
+    """Join the roots of neighbouring grid values into continuous branches.
+
+    Between two folds the roots keep their order in amplitude (two roots of the response
+    equations meet only at a fold), so equal counts are matched rank by rank. Where the count
+    changes, a fold was crossed: the roots that appear (or disappear) are chosen among the
+    adjacent pairs by the least total distance to the others' predicted amplitudes (linear
+    extrapolation of each branch). A plotting aid: the points themselves are exact.
+    """
+    from itertools import combinations
+
+    by_value: dict[float, list] = {}
+    for p in points:
+        by_value.setdefault(p.value, []).append(p)
+    branches: list[list] = []
+    open_: list[list] = []
+
+    def predicted(branch, value):
+        if len(branch) < 2:
+            return branch[-1].norm(coordinate)
+        (a, b) = branch[-2], branch[-1]
+        if b.value == a.value:
+            return b.norm(coordinate)
+        slope = (b.norm(coordinate) - a.norm(coordinate)) / (b.value - a.value)
+        return b.norm(coordinate) + slope * (value - b.value)
+
+    for value in sorted(by_value):
+        here = sorted(by_value[value], key=lambda p: p.norm(coordinate))
+        guesses = [predicted(b, value) for b in open_]
+        n, m = len(open_), len(here)
+        best, best_cost = None, math.inf
+        if m >= n:  # choose which of the current roots continue the open branches
+            for kept in combinations(range(m), n):
+                cost = sum(
+                    abs(here[j].norm(coordinate) - g) for j, g in zip(kept, guesses, strict=True)
+                )
+                if cost < best_cost:
+                    best, best_cost = [(i, j) for i, j in enumerate(kept)], cost
+        else:  # choose which open branches end here
+            for kept in combinations(range(n), m):
+                cost = sum(abs(here[j].norm(coordinate) - guesses[i]) for j, i in enumerate(kept))
+                if cost < best_cost:
+                    best, best_cost = [(i, j) for j, i in enumerate(kept)], cost
+        continued = dict(best or [])
+        next_open = []
+        taken = set(continued.values())
+        for i, j in sorted(continued.items(), key=lambda item: item[1]):
+            open_[i].append(here[j])
+        for j, p in enumerate(here):
+            if j in taken:
+                continue
+            branch = [p]
+            branches.append(branch)
+        for j, p in enumerate(here):
+            owner = next((open_[i] for i, jj in continued.items() if jj == j), None)
+            if owner is None:
+                owner = next(b for b in branches if b[-1] is p)
+            next_open.append(owner)
+        open_ = next_open
+    return branches
