@@ -47,7 +47,8 @@ Evaluated = dict
 def half_range(samples: np.ndarray) -> np.ndarray:
     """Half the range of periodic samples along the last axis (one period, without the end
     point), each extreme refined by two Newton steps on the quartic through it and its four
-    neighbours (an error ~(2 pi h / K)^6 of the amplitude for the h-th harmonic, K samples)."""
+    neighbours (an error ~(2 pi h / K)^6 of the amplitude for the h-th harmonic, K samples);
+    NaN for a component that does not return to its start (:data:`NOT_PERIODIC_STEP`)."""
     samples = np.asarray(samples, dtype=float)
     n = samples.shape[-1]
     out = []
@@ -70,8 +71,18 @@ def half_range(samples: np.ndarray) -> np.ndarray:
             u = np.where(np.isfinite(u) & (np.abs(u) <= 1), u, 0.0)
             peak = y0 + d1 * u + d2 * u**2 / 2 + d3 * u**3 / 6 + d4 * u**4 / 24
         out.append(sign * np.where(np.isfinite(peak) & (peak >= y0), peak, y0))
-    return (out[0] - out[1]) / 2
+    # a component that does not come back over the period (a driven system's phase) has no
+    # amplitude: its step from the last sample to the first dwarfs every step in between
+    steps = np.abs(np.diff(samples, axis=-1))
+    wrap = np.abs(samples[..., 0] - samples[..., -1])
+    closed = wrap <= NOT_PERIODIC_STEP * np.max(steps, axis=-1, initial=0.0)
+    return np.where(closed, (out[0] - out[1]) / 2, np.nan)
 
+
+#: A sampled component whose step from the end of the period back to its start exceeds this many
+#: times its largest step within the period does not return: it is not periodic (no amplitude).
+#: A smooth periodic component's steps differ by O(1) factors, a phase's wrap by the sample count.
+NOT_PERIODIC_STEP = 8.0
 
 #: Rows of samples computed at once: 512 x 256 samples (1 MiB) stay in the cache; one product of
 #: all rows at once is several times slower on a machine whose memory is slow.

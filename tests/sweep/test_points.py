@@ -226,3 +226,12 @@ def test_the_domain_screen_is_series_domain(name, order, parameter, low, high):
         assert check.ok == exact.ok and tuple(check.reasons) == tuple(exact.reasons)
         cleared += check.ok
     assert 0 < cleared < len(models) or name == "resonant-pair"
+
+
+def test_a_component_that_does_not_return_has_no_amplitude():
+    from perturb.sweep.evaluate import half_range
+
+    s = 2 * np.pi * np.arange(256) / 256
+    phase, wave = 1.7 * s, np.cos(s)
+    amplitudes = half_range(np.array([phase, wave]))
+    assert np.isnan(amplitudes[0]) and amplitudes[1] == pytest.approx(1.0, rel=1e-9)
