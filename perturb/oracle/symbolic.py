@@ -141,8 +141,8 @@ class SymbolicRHS:
         return self.state + tuple(phi), self.expressions + tuple(phi_dot)
 
 
-#: Fields whose derived objects are kept by value (:func:`_derived`): a sweep builds an equal field
-#: at every point, and a validation asks each for its numeric functions and variational equations.
+#: Fields whose numeric functions are kept by value (:func:`_derived`): a sweep builds an equal
+#: field at every point, and a validation asks each for its numeric functions.
 DERIVED_CACHE_SIZE = 64
 
 
@@ -152,18 +152,24 @@ def _derived_objects(rhs: SymbolicRHS) -> dict:
 
 
 def _derived(rhs: SymbolicRHS, what: str):
-    """The object ``what`` derived from ``rhs``, shared by every equal field (the same lambdified
-    code and expressions, so the same numbers): ``numeric``, ``jacobian_expressions``,
-    ``numeric_jacobian`` or ``variational``."""
+    """The object ``what`` derived from ``rhs``: the numeric functions (``numeric``,
+    ``numeric_jacobian``) are shared by every equal field (the same lambdified code, so the
+    same numbers); the symbolic Jacobian and variational equations are this object's own, read
+    from the disk cache for a new object as before."""
+    if what not in ("numeric", "numeric_jacobian"):
+        return _derive(rhs, what)
     store = _derived_objects(rhs)
     if what not in store:
-        if what == "numeric":
-            store[what] = numpy_lambdify(rhs.state, list(rhs.expressions), cse=True)
-        elif what == "jacobian_expressions":
-            store[what] = cached("jacobian", rhs._cache_parts, rhs._derive_jacobian)
-        elif what == "numeric_jacobian":
-            store[what] = numpy_lambdify(rhs.state, rhs.jacobian_expressions, cse=True)
-        else:
-            state, expressions = cached("variational", rhs._cache_parts, rhs._derive_variational)
-            store[what] = SymbolicRHS(state, expressions)
+        store[what] = _derive(rhs, what)
     return store[what]
+
+
+def _derive(rhs: SymbolicRHS, what: str):
+    if what == "numeric":
+        return numpy_lambdify(rhs.state, list(rhs.expressions), cse=True)
+    if what == "jacobian_expressions":
+        return cached("jacobian", rhs._cache_parts, rhs._derive_jacobian)
+    if what == "numeric_jacobian":
+        return numpy_lambdify(rhs.state, rhs.jacobian_expressions, cse=True)
+    state, expressions = cached("variational", rhs._cache_parts, rhs._derive_variational)
+    return SymbolicRHS(state, expressions)

@@ -25,7 +25,6 @@ import sympy as sp
 from perturb._defaults import SWEEP_AMPLITUDE_SAMPLES, SWEEP_DOMAIN_MARGIN
 from perturb._lambdify import numpy_lambdify
 from perturb.domain import DomainCheck, series_domain
-from perturb.errors import PerturbError
 from perturb.solution import PeriodicSolution, SolutionFailed
 from perturb.system import Regime
 

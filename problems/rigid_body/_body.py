@@ -424,8 +424,9 @@ class FastSpinBody(Problem):
 
     # ------------------------------------------------------------------ validation (Model)
     def original_equations(self, y0=None) -> Equations:
-        """The dimensional Euler–Poisson equations on (p, q, r, gammas), symbolic."""
-        return Equations(SymbolicRHS(*self.original_symbolic()))
+        """The dimensional Euler–Poisson equations on (p, q, r, gammas), symbolic (one field
+        object per body, so that what is derived from it is derived once)."""
+        return Equations(_body_field(tuple(sorted((n, self.values[n]) for n in _BODY_DATA))))
 
     def integrals_of_motion(self, y0=None) -> Integrals:
         """Energy, area and geometric integrals of the physical state."""
@@ -494,6 +495,12 @@ def _user_parameter(solution: PeriodicSolution, eps: float) -> float:
     from perturb import Regime
 
     return 1.0 / eps if solution.system.regime is Regime.LARGE else eps
+
+
+@lru_cache(maxsize=SPECIALISED_CACHE_SIZE)
+def _body_field(body: tuple) -> SymbolicRHS:
+    """The Euler–Poisson field of the body ``body`` ((name, value) pairs), one object per body."""
+    return SymbolicRHS(*_symbolic_rhs(body))
 
 
 @cache

@@ -16,7 +16,6 @@ the several hundred array operations of a compiled expression.
 from __future__ import annotations
 
 import operator
-
 from collections.abc import Mapping, Sequence
 from fractions import Fraction
 
