@@ -23,23 +23,112 @@ __all__ = [
 
 
 class PerturbError(Exception):
-    """Root of every exception raised by perturb."""
+    """Root of every exception raised by perturb.
+
+    Parameters
+    ----------
+    message : str
+        What went wrong and, for bad input, the fix.
+
+    Examples
+    --------
+    Catch anything perturb raises on purpose:
+
+    >>> from perturb import PerturbError, PoincareMethod
+    >>> try:
+    ...     PoincareMethod(order=0)
+    ... except PerturbError as error:
+    ...     print(type(error).__name__)
+    InvalidSystemError
+    """
 
 
 class InvalidSystemError(PerturbError, ValueError):
-    """A quasilinear system, or an option of the method, is not well formed."""
+    """A quasilinear system, or an option of the method, is not well formed.
+
+    A :class:`ValueError`: its message names the argument, the value and the fix.
+
+    Parameters
+    ----------
+    message : str
+        The argument, the value received and the fix.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from perturb import QuasilinearSystem
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> QuasilinearSystem([x], [xdot], [1, 2], [0])
+    Traceback (most recent call last):
+    ...
+    perturb.errors.InvalidSystemError: `frequencies` has 2 entries but there are 1 coordinates: give one per coordinate
+    """
 
 
 class InvalidParameterError(PerturbError, ValueError):
-    """A problem parameter or a command-line value is out of its admissible range."""
+    """A problem parameter or a command-line value is out of its admissible range.
+
+    A :class:`ValueError`: its message names the argument, the value and the fix.
+
+    Parameters
+    ----------
+    message : str
+        The argument, the value received and the fix.
+
+    Examples
+    --------
+    >>> from problems import get_problem
+    >>> get_problem("duffing").create(amplitude=-1.0)
+    Traceback (most recent call last):
+    ...
+    perturb.errors.InvalidParameterError: `amplitude` = -1 is invalid: give a value > 0
+    """
 
 
 class UnknownNameError(PerturbError, ValueError):
-    """A problem, parameter, integrator or paper name that perturb does not know."""
+    """A problem, parameter, integrator or paper name that perturb does not know.
+
+    A :class:`ValueError`; the message suggests the closest known name.
+
+    Parameters
+    ----------
+    message : str
+        The unknown name and the known ones (or the closest).
+
+    Examples
+    --------
+    >>> from problems import get_problem
+    >>> get_problem("dufing")
+    Traceback (most recent call last):
+    ...
+    perturb.errors.UnknownNameError: ...
+    """
 
 
 class IntegrationError(PerturbError, RuntimeError):
-    """A numerical integration failed; carries the solver's message, status and the time reached."""
+    """A numerical integration failed; carries the solver's message, status and the time reached.
+
+    The oracle's integrators do not raise it for a failed run (their :class:`~perturb.oracle.Trajectory`
+    has a failed ``status`` instead); it is for callers that need an exception.
+
+    Parameters
+    ----------
+    message : str
+        The solver's message.
+    status : int, optional
+        The solver's status code.
+    t_reached : float, optional
+        The time the integration reached.
+
+    Examples
+    --------
+    >>> from perturb import IntegrationError
+    >>> error = IntegrationError("step size too small", status=-1, t_reached=2.5)
+    >>> print(error)
+    step size too small (status -1, reached t = 2.5)
+    >>> error.t_reached
+    2.5
+    """
 
     def __init__(self, message: str, status: int | None = None, t_reached: float | None = None):
         super().__init__(f"{message} (status {status}, reached t = {t_reached})")
@@ -49,7 +138,26 @@ class IntegrationError(PerturbError, RuntimeError):
 
 
 class AccuracyWarning(UserWarning):
-    """A result is returned but its accuracy is doubtful (small divisor, large expansion parameter)."""
+    """A result is returned but its accuracy is doubtful (small divisor, large expansion parameter).
+
+    A warning, not an error: the result is still returned. Turn it into an error with
+    ``warnings.simplefilter("error", AccuracyWarning)``.
+
+    Parameters
+    ----------
+    message : str
+        What makes the result doubtful, with the figure.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from perturb import AccuracyWarning
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warnings.warn("eps = 232 is not small", AccuracyWarning)
+    >>> caught[0].category.__name__
+    'AccuracyWarning'
+    """
 
 
 def bad_value(

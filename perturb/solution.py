@@ -24,7 +24,16 @@ T_SYM = sp.Symbol("t", real=True)
 
 
 class Status(enum.Enum):
-    """Outcome of a construction; the values are the messages shown to users."""
+    """Outcome of a construction; the values are the messages shown to users.
+
+    Examples
+    --------
+    >>> from perturb import Status
+    >>> Status.SUCCESS.ok
+    True
+    >>> print(Status.UNDETERMINED.value)
+    the periodicity conditions leave some amplitudes free (a continuous family): fix them with `amplitudes=`
+    """
 
     SUCCESS = "the periodicity conditions were solved at every order"
     NO_ROOT = "the amplitude equations have no admissible (non-trivial) root"
@@ -50,7 +59,28 @@ class Status(enum.Enum):
 
 
 class SolutionFailed(PerturbError, RuntimeError):
-    """Raised by :meth:`PeriodicSolution.raise_for_status` on a failed construction."""
+    """Raised by :meth:`PeriodicSolution.raise_for_status` on a failed construction.
+
+    Parameters
+    ----------
+    message : str
+        The status and its detail.
+
+    Examples
+    --------
+    Duffing's oscillator is conservative: without a chosen amplitude the conditions leave it free,
+    and the construction does not succeed.
+
+    >>> import sympy as sp
+    >>> from perturb import EPS, QuasilinearSystem, SolutionFailed, solve
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> duffing = QuasilinearSystem([x], [xdot], [1], [-EPS * x**3])
+    >>> try:
+    ...     solve(duffing, order=1).raise_for_status()
+    ... except SolutionFailed as error:
+    ...     print(str(error)[:40])
+    the periodicity conditions leave some am
+    """
 
 
 @frozen
@@ -82,6 +112,26 @@ class PeriodicSolution:
     dependent_residuals : dict
         Periodicity conditions not imposed because a first integral makes them dependent, with the
         solved values put in: they vanish to the accuracy of the integral (a check, not an input).
+
+    Examples
+    --------
+    Van der Pol's limit cycle to second order: its frequency, its period and its state at two times
+    (rows ``x``, ``xdot``) at ε = 0.1:
+
+    >>> import sympy as sp
+    >>> from perturb import EPS, PoincareMethod, QuasilinearSystem
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> vdp = QuasilinearSystem([x], [xdot], [1], [EPS * (1 - x**2) * xdot], name="van der Pol")
+    >>> solution = PoincareMethod(order=2).solve(vdp)
+    >>> solution.status
+    <Status.SUCCESS: 'the periodicity conditions were solved at every order'>
+    >>> solution.frequency_series()
+    1 - epsilon**2/16
+    >>> solution.period_series()
+    pi*epsilon**2/8 + 2*pi
+    >>> solution.evaluate([0.0, 1.0], 0.1).round(6)
+    array([[ 2.000104,  1.138489],
+           [ 0.      , -1.568746]])
     """
 
     system: QuasilinearSystem
@@ -101,6 +151,18 @@ class PeriodicSolution:
         return self.status.ok
 
     def raise_for_status(self) -> PeriodicSolution:
+        """The solution itself if its construction succeeded, else raise.
+
+        Returns
+        -------
+        PeriodicSolution
+            ``self``, so that ``method.solve(system).raise_for_status()`` chains.
+
+        Raises
+        ------
+        SolutionFailed
+            If :attr:`status` is not a success; the message is the status and its detail.
+        """
         if not self.success:
             raise SolutionFailed(f"{self.status.value}: {self.message}")
         return self

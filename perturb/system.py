@@ -33,7 +33,20 @@ EPS = sp.Symbol("epsilon", positive=True)
 
 
 class Regime(enum.Enum):
-    """Which way the system's parameter is small."""
+    """Which way the system's parameter is small.
+
+    Examples
+    --------
+    The same oscillator written in the large parameter μ = 1/ε:
+
+    >>> import sympy as sp
+    >>> from perturb import PoincareMethod, QuasilinearSystem, Regime
+    >>> x, xdot, mu = sp.symbols("x xdot mu")
+    >>> system = QuasilinearSystem([x], [xdot], [1], [(1 - x**2) * xdot / mu], parameter=mu,
+    ...                            regime=Regime.LARGE)
+    >>> PoincareMethod(order=2).solve(system).frequency_series()
+    1 - 1/(16*mu**2)
+    """
 
     SMALL = "small"  #: expansion in powers of the parameter itself, epsilon -> 0
     LARGE = "large"  #: expansion in powers of 1/mu, mu -> infinity (epsilon = 1/mu)
@@ -165,6 +178,17 @@ class QuasilinearSystem:
     InvalidSystemError
         For mismatched lengths, non-positive or non-real frequencies, undeclared symbols, or a
         right-hand side that does not vanish with the parameter.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from perturb import EPS, PoincareMethod, QuasilinearSystem
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> vdp = QuasilinearSystem([x], [xdot], [1], [EPS * (1 - x**2) * xdot], name="van der Pol")
+    >>> vdp.state_names
+    ('x', 'xdot')
+    >>> PoincareMethod(order=1).solve(vdp).success
+    True
     """
 
     coordinates: tuple[sp.Symbol, ...] = field(converter=_symbols_of("coordinates"))

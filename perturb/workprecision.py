@@ -13,7 +13,7 @@ lambdified functions and caches built on first use belong to no point), then the
 ``repeat`` runs (the least disturbed by the rest of the machine), so a curve falls monotonically
 where the method converges instead of its loosest point carrying every one-time cost.  The reference is heyoka in extended precision when available
 (``long double``/``real128``), else DOP853 at ``REFERENCE_RTOL``.  The error is the maximum over the
-output grid and the components of ``|y - y_ref| / amplitude`` (amplitude = max |y_ref| per component).
+output grid and the components of ``|y - y_ref| / amplitude`` (amplitude = max ``|y_ref|`` per component).
 
 The problem is anything validation accepts (a :class:`perturb.validation.Model`: a registered
 problem, a user's Problem subclass, or a bare system through :func:`perturb.validation.as_model`).
@@ -76,6 +76,13 @@ class WorkPoint:
         Max relative error over the grid (NaN for the derivation rows and failed runs).
     seconds : float
         Best wall time of the timed runs, after one untimed warm-up run.
+
+    Examples
+    --------
+    >>> from perturb.workprecision import WorkPoint
+    >>> point = WorkPoint("scipy DOP853", "rtol=1e-10", 2.1e-10, 0.05)
+    >>> point.method, point.error
+    ('scipy DOP853', 2.1e-10)
     """
 
     method: str
@@ -96,6 +103,13 @@ class WorkPrecision:
     reference : str
         The integrator of the reference runs.
     points : tuple of WorkPoint
+
+    Examples
+    --------
+    >>> from perturb.workprecision import WorkPoint, WorkPrecision
+    >>> result = WorkPrecision("duffing", 10, 60.6, "heyoka", (WorkPoint("rk4", "10 steps/unit", 2.5e-5, 0.09),))
+    >>> [p.setting for p in result.points]
+    ['10 steps/unit']
     """
 
     problem: str
@@ -177,6 +191,20 @@ def work_precision(
     ------
     perturb.errors.InvalidParameterError
         For ``periods <= 0``, ``repeat < 1``, a non-positive tolerance or step count, or an order < 1.
+
+    Examples
+    --------
+    A small run (one analytic order, two RK4 step sizes, no scipy or heyoka):
+
+    >>> from perturb.workprecision import work_precision
+    >>> from problems import get_problem
+    >>> result = work_precision(get_problem("duffing").create(eps=0.1), periods=2, orders=1,
+    ...                         rk4_steps=(10, 20), scipy_methods=(), heyoka=False, repeat=1)
+    >>> [(p.method, p.setting) for p in result.points]
+    [('analytic', 'order 1'), ('analytic derivation', 'order 1'), ('rk4', '10 steps/unit'), ('rk4', '20 steps/unit')]
+    >>> coarse, fine = (p.error for p in result.points if p.method == "rk4")
+    >>> bool(fine < coarse)  # the finer step is the more accurate
+    True
     """
     if not (isinstance(periods, int | float) and math.isfinite(periods) and periods > 0):
         raise bad_value("periods", periods, "pass a positive number of periods")

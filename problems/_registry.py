@@ -276,6 +276,32 @@ def register(cls: type[Problem]) -> type[Problem]:
     ProblemLoadError
         The class is incomplete (see :func:`check_problem_class`) or its ``name`` is already taken
         by a class defined elsewhere.
+
+    Parameters
+    ----------
+    cls : type[Problem]
+        A complete :class:`Problem` subclass (``name``, ``summary``, ``parameter_specs``,
+        ``build_system``).
+
+    Returns
+    -------
+    type[Problem]
+        ``cls`` itself, so that the decorator leaves the class unchanged.
+
+    Examples
+    --------
+    Registering a class again is harmless; another class under a taken name is refused:
+
+    >>> from problems import get_problem, register
+    >>> Duffing = get_problem("duffing")
+    >>> register(Duffing) is Duffing
+    True
+    >>> class Copy(Duffing):
+    ...     pass
+    >>> register(Copy)
+    Traceback (most recent call last):
+    ...
+    perturb.errors.ProblemLoadError: `Copy.name` = 'duffing' is already registered by problems.duffing:Duffing: give the class another name
     """
     check_problem_class(cls)
     name = cls.name
@@ -295,7 +321,18 @@ def register(cls: type[Problem]) -> type[Problem]:
 
 
 def problem_names() -> list[str]:
-    """Every known problem name, sorted (built-in, registered and installed)."""
+    """Every known problem name, sorted (built-in, registered and installed).
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> from problems import problem_names
+    >>> {"duffing", "van-der-pol", "disk"} <= set(problem_names())
+    True
+    """
     return list(ALL_PROBLEMS)
 
 
@@ -314,6 +351,23 @@ def get_problem(name: str) -> type[Problem]:
         No problem has that name; the message lists the known names and the closest one.
     ProblemLoadError
         An installed problem of that name cannot be loaded.
+
+    Parameters
+    ----------
+    name : str
+        A name of :func:`problem_names` (``perturb list``).
+
+    Returns
+    -------
+    type[Problem]
+        The class; ``create(**values)`` makes a problem with its parameter values.
+
+    Examples
+    --------
+    >>> from problems import get_problem
+    >>> Duffing = get_problem("duffing")
+    >>> Duffing.__name__, [spec.name for spec in Duffing.parameter_specs]
+    ('Duffing', ['eps', 'amplitude'])
     """
     try:
         return ALL_PROBLEMS[name]

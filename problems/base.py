@@ -115,6 +115,18 @@ class ParameterSpec:
         ``check(value) -> str | None``; a returned string is the fix shown to the user.
     allow_inf : bool
         Whether ``inf`` is an admissible value (e.g. a distance meaning "absent").
+
+    Examples
+    --------
+    >>> from problems import ParameterSpec
+    >>> from problems.base import positive
+    >>> spec = ParameterSpec("amplitude", 1.0, "initial displacement", positive)
+    >>> spec.validate(2.5)
+    2.5
+    >>> spec.validate(-1.0)
+    Traceback (most recent call last):
+    ...
+    perturb.errors.InvalidParameterError: `amplitude` = -1 is invalid: give a value > 0
     """
 
     name: str
@@ -148,7 +160,52 @@ def positive(value: float) -> str | None:
 
 @frozen
 class Problem(Model, ABC):
-    """A registered problem with validated parameter values (see the module docstring)."""
+    """A registered problem with validated parameter values (see the module docstring).
+
+    Make one with :meth:`create`, which fills in the defaults and validates the values.
+
+    Parameters
+    ----------
+    values : mapping
+        Every parameter's value, by name (as :meth:`create` builds it).
+    family : str, optional
+        The family of periodic solutions :meth:`solve` follows (see :meth:`families` and
+        :meth:`with_family`); default: the one :meth:`method_options` selects.
+
+    Attributes
+    ----------
+    name : str
+        The registry key (``perturb solve NAME``); a class attribute.
+    summary : str
+        One line for ``perturb list``; a class attribute.
+    parameter_specs : tuple of ParameterSpec
+        The parameters with their defaults and admissible ranges; a class attribute.
+
+    Examples
+    --------
+    A problem in a few lines — Duffing's oscillator with a softening cubic term, its amplitude a
+    parameter:
+
+    >>> import sympy as sp
+    >>> from perturb import EPS, QuasilinearSystem
+    >>> from problems import ParameterSpec, Problem
+    >>> x, xdot, a = sp.symbols("x xdot a")
+    >>> class Softening(Problem):
+    ...     name = "softening"
+    ...     summary = "x'' + x = eps x^3, x(0) = a"
+    ...     parameter_specs = (ParameterSpec("eps", 0.1, "cubic strength"), ParameterSpec("a", 1.0, "x(0)"))
+    ...     @classmethod
+    ...     def build_system(cls):
+    ...         return QuasilinearSystem([x], [xdot], [1], [EPS * x**3], parameters=[a])
+    ...     def method_options(self):
+    ...         return {"amplitudes": {"x": a}}
+    >>> problem = Softening.create(eps=0.05)
+    >>> solution = problem.solve(2)
+    >>> solution.frequency_series()
+    -21*a**4*epsilon**2/256 - 3*a**2*epsilon/8 + 1
+    >>> round(problem.period(solution), 6)  # 2 pi / Omega at eps = 0.05, a = 1
+    6.404585
+    """
 
     name: ClassVar[str]
     summary: ClassVar[str]

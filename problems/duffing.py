@@ -13,7 +13,18 @@ X, XDOT, AMPLITUDE = sp.symbols("x xdot amplitude")
 
 @register
 class Duffing(Problem):
-    """ẍ + x + ε x³ = 0 with x(0) = ``amplitude``, ẋ(0) = 0 (a conservative family)."""
+    """ẍ + x + ε x³ = 0 with x(0) = ``amplitude``, ẋ(0) = 0 (a conservative family).
+
+    Examples
+    --------
+    >>> from problems import get_problem
+    >>> duffing = get_problem("duffing").create(eps=0.1, amplitude=1.0)
+    >>> solution = duffing.solve(2)
+    >>> solution.frequency_series()
+    -21*amplitude**4*epsilon**2/256 + 3*amplitude**2*epsilon/8 + 1
+    >>> round(duffing.period(solution), 6)
+    6.060874
+    """
 
     name = "duffing"
     summary = "Duffing oscillator xddot + x + eps x^3 = 0, x(0) = amplitude (conservative family)"

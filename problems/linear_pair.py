@@ -28,7 +28,17 @@ def _not_resonant(value: float) -> str | None:
 
 @register
 class LinearPair(Problem):
-    """Two linearly coupled oscillators, x continuing the unit-frequency mode."""
+    """Two linearly coupled oscillators, x continuing the unit-frequency mode.
+
+    Examples
+    --------
+    The exact frequencies solve (1 − Ω²)(ω² − Ω²) = ε²κ², so Ω = 1 − ε²κ²/(2(ω² − 1)) + O(ε⁴)
+    — the engine's second order:
+
+    >>> from problems import get_problem
+    >>> get_problem("linear-pair").create().solve(2).frequency_series()
+    -epsilon**2*kappa**2/(2*omega**2 - 2) + 1
+    """
 
     name = "linear-pair"
     summary = (

@@ -24,7 +24,17 @@ def _mode(value: float) -> str | None:
 
 @register
 class ResonantPair(Problem):
-    """Coupled Duffing pair in 1:1 resonance; its normal modes by the resonant Poincaré conditions."""
+    """Coupled Duffing pair in 1:1 resonance; its normal modes by the resonant Poincaré conditions.
+
+    Examples
+    --------
+    >>> from problems import get_problem
+    >>> pair = get_problem("resonant-pair").create(eps=0.1, kappa=0.5)
+    >>> [family.name for family in pair.families(1)][:2]
+    ['anti-phase', 'in-phase']
+    >>> pair.with_family("in-phase").solve(1).frequency_series()  # as one Duffing oscillator
+    -21*amplitude**4*epsilon**2/256 + 3*amplitude**2*epsilon/8 + 1
+    """
 
     name = "resonant-pair"
     summary = "coupled Duffing pair, 1:1 resonance; mode=+1 in-phase, -1 anti-phase"

@@ -13,7 +13,18 @@ X, XDOT = sp.symbols("x xdot")
 
 @register
 class VanDerPol(Problem):
-    """ẍ + x = ε (1 − x²) ẋ; the amplitude of the limit cycle comes from the periodicity conditions."""
+    """ẍ + x = ε (1 − x²) ẋ; the amplitude of the limit cycle comes from the periodicity conditions.
+
+    Examples
+    --------
+    >>> from problems import get_problem
+    >>> vdp = get_problem("van-der-pol").create(eps=0.1)
+    >>> solution = vdp.solve(2)
+    >>> solution.frequency_series()  # the classical 1 - eps^2/16
+    1 - epsilon**2/16
+    >>> round(float(vdp.state(solution, [0.0])["x"][0]), 6)  # the limit cycle's amplitude, near 2
+    2.000104
+    """
 
     name = "van-der-pol"
     summary = "van der Pol oscillator xddot + x = eps (1 - x^2) xdot (isolated limit cycle)"

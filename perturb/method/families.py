@@ -87,6 +87,17 @@ class Family:
         amplitudes are parameters of ``solution.system`` under their user-facing names.
     phase_coordinate : str
         The coordinate whose velocity vanishes at t = 0 on this family.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from perturb import EPS, PoincareMethod, QuasilinearSystem
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> vdp = QuasilinearSystem([x], [xdot], [1], [EPS * (1 - x**2) * xdot], name="van der Pol")
+    >>> from perturb import find_families
+    >>> family = find_families(vdp, order=2).families[0]
+    >>> family.name, family.kind, family.amplitudes
+    ('limit-cycle', 'isolated', {'a_x': 2})
     """
 
     name: str
@@ -124,6 +135,17 @@ class FamilyList:
         The first order whose conditions select the families (None: the options fixed every
         generating amplitude, so there is one family, the given one).
     families : tuple of Family
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from perturb import EPS, PoincareMethod, QuasilinearSystem
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> vdp = QuasilinearSystem([x], [xdot], [1], [EPS * (1 - x**2) * xdot], name="van der Pol")
+    >>> from perturb import find_families
+    >>> families = find_families(vdp, order=2)
+    >>> [family.name for family in families]
+    ['limit-cycle']
     """
 
     system: str
@@ -490,6 +512,17 @@ def find_families(system: QuasilinearSystem, order: int = 1, **options) -> Famil
     ------
     InvalidSystemError
         On a bad option (as :class:`PoincareMethod` raises it), or when ``branch`` is given.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from perturb import EPS, PoincareMethod, QuasilinearSystem
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> vdp = QuasilinearSystem([x], [xdot], [1], [EPS * (1 - x**2) * xdot], name="van der Pol")
+    >>> from perturb import find_families
+    >>> families = find_families(vdp, order=2)
+    >>> len(families.families), families.families[0].name
+    (1, 'limit-cycle')
     """
     check_system(system)
     if "branch" in options:

@@ -108,6 +108,19 @@ class PoincareMethod:
         amplitudes the family leaves free (``a_P0``: cosine amplitude of ``P`` at order 0, ``b_P0``:
         its sine amplitude); an integer indexes the admissible roots in the order listed in
         ``solution.steps[k].branches``.  Default: the isolated root with the largest phase amplitude.
+
+    Examples
+    --------
+    Duffing's oscillator, a conservative system: its continuous family is pinned by the initial
+    amplitude ``A`` (a symbol here, so the result holds for every amplitude):
+
+    >>> import sympy as sp
+    >>> from perturb import EPS, PoincareMethod, QuasilinearSystem
+    >>> x, xdot, A = sp.symbols("x xdot A")
+    >>> duffing = QuasilinearSystem([x], [xdot], [1], [-EPS * x**3], parameters=[A])
+    >>> solution = PoincareMethod(order=2, amplitudes={"x": A}).solve(duffing)
+    >>> solution.frequency_series()
+    -21*A**4*epsilon**2/256 + 3*A**2*epsilon/8 + 1
     """
 
     order: int = field(default=1, validator=check_order)
@@ -128,6 +141,22 @@ class PoincareMethod:
 
         The result is read from / written to the disk cache (:mod:`perturb.cache`) unless
         ``cache=False``.
+
+        Parameters
+        ----------
+        system : QuasilinearSystem
+            The system to solve.
+
+        Returns
+        -------
+        PeriodicSolution
+            Its ``status`` says whether the construction succeeded (a failed construction is returned,
+            not raised: see :meth:`PeriodicSolution.raise_for_status`).
+
+        Raises
+        ------
+        perturb.errors.InvalidSystemError
+            If ``system`` is not a :class:`QuasilinearSystem` or the options do not fit it.
         """
         check_system(system)
         if not self.cache:
@@ -174,7 +203,36 @@ class PoincareMethod:
 
 
 def solve(system: QuasilinearSystem, order: int = 1, **options) -> PeriodicSolution:
-    """Shortcut for ``PoincareMethod(order=order, **options).solve(system)``."""
+    """Shortcut for ``PoincareMethod(order=order, **options).solve(system)``.
+
+    Parameters
+    ----------
+    system : QuasilinearSystem
+        The system to solve.
+    order : int, optional
+        Highest power of ε kept (>= 1).
+    **options
+        Any other option of :class:`PoincareMethod` (``amplitudes``, ``branch``, ...).
+
+    Returns
+    -------
+    PeriodicSolution
+
+    Raises
+    ------
+    perturb.errors.InvalidSystemError
+        On an order < 1 or an option that does not fit the system.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from perturb import EPS, PoincareMethod, QuasilinearSystem
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> vdp = QuasilinearSystem([x], [xdot], [1], [EPS * (1 - x**2) * xdot], name="van der Pol")
+    >>> from perturb import solve
+    >>> solve(vdp, order=2).frequency_series()
+    1 - epsilon**2/16
+    """
     return PoincareMethod(order=order, **options).solve(system)
 
 

@@ -42,6 +42,16 @@ class TrajectoryStatus(enum.Enum):
 
     :attr:`Trajectory.message` is the value on success, and the backend's own sentence (with the
     numbers of the run) on failure.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> def oscillator(y):  # x'' + x = 0 as a first-order system
+    ...     return np.array([y[1], -y[0]])
+    >>> from perturb.oracle import Scipy, TrajectoryStatus
+    >>> trajectory = Scipy(max_steps=5).integrate(oscillator, (0.0, 100.0), [1.0, 0.0])
+    >>> trajectory.status is TrajectoryStatus.MAX_STEPS, trajectory.success
+    (True, False)
     """
 
     SUCCESS = "The integration reached the end of the interval."
@@ -99,6 +109,18 @@ class Trajectory:
         Taylor coefficients each).
     integrator : str
         Description of the integrator that actually ran, e.g. ``"scipy DOP853 (rtol=1e-12)"``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> def oscillator(y):  # x'' + x = 0 as a first-order system
+    ...     return np.array([y[1], -y[0]])
+    >>> from perturb.oracle import Scipy
+    >>> trajectory = Scipy().integrate(oscillator, (0.0, np.pi), [1.0, 0.0], t_eval=[0.0, np.pi / 2, np.pi])
+    >>> trajectory.success, trajectory.t.shape, trajectory.y.shape
+    (True, (3,), (2, 3))
+    >>> trajectory.y[0].round(9)
+    array([ 1.,  0., -1.])
     """
 
     t: np.ndarray = field(converter=_readonly, eq=attrs.cmp_using(eq=np.array_equal))
@@ -163,6 +185,12 @@ class Integrator(Protocol):
 
     Implementations are frozen value objects with a ``name`` and an :meth:`integrate` method that
     follows the contract of :class:`IntegratorBase`; subclassing it is the easy way to comply.
+
+    Examples
+    --------
+    >>> from perturb.oracle import RK4, Integrator, Scipy
+    >>> isinstance(RK4(), Integrator), isinstance(Scipy(), Integrator)
+    (True, True)
     """
 
     @property
@@ -214,6 +242,36 @@ class IntegratorBase(abc.ABC):
        :func:`perturb.oracle.registry.choose` if it takes ``rtol``/``max_steps``.
     6. Optionally override :meth:`loosened` (a copy whose error is ``factor`` times larger): the
        shooting uses it to measure its own noise floor a posteriori.
+
+    Examples
+    --------
+    A forward-Euler integrator in a few lines (the template validates the input and assembles the
+    trajectory; ``_integrate_impl`` only steps):
+
+    >>> from attrs import frozen
+    >>> from perturb.oracle import IntegratorBase
+    >>> from perturb.oracle.base import Run
+    >>> @frozen
+    ... class Euler(IntegratorBase):
+    ...     steps: int = 1000
+    ...     @property
+    ...     def name(self):
+    ...         return f"forward Euler ({self.steps} steps)"
+    ...     def _integrate_impl(self, rhs, t0, t1, y0, grid, jac):
+    ...         y, h, states = np.asarray(y0, float), (t1 - t0) / self.steps, []
+    ...         for k in range(self.steps + 1):
+    ...             if any(np.isclose(t0 + k * h, grid)):
+    ...                 states.append(y.copy())
+    ...             y = y + h * rhs(y)
+    ...         return Run(t=list(grid), states=states, t_reached=t1, nfev=self.steps)
+    >>> import numpy as np
+    >>> def oscillator(y):  # x'' + x = 0 as a first-order system
+    ...     return np.array([y[1], -y[0]])
+    >>> trajectory = Euler().integrate(oscillator, (0.0, 1.0), [1.0, 0.0])
+    >>> trajectory.integrator, trajectory.y.shape
+    ('forward Euler (1000 steps)', (2, 2))
+    >>> bool(abs(trajectory.y[0, -1] - np.cos(1.0)) < 1e-3)  # first order: error ~ h
+    True
     """
 
     __slots__ = ()

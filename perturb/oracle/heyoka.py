@@ -29,7 +29,19 @@ __all__ = ["Heyoka", "heyoka_available"]
 
 @functools.cache
 def heyoka_available() -> bool:
-    """True if heyoka.py can be imported."""
+    """True if heyoka.py can be imported.
+
+    Returns
+    -------
+    bool
+        Whether the ``fast`` extra (heyoka.py) is installed; cached for the process.
+
+    Examples
+    --------
+    >>> from perturb.oracle import choose, heyoka_available
+    >>> choose().name.startswith("heyoka") == heyoka_available()
+    True
+    """
     try:
         import heyoka  # noqa: F401
     except ImportError:
@@ -127,6 +139,18 @@ class Heyoka(IntegratorBase):
     must be a :class:`~perturb.oracle.symbolic.SymbolicRHS`.  The compiled integrator is cached per
     (rhs, precision, tolerance); the first call pays the JIT compilation (~0.05 s for a 2-D system,
     about a second for a 42-equation variational system).
+
+    Examples
+    --------
+    heyoka integrates a :class:`~perturb.oracle.SymbolicRHS` (it compiles the expressions); half a
+    period of the harmonic oscillator, at machine precision:
+
+    >>> import sympy as sp
+    >>> from perturb.oracle import Heyoka, SymbolicRHS
+    >>> x, v = sp.symbols("x v")
+    >>> trajectory = Heyoka().integrate(SymbolicRHS((x, v), (v, -x)), (0.0, float(sp.pi)), [1.0, 0.0])
+    >>> trajectory.y[:, -1].round(12) + 0.0  # (+ 0.0 turns a -0.0 into 0.0)
+    array([-1.,  0.])
     """
 
     tol: float | None = DEFAULT_HEYOKA_TOL

@@ -19,6 +19,14 @@ class OrbitStatus(enum.Enum):
     """How a shooting search ended; the values are the user-facing messages.
 
     :attr:`PeriodicOrbit.message` gives the numbers of the particular run.
+
+    Examples
+    --------
+    >>> from perturb.oracle import OrbitStatus
+    >>> print(OrbitStatus.CONVERGED.value)
+    The shooting converged to a periodic orbit.
+    >>> [status.name for status in OrbitStatus][:3]
+    ['CONVERGED', 'MAX_ITER', 'INTEGRATION_FAILED']
     """
 
     CONVERGED = "The shooting converged to a periodic orbit."
@@ -104,6 +112,20 @@ class PeriodicOrbit:
         Multipliers found within ``TRIVIAL_MULTIPLIER_TOL`` of 1 (0 when the monodromy is not
         finite).  More than expected: a nearly neutral direction or an unlisted integral; fewer: an
         integral that is not one, or an inaccurate monodromy.
+
+    Examples
+    --------
+    The van der Pol limit cycle at ε = 1, found by shooting from a rough guess:
+
+    >>> import numpy as np
+    >>> from perturb.oracle import find_periodic_orbit
+    >>> def vdp(y):
+    ...     return np.array([y[1], (1 - y[0] ** 2) * y[1] - y[0]])
+    >>> orbit = find_periodic_orbit(vdp, [2.0, 0.0], 6.5, section_index=1)
+    >>> bool(orbit.success), round(orbit.period, 6)
+    (True, 6.663287)
+    >>> bool(abs(orbit.floquet_multipliers[0] - 1) < 1e-6)  # the trivial multiplier of an autonomous orbit
+    True
     """
 
     period: float = field(converter=float)

@@ -52,6 +52,11 @@ def get_integrator(name: str, **options: Any) -> Integrator:
     --------
     >>> get_integrator("dop853", rtol=1e-10).name
     'scipy DOP853 (rtol=1e-10)'
+
+    Returns
+    -------
+    Integrator
+        A frozen value object; its ``name`` states the settings.
     """
     key = str(name).lower()
     if key not in INTEGRATORS:
@@ -76,6 +81,14 @@ def default_integrator(rhs: RHS | None = None) -> Integrator:
     Integrator
         ``Heyoka()`` or ``Scipy('DOP853')``; the :class:`Trajectory` it returns names it.  This
         is :func:`choose` for a non-stiff system at the default tolerance.
+
+    Examples
+    --------
+    A plain numeric callable cannot go to heyoka:
+
+    >>> from perturb.oracle import default_integrator
+    >>> default_integrator(lambda y: -y).name
+    'scipy DOP853 (rtol=1e-12)'
     """
     return choose(None, symbolic=rhs is None or isinstance(rhs, SymbolicRHS))
 

@@ -44,6 +44,18 @@ class RK4(IntegratorBase):
     ------
     perturb.errors.InvalidParameterError
         If both options are given, or either is not positive.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> def oscillator(y):  # x'' + x = 0 as a first-order system
+    ...     return np.array([y[1], -y[0]])
+    >>> from perturb.oracle import RK4
+    >>> trajectory = RK4(steps_per_unit=100).integrate(oscillator, (0.0, np.pi), [1.0, 0.0])
+    >>> trajectory.integrator
+    'rk4 (100 steps/unit)'
+    >>> bool(abs(trajectory.y[0, -1] + 1) < 1e-8)  # x(pi) = -1, error O(h^4)
+    True
     """
 
     steps_per_unit: float | None = None

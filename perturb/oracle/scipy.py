@@ -93,6 +93,19 @@ class Scipy(IntegratorBase):
     time reached.  Output at ``t_eval`` uses the solver's dense output, as ``solve_ivp`` does.  The
     implicit methods use ``jac`` if given, else the symbolic Jacobian of a
     :class:`~perturb.oracle.symbolic.SymbolicRHS`, else finite differences.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> def oscillator(y):  # x'' + x = 0 as a first-order system
+    ...     return np.array([y[1], -y[0]])
+    >>> from perturb.oracle import Scipy
+    >>> integrator = Scipy("RK45", rtol=1e-8)
+    >>> integrator.name
+    'scipy RK45 (rtol=1e-08)'
+    >>> trajectory = integrator.integrate(oscillator, (0.0, 2 * np.pi), [1.0, 0.0])
+    >>> bool(np.allclose(trajectory.y[:, -1], [1.0, 0.0], atol=1e-6))
+    True
     """
 
     method: str = "DOP853"

@@ -78,6 +78,14 @@ def finite_difference_jacobian(rhs: RHS, y: np.ndarray) -> np.ndarray:
     Returns
     -------
     ndarray, shape (n, n)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from perturb.oracle import finite_difference_jacobian
+    >>> finite_difference_jacobian(lambda y: np.array([y[1], -y[0] ** 3]), np.array([2.0, 0.0])).round(6)
+    array([[  0.,   1.],
+           [-12.,   0.]])
     """
     y = np.asarray(y, dtype=float)
     n = y.size

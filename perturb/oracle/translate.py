@@ -125,6 +125,17 @@ def to_heyoka(
     -----
     Integer and half-integer powers become products, reciprocals and square roots (see the module
     docstring), so that their Taylor coefficients are finite at a zero base.
+
+    Examples
+    --------
+    >>> import heyoka as hy
+    >>> import sympy as sp
+    >>> from perturb.oracle import to_heyoka
+    >>> x = sp.Symbol("x")
+    >>> hx = hy.make_vars("x")
+    >>> expression = to_heyoka(x**3 - sp.sin(x) / 2, {x: hx})
+    >>> isinstance(expression, hy.expression)
+    True
     """
     import heyoka as hy
 

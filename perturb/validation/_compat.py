@@ -27,6 +27,13 @@ class OriginalSystem:
     integrals : callable or None
         ``y -> array`` of first-integral values.
     integral_names : tuple of str
+
+    Examples
+    --------
+    >>> from perturb.validation import original_system
+    >>> from problems import get_problem
+    >>> original_system(get_problem("van-der-pol").create()).integrals is None
+    True
     """
 
     names: tuple
@@ -44,6 +51,19 @@ def original_system(problem: Model, y0: np.ndarray | None = None) -> OriginalSys
     problem : Model
     y0 : ndarray, optional
         Initial state, needed only by systems whose equations depend on the initial values.
+
+    Returns
+    -------
+    OriginalSystem
+        The state names, the right-hand side, whether it is symbolic, and the first integrals.
+
+    Examples
+    --------
+    >>> from perturb.validation import original_system
+    >>> from problems import get_problem
+    >>> system = original_system(get_problem("duffing").create(eps=0.1))
+    >>> system.names, system.symbolic, system.integral_names
+    (('x', 'xdot'), True, ('energy',))
     """
     model = as_model(problem)
     equations = model.original_equations(y0)

@@ -62,6 +62,17 @@ def stiffness_indicator(rhs, points: np.ndarray, period: float) -> Stiffness:
     Returns
     -------
     Stiffness
+
+    Examples
+    --------
+    The harmonic oscillator's eigenvalues are ±i: not stiff.
+
+    >>> import numpy as np
+    >>> from perturb.validation import stiffness_indicator
+    >>> points = np.array([[1.0, 0.0, -1.0], [0.0, 1.0, 0.0]])  # three states, as columns
+    >>> indicator = stiffness_indicator(lambda y: np.array([y[1], -y[0]]), points, 2 * np.pi)
+    >>> indicator.stiff, round(indicator.max_real, 6), round(indicator.max_imag, 6)  # finite differences
+    (False, 0.0, 1.0)
     """
     max_real, max_imag = 0.0, 0.0
     for y in np.asarray(points, dtype=float).T:

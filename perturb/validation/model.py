@@ -53,6 +53,14 @@ class Equations:
     quasilinear : bool
         Whether the state is the quasilinear system's own ``(x..., ẋ...)`` (then the derived
         shooting set-up uses the system's amplitudes and phase coordinate).
+
+    Examples
+    --------
+    >>> from perturb.validation import as_model
+    >>> from problems import get_problem
+    >>> equations = as_model(get_problem("van-der-pol").create(eps=0.1)).original_equations()
+    >>> equations.rhs([2.0, 0.0])
+    array([ 0., -2.])
     """
 
     rhs: Callable
@@ -74,7 +82,24 @@ class Equations:
 
 @frozen
 class Integrals:
-    """First integrals with names: ``function(y)`` of a state of shape ``(n,)`` or ``(n, m)``."""
+    """First integrals with names: ``function(y)`` of a state of shape ``(n,)`` or ``(n, m)``.
+
+    Parameters
+    ----------
+    function : callable
+        ``function(y)``: the integrals' values, one row per integral (a state of shape ``(n, m)``
+        gives one column per state).
+    names : tuple of str
+        One name per integral, in the order of the rows.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from perturb.validation import Integrals
+    >>> energy = Integrals(lambda y: np.array([0.5 * (y[0] ** 2 + y[1] ** 2)]), ("energy",))
+    >>> energy.names, energy.function(np.array([1.0, 1.0]))
+    (('energy',), array([1.]))
+    """
 
     function: Callable
     names: tuple = field(converter=tuple)
@@ -97,6 +122,15 @@ class ShootingSetup:
         Floquet multipliers expected at 1 (None: 1 + the number of first integrals).
     integrator : Integrator or None
         The shooting's integrator (None: the oracle's default, Radau on stiff systems).
+
+    Examples
+    --------
+    Shoot on the section ``xdot = 0`` (component 1), crossing it in either direction:
+
+    >>> from perturb.validation import ShootingSetup
+    >>> setup = ShootingSetup(section_index=1)
+    >>> setup.section_index, setup.section_value, setup.fixed_indices
+    (1, 0.0, ())
     """
 
     section_index: int = field(converter=int)
@@ -140,6 +174,15 @@ class OrbitEstimate:
     resolution : float
         Uncertainty of the orbit relative to its amplitudes.
     integrator : str
+
+    Examples
+    --------
+    What a model's own orbit finder returns (here built by hand):
+
+    >>> from perturb.validation import OrbitEstimate
+    >>> estimate = OrbitEstimate(True, 6.2871, [2.0002, 0.0], message="converged")
+    >>> estimate.success, estimate.period
+    (True, 6.2871)
     """
 
     success: bool
@@ -178,6 +221,22 @@ class Model(ABC):
        :meth:`parameters_in_force` (for reports);
     7. optionally override :meth:`euler_angles` (rigid bodies: the angles along a solution;
        default: None).
+
+    Examples
+    --------
+    A problem is a model, and so is a bare system with its parameter values:
+
+    >>> import sympy as sp
+    >>> from perturb import EPS, QuasilinearSystem
+    >>> from perturb.validation import Model, as_model
+    >>> from problems import get_problem
+    >>> isinstance(get_problem("duffing").create(), Model)
+    True
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> system = QuasilinearSystem([x], [xdot], [1], [EPS * (1 - x**2) * xdot])
+    >>> model = as_model(system, values={"epsilon": 0.1})
+    >>> isinstance(model, Model), model.state_names()
+    (True, ('x', 'xdot'))
     """
 
     __slots__ = ()
@@ -299,7 +358,23 @@ class Model(ABC):
 
 def has_euler_angles(model) -> bool:
     """Whether ``model`` (a :class:`Model`) gives Euler angles: it overrides
-    :meth:`Model.euler_angles` (the typed hook; no attribute probing)."""
+    :meth:`Model.euler_angles` (the typed hook; no attribute probing).
+
+    Parameters
+    ----------
+    model : Model
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> from perturb.validation import has_euler_angles
+    >>> from problems import get_problem
+    >>> has_euler_angles(get_problem("disk").create()), has_euler_angles(get_problem("duffing").create())
+    (True, False)
+    """
     return isinstance(model, Model) and type(model).euler_angles is not Model.euler_angles
 
 
@@ -419,7 +494,37 @@ class SystemModel(Model):
 
 
 def as_model(problem, values: Mapping | None = None, options: Mapping | None = None) -> Model:
-    """``problem`` as a :class:`Model` (a bare system is wrapped in :class:`SystemModel`)."""
+    """``problem`` as a :class:`Model` (a bare system is wrapped in :class:`SystemModel`).
+
+    Parameters
+    ----------
+    problem : Model or QuasilinearSystem
+        A problem (returned as it is) or a bare system.
+    values : mapping, optional
+        For a bare system: the value of each parameter and of ``"epsilon"`` (or ``"mu"``).
+    options : mapping, optional
+        For a bare system: options of :class:`perturb.PoincareMethod` (``amplitudes``, ...).
+
+    Returns
+    -------
+    Model
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        If ``problem`` is neither a model nor a system, or a value is missing.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from perturb import EPS, QuasilinearSystem
+    >>> from perturb.validation import as_model
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> model = as_model(QuasilinearSystem([x], [xdot], [1], [-EPS * x**3]), values={"epsilon": 0.1},
+    ...                  options={"amplitudes": {"x": 1}})
+    >>> type(model).__name__, round(model.period(model.solve(1)), 6)  # 2 pi / (1 + 3 eps / 8)
+    ('SystemModel', 6.056082)
+    """
     if isinstance(problem, QuasilinearSystem):
         if values is None:
             raise bad_value(

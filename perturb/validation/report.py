@@ -25,7 +25,16 @@ __all__ = [
 
 
 class Verdict(enum.Enum):
-    """The outcome of a validation; the values are the messages shown to users."""
+    """The outcome of a validation; the values are the messages shown to users.
+
+    Examples
+    --------
+    >>> from perturb.validation import Verdict
+    >>> [verdict.name for verdict in Verdict]
+    ['VALID', 'INVALID', 'UNDECIDED']
+    >>> print(Verdict.UNDECIDED.value)
+    the checks could not decide whether the analytic solution describes the true motion
+    """
 
     VALID = "the analytic solution describes the true motion"
     INVALID = "the analytic solution does not describe the true motion"
@@ -66,6 +75,19 @@ class Check:
         What was measured, with the numbers, or why it could not be.
     comparison : str
         ``"<="`` (value must not exceed the tolerance) or ``">="`` (the slope: value must reach it).
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from perturb import EPS, QuasilinearSystem, validate
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> vdp = QuasilinearSystem([x], [xdot], [1], [EPS * (1 - x**2) * xdot], name="van der Pol")
+    >>> report = validate(vdp, values={"epsilon": 0.1}, order=2)
+    >>> check = report.check("period_error")
+    >>> check.passed, check.tolerance, check.comparison
+    (True, 0.1, '<=')
+    >>> [c.name for c in report.checks]
+    ['existence', 'orbit_error', 'period_error', 'order']
     """
 
     name: str
@@ -89,6 +111,15 @@ class Condition:
     ok : bool
     sentence : str
         What the estimate says, with the numbers.
+
+    Examples
+    --------
+    The disk's own estimates at the paper's data, where ε = c/r0 = 232 is far from small:
+
+    >>> from problems import get_problem
+    >>> conditions = get_problem("disk").create().validity_estimates()
+    >>> [(c.name, c.ok) for c in conditions][:1]
+    [('ε = c/r0 small', False)]
     """
 
     name: str
@@ -115,6 +146,18 @@ class InvariantDrift:
         ``max_drift / |I(0)|`` (``max_drift`` itself when ``I(0) = 0``).
     final_drift : float
         :math:`|I(t_{end}) - I(0)|`.
+
+    Examples
+    --------
+    Duffing's oscillator conserves its energy; the drift along the integrated trajectory measures the
+    integrator:
+
+    >>> from perturb import validate
+    >>> from problems import get_problem
+    >>> report = validate(get_problem("duffing").create(eps=0.1), order=1)
+    >>> drift = report.invariants["energy"]
+    >>> drift.name, bool(drift.relative_drift < 1e-10)
+    ('energy', True)
     """
 
     name: str
@@ -152,6 +195,19 @@ class SlopeFit:
         Why points were dropped or the slope is missing.
     band : float
         How far below ``expected`` the slope may fall (:data:`SLOPE_TOLERANCE`).
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from perturb import EPS, QuasilinearSystem, validate
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> vdp = QuasilinearSystem([x], [xdot], [1], [EPS * (1 - x**2) * xdot], name="van der Pol")
+    >>> report = validate(vdp, values={"epsilon": 0.1}, order=2)
+    >>> fit = report.slope
+    >>> fit.expected, round(fit.slope, 1), fit.consistent
+    (3.0, 3.0, True)
+    >>> [float(e) for e in fit.epsilons]
+    [0.0125, 0.025, 0.05, 0.1]
     """
 
     slope: float = field(converter=float)
@@ -197,7 +253,7 @@ class OrbitCheck:
     period_error : float
         (analytic period − true period) / true period.
     initial_state_error : float
-        Max over components of |analytic − true| initial state, relative to the amplitudes.
+        Max over components of ``|analytic − true|`` initial state, relative to the amplitudes.
     orbit_error : float
         Max distance of the analytic orbit from the true one over one period, at equal phases,
         relative to the orbit's size (the largest amplitude).
@@ -215,6 +271,19 @@ class OrbitCheck:
         and the existence check cannot pass.
     resolution_limit : float
         ``ORBIT_RESOLUTION_LIMIT``.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from perturb import EPS, QuasilinearSystem, validate
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> vdp = QuasilinearSystem([x], [xdot], [1], [EPS * (1 - x**2) * xdot], name="van der Pol")
+    >>> report = validate(vdp, values={"epsilon": 0.1}, order=2)
+    >>> orbit = report.periodic_orbit
+    >>> orbit.success, orbit.n_trivial, orbit.trivial_ok
+    (True, 1, True)
+    >>> round(orbit.period, 6), bool(orbit.period_error < 1e-5)
+    (6.287111, True)
     """
 
     success: bool
@@ -252,6 +321,16 @@ class Stiffness:
     stiff : bool
         ``ratio > threshold``.
     threshold : float
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from perturb import EPS, QuasilinearSystem, validate
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> vdp = QuasilinearSystem([x], [xdot], [1], [EPS * (1 - x**2) * xdot], name="van der Pol")
+    >>> report = validate(vdp, values={"epsilon": 0.1}, order=2)
+    >>> report.stiffness.stiff, report.stiffness.threshold
+    (False, 10.0)
     """
 
     ratio: float = field(converter=float)
@@ -323,6 +402,20 @@ class ValidationReport:
         The measurements the verdict rests on (existence, orbit error, period error, order).
     tol : float
         The accuracy tolerance in force.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from perturb import EPS, QuasilinearSystem, validate
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> vdp = QuasilinearSystem([x], [xdot], [1], [EPS * (1 - x**2) * xdot], name="van der Pol")
+    >>> report = validate(vdp, values={"epsilon": 0.1}, order=2)
+    >>> report.outcome
+    <Verdict.VALID: 'the analytic solution describes the true motion'>
+    >>> report.problem, report.order, report.epsilon
+    ('van der Pol', 2, 0.1)
+    >>> print(report.verdict[:62])
+    The analytic solution describes the true motion: a true period
     """
 
     problem: str

@@ -66,6 +66,18 @@ class DiskInNewtonianField(FastSpinBody):
     Parameters (``Problem.create``): ``A B C M g R x0 y0 z0 r0 gamma3_0`` — the paper's (31)
     by default. ``R = inf`` removes the Newtonian centre (k = 0); the disk's detuning then vanishes
     and the solution of this branch does not exist (:meth:`solve` says so).
+
+    Examples
+    --------
+    The fast-spin case of the README (ε = c/r0 = 0.004, a Newtonian field k ≈ 0.4):
+
+    >>> from problems import get_problem
+    >>> disk = get_problem("disk").create(r0=0.755155, R=0.123299, gamma3_0=0.25)
+    >>> round(disk.epsilon(), 6)
+    0.004
+    >>> solution = disk.solve(1)
+    >>> round(disk.period(solution), 6), disk.state_names()
+    (8.320416, ('p', 'q', 'r', 'gamma1', 'gamma2', 'gamma3'))
     """
 
     name = "disk"

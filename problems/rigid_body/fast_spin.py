@@ -58,6 +58,16 @@ class FastSpinRigidBody(FastSpinBody):
 
     Defaults: A = 9, B = 11, C = 16 (omega = 0.595), centre of mass (1, 6, 0.5), gamma3_0 = 0.25
     and r0 giving eps = c/r0 = 0.01, in the paper's field (M = 200, g = 1.5e-7, R = 2000).
+
+    Examples
+    --------
+    >>> from problems import get_problem
+    >>> body = get_problem("rigid-body").create()
+    >>> round(body.epsilon(), 6)
+    0.01
+    >>> solution = body.solve(1)
+    >>> solution.success, round(body.period(solution), 4)
+    (True, 18.6047)
     """
 
     name = "rigid-body"

@@ -108,6 +108,17 @@ def plot_convergence(
     ------
     perturb.errors.InvalidParameterError
         On an ε <= 0, arrays of different lengths, a negative order or a bad ``slope_band``.
+
+    Examples
+    --------
+    Errors that fall like ε³ (an order-2 solution):
+
+    >>> import numpy as np
+    >>> from perturb.report.plots import plot_convergence
+    >>> eps = np.array([0.0125, 0.025, 0.05, 0.1])
+    >>> fig = plot_convergence(eps, 0.3 * eps**3, order=2, slope_band=0.5)
+    >>> fig.axes[0].get_legend_handles_labels()[1][:2]
+    ['measured', 'fit: slope 3.00']
     """
     eps = _positive_array(epsilons, "epsilons")
     err = _positive_array(errors, "errors")

@@ -91,6 +91,15 @@ def rotation_matrix(psi, theta, phi) -> np.ndarray:
     -------
     numpy.ndarray, shape (..., 3, 3)
         ``R[..., :, k]`` is body axis ``k`` (x, y, z) in space coordinates.
+
+    Examples
+    --------
+    A quarter turn of precession takes the body x axis to the space y axis:
+
+    >>> import numpy as np
+    >>> from perturb.report.plots import rotation_matrix
+    >>> rotation_matrix(np.pi / 2, 0.0, 0.0)[:, 0].round(12) + 0.0
+    array([0., 1., 0.])
     """
     psi, theta, phi = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (psi, theta, phi)))
     return _rz(psi) @ _rx(theta) @ _rz(phi)
@@ -137,6 +146,21 @@ def plot_euler_angles(
     -------
     matplotlib.figure.Figure
         Its lines hold ``degrees(unwrap(angle))`` (or the variant asked for).
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        If an angle is missing, ``t`` is not increasing or an array does not match ``t``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 10.0, 100)
+    >>> angles = {"psi": 0.01 * t, "theta": 1.3 + 0.001 * np.sin(t), "phi": 2 * np.pi * t / 10}
+    >>> from perturb.report.plots import plot_euler_angles
+    >>> fig = plot_euler_angles(t, angles)
+    >>> len(fig.axes)
+    3
     """
     times = as_times(t)
     series = _euler_series(angles, times.size, "angles")
@@ -283,6 +307,21 @@ def plot_orientation(
     matplotlib.figure.Figure
         Per panel, the lines are the space vertical (dotted), the body x, y, z axes
         (``[0, R[:, k]]``), then the trace (``R[:, :, 2]`` at every ``t``).
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        If an angle is missing, or the instants are outside ``t`` or more than ``MAX_INSTANTS``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 10.0, 100)
+    >>> angles = {"psi": 0.01 * t, "theta": 1.3 + 0.001 * np.sin(t), "phi": 2 * np.pi * t / 10}
+    >>> from perturb.report.plots import plot_orientation
+    >>> fig = plot_orientation(t, angles, instants=[0.0, 5.0])
+    >>> len(fig.axes)
+    2
     """
     times = as_times(t)
     series = _euler_series(angles, times.size, "angles")
@@ -345,6 +384,22 @@ def animate_orientation(
     -------
     matplotlib.figure.Figure
         The figure as at the last frame.
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        If ``path`` does not end in ``.gif`` or its folder does not exist, or ``fps``/``frames`` < 1.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 10.0, 100)
+    >>> angles = {"psi": 0.01 * t, "theta": 1.3 + 0.001 * np.sin(t), "phi": 2 * np.pi * t / 10}
+    >>> import os
+    >>> from perturb.report.plots import animate_orientation
+    >>> fig = animate_orientation(t, angles, "spin.gif", frames=3)
+    >>> os.path.getsize("spin.gif") > 0
+    True
     """
     times = as_times(t)
     series = _euler_series(angles, times.size, "angles")

@@ -100,7 +100,24 @@ def require_matplotlib():
 
 @contextlib.contextmanager
 def publication_style() -> Iterator[None]:
-    """Context in which :data:`PUBLICATION_RC` is in force (the global rcParams are restored)."""
+    """Context in which :data:`~perturb.report.plots.style.PUBLICATION_RC` is in force (the global rcParams are restored).
+
+    Yields
+    ------
+    None
+        Inside the ``with`` block, matplotlib's rcParams are the publication defaults.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> from perturb.report.plots import publication_style
+    >>> from perturb.report.plots.style import PUBLICATION_RC
+    >>> before = matplotlib.rcParams["font.size"]
+    >>> with publication_style():
+    ...     inside = matplotlib.rcParams["font.size"]
+    >>> inside == PUBLICATION_RC.get("font.size", inside), matplotlib.rcParams["font.size"] == before
+    (True, True)
+    """
     matplotlib = require_matplotlib()
     with _STYLE_LOCK, matplotlib.rc_context(PUBLICATION_RC):
         yield

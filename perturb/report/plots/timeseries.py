@@ -73,6 +73,17 @@ def plot_time_series(
         If ``t`` is not increasing, a name is missing or an array does not match ``t``.
     perturb.errors.MissingDependencyError
         If matplotlib is not installed.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 2 * np.pi, 50)
+    >>> analytic = {"x": np.cos(t), "xdot": -np.sin(t)}
+    >>> true = {"x": np.cos(1.01 * t), "xdot": -1.01 * np.sin(1.01 * t)}
+    >>> from perturb.report.plots import plot_time_series
+    >>> fig = plot_time_series(t, analytic, true, time_unit="")
+    >>> print([ax.get_ylabel() for ax in fig.axes])
+    ['$x$ [1]', '$\\\\dot{x}$ [1]']
     """
     times = as_times(t)
     names = pick_names(names, analytic)
@@ -121,6 +132,22 @@ def plot_error(
     matplotlib.figure.Figure
         Exact zeros (e.g. at ``t = 0`` when both start from the same state) are not drawn on the
         logarithmic axis; the lines still hold them.
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        If ``true`` is missing, ``t`` is not increasing, a name is missing or an array does not match.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 2 * np.pi, 50)
+    >>> analytic = {"x": np.cos(t), "xdot": -np.sin(t)}
+    >>> true = {"x": np.cos(1.01 * t), "xdot": -1.01 * np.sin(1.01 * t)}
+    >>> from perturb.report.plots import plot_error
+    >>> fig = plot_error(t, analytic, true, time_unit="")
+    >>> len(fig.axes[0].lines), fig.axes[0].get_yscale()
+    (2, 'log')
     """
     times = as_times(t)
     names = pick_names(names, analytic)
@@ -206,6 +233,22 @@ def plot_phase(
     Returns
     -------
     matplotlib.figure.Figure
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        If ``pairs`` is not a list of name pairs, or a name is missing.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 2 * np.pi, 50)
+    >>> analytic = {"x": np.cos(t), "xdot": -np.sin(t)}
+    >>> true = {"x": np.cos(1.01 * t), "xdot": -1.01 * np.sin(1.01 * t)}
+    >>> from perturb.report.plots import plot_phase
+    >>> fig = plot_phase(analytic, true)
+    >>> len(fig.axes), len(fig.axes[0].lines)  # one panel; analytic and true
+    (1, 2)
     """
     pairs = _pairs(pairs)
     names = list(dict.fromkeys(name for pair in pairs for name in pair))

@@ -37,6 +37,23 @@ def plot_work_precision(
     matplotlib.figure.Figure
         One line per method, its points in the order they were measured (the sweep of the
         method's setting: orders, steps or tolerances).
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        If ``result`` has no ``points`` with ``method``, ``setting``, ``error`` and ``seconds``.
+
+    Examples
+    --------
+    A result built by hand (:func:`perturb.workprecision.work_precision` measures one):
+
+    >>> from perturb.report.plots import plot_work_precision
+    >>> from perturb.workprecision import WorkPoint, WorkPrecision
+    >>> points = (WorkPoint("rk4", "10 steps/unit", 1e-5, 0.02), WorkPoint("rk4", "20 steps/unit", 6e-7, 0.04),
+    ...           WorkPoint("analytic", "order 2", 1e-3, 0.001))
+    >>> fig = plot_work_precision(WorkPrecision("demo", 10, 62.8, "heyoka", points))
+    >>> [line.get_label() for line in fig.axes[0].lines]
+    ['rk4', 'analytic']
     """
     points = getattr(result, "points", None)
     if points is None or not all(
