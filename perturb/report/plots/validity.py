@@ -122,6 +122,19 @@ def plot_verdict_map(x, y, codes, labels: Mapping, *, xname: str, yname: str, ti
     Returns
     -------
     matplotlib.figure.Figure
+
+    Examples
+    --------
+    Valid on the first two rows, invalid on the last (the codes and labels of a sweep's
+    ``verdict`` variable):
+
+    >>> import numpy as np
+    >>> from perturb.report.plots import plot_verdict_map
+    >>> codes = np.array([[0, 0, 0, 0], [0, 0, 0, 0], [1, 1, 1, 1]])
+    >>> fig = plot_verdict_map([0.5, 0.75, 1.0], [0.1, 0.2, 0.3, 0.4], codes,
+    ...                        {0: "valid", 1: "invalid"}, xname="r0", yname="gamma3_0")
+    >>> [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    ['valid', 'invalid']
     """
     x, y = _axis(x, "x"), _axis(y, "y")
     _names(xname, yname)
@@ -163,14 +176,31 @@ def plot_error_map(
 
     Parameters
     ----------
+    x, y : array_like
+        The two swept parameters' values.
     error : array_like, shape (len(x), len(y))
         The error (> 0; NaN or <= 0 where not measured: blank).
     tol : float
         The validation's tolerance (> 0): its contour separates accurate from inaccurate.
+    xname, yname : str
+        The parameters' names.
+    error_label : str, optional
+        What the error is, for the colour bar.
 
     Returns
     -------
     matplotlib.figure.Figure
+
+    Examples
+    --------
+    An error growing like x² y, with its contour at the tolerance 0.1:
+
+    >>> import numpy as np
+    >>> from perturb.report.plots import plot_error_map
+    >>> x, y = np.linspace(0.1, 1.0, 10), np.linspace(0.1, 1.0, 8)
+    >>> fig = plot_error_map(x, y, np.outer(x**2, y), tol=0.1, xname="eps", yname="amplitude")
+    >>> fig.axes[1].get_ylabel()
+    'log$_{10}$ orbit error'
     """
     x, y = _axis(x, "x"), _axis(y, "y")
     _names(xname, yname)
@@ -199,9 +229,32 @@ def plot_slope_map(
     """The measured order slope at every point, coloured about the expected ``order + 1``, with
     the contour ``expected - band`` below which the order check fails.
 
+    Parameters
+    ----------
+    x, y : array_like
+        The two swept parameters' values.
+    slope : array_like, shape (len(x), len(y))
+        The measured slopes (the sweep's ``order_slope``; NaN where not measured: blank).
+    expected : float
+        ``order + 1``: the colour map is centred on it.
+    band : float, optional
+        How far below ``expected`` a slope passes the order check (``SLOPE_TOLERANCE``).
+    xname, yname : str
+        The parameters' names.
+
     Returns
     -------
     matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from perturb.report.plots import plot_slope_map
+    >>> slope = np.array([[3.0, 2.9, 2.2], [3.0, 3.1, 2.0]])
+    >>> fig = plot_slope_map([0.1, 0.2], [1.0, 2.0, 3.0], slope, expected=3.0, band=0.5,
+    ...                      xname="eps", yname="amplitude")
+    >>> fig.axes[1].get_ylabel()
+    'measured slope (expected 3)'
     """
     x, y = _axis(x, "x"), _axis(y, "y")
     _names(xname, yname)
@@ -234,9 +287,30 @@ def plot_slope_map(
 def plot_period_map(x, y, period, *, xname: str, yname: str, unit: str = "", title=None):
     """The analytic period at every point, with a few labelled contours.
 
+    Parameters
+    ----------
+    x, y : array_like
+        The two swept parameters' values.
+    period : array_like, shape (len(x), len(y))
+        The periods (the sweep's ``period``).
+    xname, yname : str
+        The parameters' names.
+    unit : str, optional
+        The period's unit, for the colour bar.
+
     Returns
     -------
     matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from perturb.report.plots import plot_period_map
+    >>> eps, a = np.linspace(0.0, 0.2, 5), np.linspace(0.5, 1.5, 4)
+    >>> period = 2 * np.pi / (1 + 0.375 * np.outer(eps, a**2))  # Duffing's first order
+    >>> fig = plot_period_map(eps, a, period, xname="eps", yname="amplitude")
+    >>> fig.axes[1].get_ylabel()
+    'period'
     """
     x, y = _axis(x, "x"), _axis(y, "y")
     _names(xname, yname)
