@@ -28,7 +28,20 @@ Z1, Z2, A1, A2, DELTA, FORCE, SIGMA = sp.symbols("zeta1 zeta2 alpha1 alpha2 delt
 
 @register
 class AutoparametricAbsorber(DrivenProblem):
-    """Two modes 1:2 in internal resonance, the second forced near its frequency."""
+    """Two modes 1:2 in internal resonance, the second forced near its frequency.
+
+    Examples
+    --------
+    Above the threshold the forced mode's amplitude saturates: it is the same at every F.
+
+    >>> from problems import get_problem
+    >>> cls = get_problem("autoparametric-absorber")
+    >>> def coupled_y(force):
+    ...     points = cls.create(F=force).steady_state(0).points
+    ...     return round(next(p.norms["y"] for p in points if p.norms["x"] > 0), 9)
+    >>> coupled_y(1.0) == coupled_y(4.0)
+    True
+    """
 
     name = "autoparametric-absorber"
     summary = (

@@ -24,7 +24,15 @@ ZETA, GAMMA, FORCE, SIGMA = sp.symbols("zeta gamma F sigma")
 
 @register
 class ForcedDuffing(DrivenProblem):
-    """ẍ + 2ζεẋ + x + γεx³ = Fε cos Ωt near Ω = 1."""
+    """ẍ + 2ζεẋ + x + γεx³ = Fε cos Ωt near Ω = 1.
+
+    Examples
+    --------
+    >>> from problems import get_problem
+    >>> duffing = get_problem("forced-duffing").create(Omega=1.05)
+    >>> [(f.name, f.solution.message.split("; ")[1]) for f in duffing.families(1)]
+    [('lower', 'stable (slow flow)'), ('middle', 'unstable (slow flow)'), ('upper', 'stable (slow flow)')]
+    """
 
     name = "forced-duffing"
     summary = (

@@ -23,7 +23,15 @@ ZETA, H, GAMMA, SIGMA = sp.symbols("zeta h gamma sigma")
 
 @register
 class ParametricDuffing(DrivenProblem):
-    """ẍ + 2ζεẋ + (1 + 2hε cos Ωt) x + γεx³ = 0 near Ω = 2."""
+    """ẍ + 2ζεẋ + (1 + 2hε cos Ωt) x + γεx³ = 0 near Ω = 2.
+
+    Examples
+    --------
+    >>> from problems import get_problem
+    >>> mathieu = get_problem("parametric-duffing").create(Omega=2.0)
+    >>> [(p.trivial, p.stable) for p in mathieu.steady_state(1).points]
+    [(True, False), (False, True)]
+    """
 
     name = "parametric-duffing"
     summary = (

@@ -32,7 +32,16 @@ LAMBDA = FORCE / (1 - OMEGA**2)
 
 @register
 class SuperharmonicDuffing(DrivenProblem):
-    """ẍ + 2ζεẋ + x + γεx³ = F cos Ωt near Ω = 1/3 (state u = x − Λ cos Ωt)."""
+    """ẍ + 2ζεẋ + x + γεx³ = F cos Ωt near Ω = 1/3 (state u = x − Λ cos Ωt).
+
+    Examples
+    --------
+    >>> from problems import get_problem
+    >>> duffing = get_problem("superharmonic-duffing").create()
+    >>> solution = duffing.solve(1)
+    >>> solution.generating.harmonics  # u responds at 3 Omega: harmonic 3 of Omega t
+    (3,)
+    """
 
     name = "superharmonic-duffing"
     summary = (

@@ -169,6 +169,25 @@ def frequency_response(
     Returns
     -------
     FrequencyResponse
+
+    Raises
+    ------
+    InvalidParameterError
+        An unknown swept parameter or a missing value.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from problems import get_problem
+    >>> from perturb import amplitude_equations, frequency_response
+    >>> system = get_problem("forced-duffing").system()
+    >>> response = frequency_response(
+    ...     amplitude_equations(system, 0), "sigma", np.linspace(0.0, 2.0, 5),
+    ...     {"zeta": 0.1, "gamma": 1.0, "F": 1.0}, epsilon=0.05, order=0)
+    >>> [len(response.at(value)) for value in response.grid]  # one branch, then three
+    [1, 1, 3, 3, 3]
+    >>> [round(fold.value, 4) for fold in response.folds]
+    [0.8497]
     """
     system = equations.system
     names = {p.name: p for p in system.parameters}

@@ -35,8 +35,7 @@ from perturb._defaults import (
     STIFFNESS_THRESHOLD,
 )
 from perturb.validation._compat import OriginalSystem, original_system
-from perturb.validation._quasilinear import state_along
-from perturb.validation._quasilinear import state_names as quasilinear_state_names
+from perturb.validation._quasilinear import quasilinear_state_names, state_along
 from perturb.validation.checks import stiffness_indicator
 from perturb.validation.model import (
     Equations,

@@ -21,15 +21,33 @@ __all__ = [
     "excitation_frequency",
     "first_order_form",
     "lambdify_integrals",
+    "quasilinear_state_names",
     "state_along",
-    "state_names",
     "substitutions",
 ]
 
 
-def state_names(system: QuasilinearSystem) -> tuple[str, ...]:
+def quasilinear_state_names(system: QuasilinearSystem) -> tuple[str, ...]:
     """The state the oracle integrates: ``(x..., xdot...)``, and the phase θ = Ωt of a driven
-    system last (its equations are made autonomous with θ' = Ω)."""
+    system last (its equations are made autonomous with θ' = Ω).
+
+    Parameters
+    ----------
+    system : QuasilinearSystem
+
+    Returns
+    -------
+    tuple of str
+
+    Examples
+    --------
+    >>> from problems import get_problem
+    >>> from perturb.validation import quasilinear_state_names
+    >>> quasilinear_state_names(get_problem("duffing").system())
+    ('x', 'xdot')
+    >>> quasilinear_state_names(get_problem("forced-duffing").system())
+    ('x', 'xdot', 'theta')
+    """
     if system.excitation is None:
         return system.state_names
     return (*system.state_names, system.excitation.phase.name)
@@ -37,7 +55,31 @@ def state_names(system: QuasilinearSystem) -> tuple[str, ...]:
 
 def state_along(solution, t, parameter_value: float, values: Mapping) -> dict[str, np.ndarray]:
     """The quasilinear state along ``solution`` at times ``t`` by name (θ = Ωt of a driven system
-    included, as :func:`state_names` orders it)."""
+    included, in the order of :func:`quasilinear_state_names`).
+
+    Parameters
+    ----------
+    solution : PeriodicSolution
+    t : array_like
+        Physical times.
+    parameter_value : float
+        ε (or μ in the large-parameter regime).
+    values : mapping
+        The system's parameter values.
+
+    Returns
+    -------
+    dict of ndarray
+
+    Examples
+    --------
+    >>> from problems import get_problem
+    >>> from perturb.validation import state_along
+    >>> duffing = get_problem("forced-duffing").create(Omega=1.05)
+    >>> state = state_along(duffing.solve(1), [0.0, 1.0], duffing.epsilon(), duffing.symbol_values())
+    >>> sorted(state), [round(float(v), 6) for v in state["theta"]]
+    (['theta', 'x', 'xdot'], [0.0, 1.05])
+    """
     system = solution.system
     y = solution.evaluate(t, parameter_value, values)
     state = dict(zip(solution.state_names, y, strict=True))

@@ -23,10 +23,10 @@ from perturb.validation._quasilinear import (
     conservative_energy,
     first_order_form,
     lambdify_integrals,
+    quasilinear_state_names,
     state_along,
     substitutions,
 )
-from perturb.validation._quasilinear import state_names as quasilinear_state_names
 from perturb.validation.report import Condition
 
 __all__ = [

@@ -31,7 +31,7 @@ class Verdict(enum.Enum):
     --------
     >>> from perturb.validation import Verdict
     >>> [verdict.name for verdict in Verdict]
-    ['VALID', 'INVALID', 'UNDECIDED']
+    ['VALID', 'INVALID', 'UNDECIDED', 'LOWER_ORDER']
     >>> print(Verdict.UNDECIDED.value)
     the checks could not decide whether the analytic solution describes the true motion
     """

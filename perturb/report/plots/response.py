@@ -34,6 +34,22 @@ def plot_frequency_response(result, *, coordinate: str | None = None, ax=None, t
     matplotlib.figure.Figure
         Stable segments solid, unstable dashed, folds as open circles, the backbone dotted, the
         true orbits (``perturb response --validate K``) as crosses.
+
+    Raises
+    ------
+    ValueError
+        When ``result`` is not a :func:`~perturb.response.model.problem_response` result.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from problems import get_problem
+    >>> from perturb.response.model import problem_response
+    >>> result = problem_response(get_problem("forced-duffing").create(), "Omega",
+    ...                           np.linspace(0.95, 1.15, 9))
+    >>> fig = plot_frequency_response(result)
+    >>> fig.axes[0].get_xlabel()
+    'Omega'
     """
     _check(result)
     response = result.response
@@ -75,8 +91,35 @@ def plot_frequency_response(result, *, coordinate: str | None = None, ax=None, t
 
 
 def plot_floquet_along_branches(result, *, ax=None, title=None):
-    """The largest |Floquet multiplier| the slow flow predicts, along each branch (1 dotted):
-    above 1 the branch is unstable."""
+    """The largest modulus of the Floquet multipliers the slow flow predicts, along each branch (1 dotted):
+    above 1 the branch is unstable.
+
+    Parameters
+    ----------
+    result : perturb.response.model.ProblemResponse
+    ax : matplotlib.axes.Axes, optional
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ValueError
+        When ``result`` is not a :func:`~perturb.response.model.problem_response` result.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from problems import get_problem
+    >>> from perturb.response.model import problem_response
+    >>> result = problem_response(get_problem("forced-duffing").create(), "Omega",
+    ...                           np.linspace(0.95, 1.15, 9))
+    >>> fig = plot_floquet_along_branches(result)
+    >>> fig.axes[0].get_ylabel()
+    'max |Floquet multiplier|'
+    """
     _check(result)
     response = result.response
     with publication_style():
