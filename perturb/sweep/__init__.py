@@ -1,17 +1,17 @@
 """Sweeps and validity maps: a problem's solution over a grid of its parameters, on Dask.
 
-``perturb.sweep(problem, grid, ...)`` (this module is callable: it is :func:`sweep`) derives
+``perturb.sweep(problem, grid, ...)`` (this module is callable: it is ``sweep``) derives
 the solution once, evaluates — and with ``validate=True`` shoots and judges — every point in
-chunks on a ``dask.distributed`` cluster, and returns an :class:`xarray.Dataset` (written to a
+chunks on a ``dask.distributed`` cluster, and returns an ``xarray.Dataset`` (written to a
 resumable Zarr store when ``output`` is given). ``perturb sweep`` is the same from the command line.
 
-Rooms: :mod:`.grid` (axes, points, chunks), :mod:`.spec` (what a sweep computes),
-:mod:`.derive` (derive once), :mod:`.quantities` (the variables), :mod:`.status` (coded
-statuses), :mod:`.evaluate` and :mod:`.task` (the work of a task, on a worker), :mod:`.driver`
-(Dask), :mod:`.store` (Zarr, resume), :mod:`.memory` (results without a store), :mod:`.api`
-(the front door). Only :mod:`.driver`, :mod:`.store` and :mod:`.memory` import the extra
+Rooms: ``grid`` (axes, points, chunks), ``spec`` (what a sweep computes),
+``derive`` (derive once), ``quantities`` (the variables), ``status`` (coded
+statuses), ``evaluate`` and ``task`` (the work of a task, on a worker), ``driver``
+(Dask), ``store`` (Zarr, resume), ``memory`` (results without a store), ``api``
+(the front door). Only ``driver``, ``store`` and ``memory`` import the extra
 ``perturb[sweep]`` (dask, distributed, xarray, zarr), and only when a sweep runs; importing this
-package (or :mod:`.grid`, which scenes use to read a ``[sweep]`` section) loads none of them.
+package (or ``grid``, which scenes use to read a ``[sweep]`` section) loads none of them.
 
 Examples
 --------

@@ -1,4 +1,4 @@
-"""The front door :func:`sweep`: check, derive once, run on Dask, keep the results."""
+"""The front door ``sweep``: check, derive once, run on Dask, keep the results."""
 
 from __future__ import annotations
 
@@ -82,7 +82,7 @@ def sweep(
     """Evaluate (and validate) ``problem``'s periodic solution over a grid of its parameters.
 
     The solution is derived once (symbolic in the swept parameters where the problem allows,
-    :mod:`perturb.sweep.derive`), the points are computed in chunks on Dask and written as they
+    ``perturb.sweep.derive``), the points are computed in chunks on Dask and written as they
     finish.
 
     Parameters
@@ -95,7 +95,7 @@ def sweep(
         ``:log`` and ``NAME=V1,V2,...``), or ``{"r0": values, ...}``.
     order : int
     validate : bool
-        Also shoot and judge every point, exactly as :func:`perturb.validation.validate`
+        Also shoot and judge every point, exactly as ``perturb.validation.validate``
         (``perturb validate``) with ``integrator``, ``periods`` and ``tol``.
     times : sequence of float
         Physical times of the state recorded at every point (default: the initial state).
@@ -116,7 +116,7 @@ def sweep(
     timeout : float
         Seconds to wait for the ``scheduler`` to answer.
     yes : bool
-        Confirm a grid of more than :data:`perturb._defaults.SWEEP_CONFIRM_POINTS` points.
+        Confirm a grid of more than ``perturb._defaults.SWEEP_CONFIRM_POINTS`` points.
     attrs : mapping, optional
         Extra attributes for the results (e.g. how the problem was named).
 
