@@ -39,6 +39,10 @@ _LAZY = {
     "validate": "perturb.validation",
 }
 
+#: Public names that are subpackages called like functions (``perturb.sweep(...)``: the package
+#: :mod:`perturb.sweep` is callable); imported on first access, which needs their extra.
+_LAZY_MODULES = {"sweep": "perturb.sweep"}
+
 __all__ = [
     "EPS",
     "AccuracyWarning",
@@ -60,11 +64,14 @@ __all__ = [
     "find_families",
     "frequency_response",
     "solve",
+    "sweep",
     "validate",
 ]
 
 
 def __getattr__(name: str):
+    if name in _LAZY_MODULES:
+        return importlib.import_module(_LAZY_MODULES[name])  # the import sets the attribute
     module = _LAZY.get(name)
     if module is None:
         raise AttributeError(f"module 'perturb' has no attribute {name!r}")

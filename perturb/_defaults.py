@@ -182,6 +182,59 @@ SCENE_MAX_REPEAT = 100
 #: Closeness (difflib ratio) above which an unknown name in a scene gets a "did you mean".
 SCENE_SUGGESTION_CUTOFF = 0.6
 
+# ---------------------------------------------------------------------------------- sweeps
+#: A sweep of more points than this asks for confirmation (``--yes``, ``yes=True``): at 10^5
+#: points/s an evaluation of 10^7 points already takes minutes and its store hundreds of MB, and a
+#: typing slip (an extra zero in N) should not start an hour of work unasked.
+SWEEP_CONFIRM_POINTS = 10_000_000
+
+#: Most points of one sweep even with confirmation: 10^10 float64 values per quantity are 80 GB
+#: a variable; beyond it the grid is a mistake rather than a plan.
+SWEEP_MAX_POINTS = 10_000_000_000
+
+#: Samples of one period from which a component's amplitude (half its range) is found; each
+#: extreme is then refined on the quartic through it and its four neighbours (the quartic's
+#: interpolation error, max|x^(5)| (2 pi/256)^5 1.41/120: ~1e-10 of a first harmonic's amplitude).
+#: Solutions evaluated in one vectorised call are refined on their own trigonometric polynomial,
+#: exact to rounding; the samples only find which extreme is the highest.
+SWEEP_AMPLITUDE_SAMPLES = 256
+
+#: Work one task (a chunk of points) should hold: Dask's scheduling costs a few ms a task and the
+#: driver's write of a chunk's results about 30-50 ms (``benchmarks/bench_sweep.md``), so 2 s
+#: keeps both under 3 %, inside the 5 % allowed, while a 10^4-point validated map still makes
+#: hundreds of chunks to share among the workers.
+SWEEP_TASK_SECONDS = 2.0
+
+#: Fewest chunks per worker when the grid allows it: with four, the last chunks to finish keep
+#: every worker busy, and an interrupted sweep loses at most a quarter of a worker's share.
+SWEEP_CHUNKS_PER_WORKER = 4
+
+#: Points evaluated on the driver to time one point before the chunks are sized (evaluation; a
+#: validated sweep times SWEEP_PILOT_VALIDATIONS points one by one and takes the median, after a
+#: first one that pays the one-time costs): enough to average the per-call overheads.
+SWEEP_PILOT_POINTS = 64
+SWEEP_PILOT_VALIDATIONS = 3
+
+#: A sweep whose swept parameters enter the problem's derivation makes each distinct derivation
+#: once (per point) rather than one symbolic derivation when each serves this many points on
+#: average: the disk at order 2 (measured, benchmarks/bench_sweep.md) derives one parameter set in
+#: ~2.5 s and then validates a point in ~0.07 s, against ~0.18 s a point from the symbolic
+#: solution, so a derivation pays for itself after ~20 points.
+SWEEP_POINTS_PER_DERIVATION = 20
+
+#: Most points of one chunk: a chunk's results travel back to the driver in one message, and its
+#: state at many times grows as points x times x components.
+SWEEP_MAX_CHUNK_POINTS = 100_000
+
+#: Seconds to wait for an existing Dask scheduler (``--scheduler``) before giving up with one
+#: line (exit 2): a scheduler on the network answers in well under a second.
+SWEEP_CONNECT_SECONDS = 10.0
+
+#: Relative margin of the vectorised domain screen: a point whose terms are within this fraction of
+#: failing (or passing) the check is decided by :func:`perturb.domain.series_domain` itself, so the
+#: screen's round-off (float64 against sympy's evaluation) can never change a status.
+SWEEP_DOMAIN_MARGIN = 1e-9
+
 
 # --------------------------------------------------------------------------------------------------
 # Validation (perturb.validation): the verdict's tolerances and the measurements' settings

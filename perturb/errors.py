@@ -17,6 +17,7 @@ __all__ = [
     "PerturbError",
     "ProblemLoadError",
     "SceneError",
+    "SweepError",
     "UnknownNameError",
 ]
 
@@ -193,3 +194,8 @@ class SceneError(PerturbError, ValueError):
     """A scene file (``perturb report SCENE.toml``) that cannot be used: malformed TOML (the line is
     named), an unknown section, key, problem, parameter or plot name (the closest is suggested), a
     value of the wrong type, or an output folder that cannot be written."""
+
+
+class SweepError(PerturbError, RuntimeError):
+    """A sweep that could not finish: chunks whose workers died again and again, or an
+    interrupted run (the store keeps every point written; ``--resume`` continues it)."""

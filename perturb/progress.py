@@ -21,7 +21,7 @@ import contextvars
 from collections.abc import Callable, Iterable, Iterator, Sized
 from typing import TypeVar
 
-__all__ = ["Listener", "listening", "track"]
+__all__ = ["Listener", "listening", "notify", "track"]
 
 T = TypeVar("T")
 
@@ -64,4 +64,12 @@ def track(items: Iterable[T], *, label: str, total: int | None = None) -> Iterat
     listener(label, 0, total)
     for done, item in enumerate(items, start=1):
         yield item
+        listener(label, done, total)
+
+
+def notify(label: str, done: int, total: int | None) -> None:
+    """Tell the current listener (if any) how far a computation has come, when the work is not a
+    loop over an iterable (e.g. points of a sweep finishing in chunks, in any order)."""
+    listener = _LISTENER.get()
+    if listener is not None:
         listener(label, done, total)

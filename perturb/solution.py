@@ -325,11 +325,28 @@ class PeriodicSolution:
             for p in params
         ]
 
+    @cached_property
+    def _recent(self) -> dict:
+        """The coefficients at the last few scalar parameter sets (see :meth:`coefficients`)."""
+        return {}
+
     def coefficients(self, parameter_value, values: Mapping | None = None):
-        """Numeric ``(Omega, cos, sin)``: cos/sin have shape ``(n, harmonics + 1, *broadcast)``."""
+        """Numeric ``(Omega, cos, sin)``: cos/sin have shape ``(n, harmonics + 1, *broadcast)``.
+
+        At one parameter set (scalars) the arrays are kept for the next calls at the same numbers
+        (read-only, the last :data:`RECENT_COEFFICIENTS` sets): a state, its period and its initial
+        state ask for them in turn, and a symbolic solution's coefficients can take milliseconds.
+        """
         fn, _, h = self._compiled
         eps = self._epsilon(parameter_value)
         args = self._params(values)
+        key = None
+        if eps.ndim == 0 and all(a.ndim == 0 for a in args):
+            key = (float(eps), *(float(a) for a in args))
+            kept = self._recent.get(key)
+            if kept is not None:
+                self._warn_near_resonance(args)
+                return kept
         with np.errstate(divide="ignore", invalid="ignore"):
             omega, cos_rows, sin_rows = fn(eps, *args)
         shape = np.broadcast_shapes(np.shape(eps), *(np.shape(a) for a in args))
@@ -349,6 +366,13 @@ class PeriodicSolution:
                 "construction assumed absent, or a vanishing detuning); choose other parameter values"
             )
         self._warn_near_resonance(args)
+        if key is not None:
+            for array in (omega, cos, sin):
+                array.setflags(write=False)
+            recent = self._recent
+            if len(recent) >= RECENT_COEFFICIENTS:
+                recent.pop(next(iter(recent)))
+            recent[key] = (omega, cos, sin)
         return omega, cos, sin
 
     def _warn_near_resonance(self, args) -> None:
@@ -421,6 +445,10 @@ class PeriodicSolution:
         """State at ``t = 0`` (shape ``(2n, *param_shape)``)."""
         return self.evaluate(np.zeros(()), parameter_value, values)
 
+
+#: Parameter sets whose coefficients a solution keeps (:meth:`PeriodicSolution.coefficients`): a
+#: validation asks at its own set and at the sets of its order check (four values of epsilon).
+RECENT_COEFFICIENTS = 8
 
 #: Points per block in the scalar evaluation: small enough for the block's complex work arrays to
 #: stay in the L2 cache (16384 complex numbers = 256 KiB), which makes in-place Horner ~3x faster.

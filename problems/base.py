@@ -66,6 +66,41 @@ _SOLUTION_CACHE: dict[tuple, PeriodicSolution] = {}
 _FAMILY_CACHE: dict[tuple, FamilyList] = {}
 
 
+_OPTION_KEYS: dict = {}
+#: Most keys kept by :func:`_options_key` (options that carry parameter values differ per point).
+_OPTION_KEYS_SIZE = 4096
+
+
+def _frozen_options(value):
+    """``value`` (nested dicts, lists, sympy objects, numbers) as a hashable tuple, or None."""
+    if isinstance(value, dict):
+        items = [(k, _frozen_options(v)) for k, v in value.items()]
+        return None if any(v is None for _, v in items) else ("dict", tuple(items))
+    if isinstance(value, list | tuple):
+        items = [_frozen_options(v) for v in value]
+        return None if any(v is None for v in items) else (type(value).__name__, tuple(items))
+    try:
+        hash(value)
+    except TypeError:
+        return None
+    return (type(value).__name__, value)
+
+
+def _options_key(options: dict) -> str:
+    """``repr(sorted(options.items()))``, the solution cache's key of the method options, kept per
+    options so that a solve already cached costs a dictionary lookup instead of printing sympy
+    expressions (a sweep asks for it at every point)."""
+    frozen_ = _frozen_options(options)
+    if frozen_ is None:
+        return repr(sorted(options.items()))
+    key = _OPTION_KEYS.get(frozen_)
+    if key is None:
+        if len(_OPTION_KEYS) >= _OPTION_KEYS_SIZE:
+            _OPTION_KEYS.clear()
+        key = _OPTION_KEYS[frozen_] = repr(sorted(options.items()))
+    return key
+
+
 @frozen
 class ParameterSpec:
     """A named parameter with its default, meaning and admissible range.
@@ -304,7 +339,7 @@ class Problem(Model, ABC):
         if name is not None:
             return self.family_solution(order, name)
         options = self.method_options()
-        key = (type(self).__module__, type(self).__qualname__, order, repr(sorted(options.items())))
+        key = (type(self).__module__, type(self).__qualname__, order, _options_key(options))
         if key not in _SOLUTION_CACHE:
             _SOLUTION_CACHE[key] = PoincareMethod(order=order, **options).solve(self.system())
         return _SOLUTION_CACHE[key]
@@ -319,8 +354,10 @@ class Problem(Model, ABC):
         return state_along(solution, t, self.parameter_value(), self.symbol_values())
 
     def with_parameters(self, **values) -> Problem:
-        """The same problem with some parameters changed (validated as by :meth:`create`)."""
-        return type(self).create(**{**self.values, **values}).with_family(self.family)
+        """The same problem with some parameters changed (validated as by :meth:`create`), on the
+        same family (the Model hook a sweep makes its points with)."""
+        problem = type(self).create(**{**self.values, **values})
+        return problem if self.family is None else problem.with_family(self.family)
 
     # ------------------------------------------------------------------ driven problems
     def steady_state(self, order: int = 1):
@@ -422,6 +459,12 @@ class Problem(Model, ABC):
         name, exponent = knob
         factor = (eps / float(self.epsilon())) ** (1.0 / exponent)
         return type(self).create(**{**self.values, name: self.values[name] * factor})
+
+    def evaluates_solution_directly(self) -> bool:
+        """True unless the class maps the solution to its own state or period (``state``,
+        ``period`` overridden)."""
+        own = type(self).state is Problem.state and type(self).period is Problem.period
+        return own and self.system().excitation is None  # a driven state adds the phase
 
     def _epsilon_knob(self) -> tuple[str, float] | None:
         """``(name, exponent)`` of a parameter with ε ∝ p^exponent that leaves ``symbol_values()``

@@ -112,3 +112,41 @@ def test_only_the_cli_imports_the_leaves(path):
 def test_no_file_holds_two_rooms(path):
     n_lines = len(path.read_text(encoding="utf-8").splitlines())
     assert n_lines <= MAX_LINES, f"{path.relative_to(ROOT)} has {n_lines} lines (limit {MAX_LINES})"
+
+
+#: The extra ``perturb[sweep]``: imported by the sweep room only (docs/architecture.md).
+SWEEP_EXTRA = ("dask", "distributed", "xarray", "zarr", "cloudpickle")
+#: Inside the sweep room, the modules that talk to Dask and the stores.
+SWEEP_EXTRA_IMPORTERS = ("perturb.sweep.driver", "perturb.sweep.store", "perturb.sweep.memory")
+
+
+@pytest.mark.parametrize("path", list(_sources()), ids=_module_name)
+def test_only_the_sweep_room_imports_dask_xarray_zarr(path):
+    module = _module_name(path)
+    offending = [
+        (line, name)
+        for line, name in _imports(path)
+        if any(_is_under(name, extra) for extra in SWEEP_EXTRA)
+    ]
+    if module in SWEEP_EXTRA_IMPORTERS:
+        offending = []
+    assert not offending, f"{path.relative_to(ROOT)} imports the sweep extra at {offending}"
+
+
+@pytest.mark.parametrize("argv", [["--help"], ["sweep", "--help"], ["list"]])
+def test_the_command_line_loads_no_sweep_extra_unasked(argv):
+    import subprocess
+    import sys
+
+    code = (
+        "import sys\n"
+        "from perturb.cli import main\n"
+        "try:\n"
+        f"    main({argv!r})\n"
+        "except SystemExit:\n"
+        "    pass\n"
+        f"loaded = sorted(m for m in sys.modules if m.split('.')[0] in {SWEEP_EXTRA!r})\n"
+        "print(loaded)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip().splitlines()[-1] == "[]"

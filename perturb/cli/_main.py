@@ -8,6 +8,7 @@ import importlib
 import io
 import os
 import sys
+import time
 import warnings
 from collections.abc import Iterator, Sequence
 from pathlib import Path
@@ -24,21 +25,38 @@ def _format_warning(message, category, filename, lineno, line=None) -> str:
 
 
 class _ProgressBar:
-    """A one-line bar on stderr, redrawn in place: ``perturb: work-precision [#####.....] 12/24``."""
+    """A one-line bar on stderr, redrawn in place: ``perturb: work-precision [#####.....] 12/24``,
+    with the rate and the time left once there is a rate to tell
+    (``perturb: sweep disk      85.3/s ETA  1m43s [###.....] 1200/10000``)."""
 
     WIDTH = 30
 
-    def __init__(self, stream):
+    def __init__(self, stream, clock=time.monotonic):
         self.stream = stream
         self.drawn = False
+        self.clock = clock
+        self.start: tuple[str, int, float] | None = None
+
+    def _rate(self, label: str, done: int, total: int | None) -> str:
+        now = self.clock()
+        if self.start is None or self.start[0] != label or done < self.start[1]:
+            self.start = (label, done, now)  # counted from here: work done before is not timed
+            return ""
+        count, seconds = done - self.start[1], now - self.start[2]
+        if count <= 0 or seconds <= 0:
+            return ""
+        rate = count / seconds
+        eta = _duration((total - done) / rate) if total and done < total else ""
+        return f"{rate:9.3g}/s ETA {eta:>6s} "  # fixed width: the line never shrinks
 
     def __call__(self, label: str, done: int, total: int | None) -> None:
+        rate = self._rate(label, done, total)
         if total:
             filled = self.WIDTH * done // total
             bar = f"[{'#' * filled}{'.' * (self.WIDTH - filled)}] {done}/{total}"
         else:
             bar = f"{done} done"
-        self.stream.write(f"\rperturb: {label} {bar}")
+        self.stream.write(f"\rperturb: {label} {rate}{bar}")
         self.stream.flush()
         self.drawn = True
         if total and done >= total:
@@ -49,6 +67,17 @@ class _ProgressBar:
             self.stream.write("\n")
             self.stream.flush()
             self.drawn = False
+        self.start = None
+
+
+def _duration(seconds: float) -> str:
+    """``42s``, ``3m07s``, ``2h05m``."""
+    seconds = int(round(seconds))
+    if seconds < 60:
+        return f"{seconds}s"
+    if seconds < 3600:
+        return f"{seconds // 60}m{seconds % 60:02d}s"
+    return f"{seconds // 3600}h{seconds % 3600 // 60:02d}m"
 
 
 @contextlib.contextmanager
@@ -64,8 +93,9 @@ def _progress(args) -> Iterator[None]:
                 bar.close()
 
 
-#: Commands whose ``--output`` is a folder of report files (their own meaning, kept).
-_FOLDER_OUTPUT = ("reproduce", "report")
+#: Commands whose ``--output`` is their own (a folder of report files, a sweep's store): not a
+#: redirection of what they print.
+_FOLDER_OUTPUT = ("reproduce", "report", "sweep")
 
 
 def _output_file(path: str) -> Path:
@@ -122,6 +152,7 @@ _COMMANDS = {
     "families": _command("_cmd_families"),
     "response": _command("_cmd_response", "_response"),
     "report": _command("_cmd_report", "_report"),
+    "sweep": _command("_cmd_sweep", "_sweep"),
 }
 
 

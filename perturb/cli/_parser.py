@@ -19,6 +19,7 @@ _EPILOG = """examples:
   perturb reproduce paper
   perturb work-precision duffing --periods 10 --orders 3 --format csv
   perturb report examples/scenes/disk-fast-spin.toml --output disk-report
+  perturb sweep duffing --grid eps=0.01:0.2:20 --grid amplitude=0.5:2:16 --validate --output duffing.zarr
 """
 
 
@@ -177,8 +178,9 @@ def _build_parser() -> argparse.ArgumentParser:
     report.add_argument(
         "--output", required=True, metavar="DIR", help="the report folder (created if missing)"
     )
+    _add_sweep(sub)
     for name, command in sub.choices.items():
-        if name not in ("reproduce", "report"):  # theirs is a folder (DIR), kept as it was
+        if name not in ("reproduce", "report", "sweep"):  # theirs is a folder (DIR), or a store
             command.add_argument(
                 "--output",
                 default=None,
@@ -239,3 +241,96 @@ def _add_family_arguments(sub, solve, validate) -> None:
             metavar="NAME",
             help="follow the family NAME (see `perturb families PROBLEM`) instead of the default",
         )
+
+
+def _add_sweep(sub) -> None:
+    """``perturb sweep``: a problem's solution over a grid of its parameters, on Dask."""
+    sweep = sub.add_parser(
+        "sweep",
+        help="evaluate (and validate) a problem's solution over a grid of parameters, on Dask",
+        description="Derive PROBLEM's periodic solution once, then evaluate it at every point of "
+        "the grid (period, frequency, amplitudes, the state at --times) and, with --validate, "
+        "shoot and judge each point as `perturb validate` does. The points run in chunks on a "
+        "Dask cluster (a LocalCluster over this machine's cores, or --scheduler) and are written "
+        "to the Zarr store --output as they finish; --resume continues an interrupted sweep. "
+        "Needs the extra perturb[sweep].",
+    )
+    _add_problem_arguments(sweep)
+    sweep.add_argument(
+        "--grid",
+        dest="grids",
+        action="append",
+        default=[],
+        metavar="NAME=START:STOP:N",
+        help="a swept parameter (repeatable; one dimension each): N evenly spaced values from "
+        "START to STOP, both included; NAME=START:STOP:N:log for evenly spaced logarithms; "
+        "NAME=V1,V2,... for listed values",
+    )
+    sweep.add_argument(
+        "--validate",
+        action="store_true",
+        help="also validate every point against the true motion (verdict, orbit and period "
+        "errors, Floquet multipliers, order slope)",
+    )
+    sweep.add_argument(
+        "--times",
+        default=None,
+        metavar="TIMES",
+        help="times at which the state is recorded (physical units; default 0): as for solve",
+    )
+    sweep.add_argument("--family", default=None, metavar="NAME", help="follow the family NAME")
+    sweep.add_argument(
+        "--integrator", default=None, help="the validation's integrator (as for validate)"
+    )
+    sweep.add_argument(
+        "--periods", default="10", help="the validation's trajectory horizon (default 10)"
+    )
+    sweep.add_argument("--tol", default=None, help="the validation's tolerance (default 0.1)")
+    sweep.add_argument(
+        "--derive",
+        default="auto",
+        choices=["auto", "per-point"],
+        help="auto (default): one derivation, symbolic in the swept parameters where the "
+        "problem allows; per-point: each point's own derivation, as `perturb validate` does",
+    )
+    sweep.add_argument(
+        "--workers",
+        default=None,
+        help="worker processes of the local Dask cluster (default: one per core)",
+    )
+    sweep.add_argument(
+        "--scheduler",
+        default=None,
+        metavar="ADDRESS",
+        help="run on an existing Dask cluster: its scheduler's address, tcp://HOST:PORT",
+    )
+    sweep.add_argument(
+        "--timeout",
+        default=None,
+        metavar="SECONDS",
+        help="how long to wait for --scheduler to answer (default 10)",
+    )
+    sweep.add_argument(
+        "--output",
+        default=None,
+        metavar="STORE",
+        help="the Zarr store written chunk by chunk (with --format csv|json: the file written "
+        "instead of printing)",
+    )
+    sweep.add_argument(
+        "--resume",
+        action="store_true",
+        help="continue the sweep in the store --output (the same command): no point twice",
+    )
+    sweep.add_argument(
+        "--format",
+        default="zarr",
+        choices=["zarr", "csv", "json"],
+        help="zarr (default: the store --output, a summary printed), or csv/json of every point "
+        "(small sweeps)",
+    )
+    sweep.add_argument(
+        "--yes",
+        action="store_true",
+        help=f"confirm a grid of more than {10**7:,} points",
+    )

@@ -14,7 +14,7 @@ from perturb.errors import InvalidParameterError, ProblemLoadError, UnknownNameE
 
 def _load(scene):
     """The scene's problem, created with its parameters and family (errors name the scene file)."""
-    from perturb.scene import check_parameter_names
+    from perturb.scene import check_parameter_names, check_sweep_names
     from problems import load_problem
 
     try:
@@ -22,6 +22,7 @@ def _load(scene):
     except (UnknownNameError, ProblemLoadError) as exc:
         raise scene.error(f"[problem] name: {exc}") from None
     check_parameter_names(scene, [s.name for s in cls.parameter_specs], cls.name)
+    check_sweep_names(scene, [s.name for s in cls.parameter_specs], cls.name)
     try:
         problem = cls.create(**scene.parameters)
     except (InvalidParameterError, UnknownNameError) as exc:
@@ -41,6 +42,14 @@ def _cmd_report(args) -> int:
     from perturb.scene.run import check_scene, run_scene
 
     scene = read_scene(args.scene)
+    if scene.sweep is not None and scene.outputs.needs_sweep:
+        from perturb.errors import MissingDependencyError
+        from perturb.sweep.api import require_extra
+
+        try:
+            require_extra()
+        except MissingDependencyError as exc:
+            raise _UsageError(f"{args.scene}: [sweep] {exc}, or remove the sweep") from None
     if scene.outputs.plots:
         try:
             import matplotlib  # noqa: F401

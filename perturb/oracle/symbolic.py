@@ -8,6 +8,7 @@ expressions itself; the sympy → heyoka translation is :func:`perturb.oracle.tr
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable, Sequence
 from functools import cached_property
 from typing import Any
@@ -92,7 +93,7 @@ class SymbolicRHS:
 
     @cached_property
     def _numeric(self) -> Callable[..., Any]:
-        return numpy_lambdify(self.state, list(self.expressions), cse=True)
+        return _derived(self, "numeric")
 
     def _cache_parts(self) -> tuple:
         """The disk-cache key of what is derived from this field: its exact state and expressions
@@ -105,14 +106,14 @@ class SymbolicRHS:
 
         Kept in memory and on disk (:func:`perturb.cache.cached`, kind ``jacobian``).
         """
-        return cached("jacobian", self._cache_parts, self._derive_jacobian)
+        return _derived(self, "jacobian_expressions")
 
     def _derive_jacobian(self) -> sp.Matrix:
         return sp.Matrix(self.expressions).jacobian(sp.Matrix(self.state))
 
     @cached_property
     def _numeric_jacobian(self) -> Callable[..., Any]:
-        return numpy_lambdify(self.state, self.jacobian_expressions, cse=True)
+        return _derived(self, "numeric_jacobian")
 
     def __call__(self, y: Sequence[float]) -> np.ndarray:
         """Evaluate :math:`f(y)` for one state vector ``y`` of shape ``(n,)``."""
@@ -131,11 +132,44 @@ class SymbolicRHS:
         period gives the monodromy matrix.  Kept in memory and on disk (kind ``variational``;
         the Jacobian's symbols ``Phi`` are :class:`sympy.Dummy`, read back as the same dummies).
         """
-        state, expressions = cached("variational", self._cache_parts, self._derive_variational)
-        return SymbolicRHS(state, expressions)
+        return _derived(self, "variational")
 
     def _derive_variational(self) -> tuple[tuple, tuple]:
         n = self.n
         phi = sp.Matrix(n, n, lambda i, j: sp.Dummy(f"Phi{i}_{j}"))
         phi_dot = self.jacobian_expressions * phi
         return self.state + tuple(phi), self.expressions + tuple(phi_dot)
+
+
+#: Fields whose numeric functions are kept by value (:func:`_derived`): a sweep builds an equal
+#: field at every point, and a validation asks each for its numeric functions.
+DERIVED_CACHE_SIZE = 64
+
+
+@functools.lru_cache(maxsize=DERIVED_CACHE_SIZE)
+def _derived_objects(rhs: SymbolicRHS) -> dict:
+    return {}
+
+
+def _derived(rhs: SymbolicRHS, what: str):
+    """The object ``what`` derived from ``rhs``: the numeric functions (``numeric``,
+    ``numeric_jacobian``) are shared by every equal field (the same lambdified code, so the
+    same numbers); the symbolic Jacobian and variational equations are this object's own, read
+    from the disk cache for a new object as before."""
+    if what not in ("numeric", "numeric_jacobian"):
+        return _derive(rhs, what)
+    store = _derived_objects(rhs)
+    if what not in store:
+        store[what] = _derive(rhs, what)
+    return store[what]
+
+
+def _derive(rhs: SymbolicRHS, what: str):
+    if what == "numeric":
+        return numpy_lambdify(rhs.state, list(rhs.expressions), cse=True)
+    if what == "jacobian_expressions":
+        return cached("jacobian", rhs._cache_parts, rhs._derive_jacobian)
+    if what == "numeric_jacobian":
+        return numpy_lambdify(rhs.state, rhs.jacobian_expressions, cse=True)
+    state, expressions = cached("variational", rhs._cache_parts, rhs._derive_variational)
+    return SymbolicRHS(state, expressions)

@@ -11,6 +11,7 @@ file                        written when ``[outputs]`` has
 ``validation.json``         ``validation = true``
 ``work_precision.csv``      ``work_precision = true`` (``method,setting,error,seconds``)
 ``solution.tex``            ``latex = true``
+``sweep.zarr``, ``.csv``    ``sweep = true`` (the ``[sweep]``'s points: a Zarr store, a table)
 ``NAME.png`` (``.pdf``...)  ``plots = ["NAME", ...]`` (``formats``: png, pdf, svg)
 ==========================  ==================================================
 
@@ -31,9 +32,10 @@ import numpy as np
 
 from perturb.errors import SceneError
 from perturb.report.latex import solution_document
+from perturb.report.sweep import sweep_as_csv
 from perturb.report.validation import validation_as_dict
 from perturb.report.workprecision import work_precision_as_csv
-from perturb.scene.spec import PLOT_FORMATS, PLOT_NAMES
+from perturb.scene.spec import MAP_PLOTS, PLOT_FORMATS, PLOT_NAMES
 
 __all__ = ["SUMMARY", "prepare_folder", "report_files", "summary_markdown", "write_report"]
 
@@ -41,6 +43,7 @@ __all__ = ["SUMMARY", "prepare_folder", "report_files", "summary_markdown", "wri
 SUMMARY = "summary.md"
 
 _DATA_FILES = (
+    "sweep.csv",
     "solution.csv",
     "solution.json",
     "euler.csv",
@@ -85,6 +88,7 @@ def report_files(scene) -> list[str]:
     names += ["validation.json"] if out.validation else []
     names += ["work_precision.csv"] if out.work_precision else []
     names += ["solution.tex"] if out.latex else []
+    names += ["sweep.zarr", "sweep.csv"] if out.sweep else []
     names += [f"{plot}.{fmt}" for plot in out.plots for fmt in out.formats]
     return names
 
@@ -154,6 +158,8 @@ def _draw(name: str, result, notes: list[str]):
             slope=fit.slope if math.isfinite(fit.slope) else None,
             slope_band=fit.band,
         )
+    if name in MAP_PLOTS:
+        return _map(name, result, notes)
     if name == "work_precision":
         if result.work_precision is None:
             notes.append("plot 'work_precision' skipped: no work-precision runs")
@@ -167,6 +173,62 @@ def _draw(name: str, result, notes: list[str]):
     span = min(result.period, float(t[-1]))
     instants = [f * span for f in ORIENTATION_FRACTIONS]
     return plots.plot_orientation(t, result.euler, instants, time_unit="")
+
+
+def _map(name: str, result, notes: list[str]):
+    """A validity map of the scene's sweep (two axes)."""
+    from perturb.report import plots
+
+    ds = result.sweep
+    if ds is None:
+        notes.append(f"plot {name!r} skipped: the sweep was not computed")
+        return None
+    (xname, x), (yname, y) = [
+        (axis["name"], np.asarray(axis["values"])) for axis in json.loads(ds.attrs["grid"])
+    ]
+    names = {"xname": xname, "yname": yname}
+    if name == "verdict_map":
+        labels = {int(k): v for k, v in json.loads(ds["verdict"].attrs["labels"]).items()}
+        return plots.plot_verdict_map(x, y, ds["verdict"].values, labels, **names)
+    if name == "error_map":
+        tol = json.loads(ds.attrs["settings"])["tol"]
+        return plots.plot_error_map(x, y, ds["orbit_error"].values, tol=tol, **names)
+    if name == "slope_map":
+        from perturb._defaults import SLOPE_TOLERANCE
+
+        expected = result.scene.order + 1.0
+        return plots.plot_slope_map(
+            x, y, ds["order_slope"].values, expected=expected, band=SLOPE_TOLERANCE, **names
+        )
+    return plots.plot_period_map(x, y, ds["period"].values, **names)
+
+
+def _sweep_lines(ds) -> list[str]:
+    """The summary's lines about the sweep: its size and what became of its points."""
+    import collections
+
+    from perturb.sweep.status import PointStatus, member_of
+    from perturb.validation import Verdict
+
+    axes = [(a["name"], len(a["values"])) for a in json.loads(ds.attrs["grid"])]
+    count = collections.Counter(int(c) for c in ds["status"].values.ravel())
+    parts = [
+        f"{member_of(PointStatus, c).name.lower()} {n}" for c, n in sorted(count.items()) if c >= 0
+    ]
+    lines = [
+        f"- sweep: {int(ds['status'].size)} points over "
+        + " × ".join(f"{n} ({k})" for n, k in axes)
+        + f": {', '.join(parts)}"
+    ]
+    if "verdict" in ds:
+        verdicts = collections.Counter(int(c) for c in ds["verdict"].values.ravel())
+        lines.append(
+            "- sweep verdicts: "
+            + ", ".join(
+                f"{member_of(Verdict, c).label} {n}" for c, n in sorted(verdicts.items()) if c >= 0
+            )
+        )
+    return lines
 
 
 def _full(truth, n: int):
@@ -191,6 +253,8 @@ def summary_markdown(result, files: list[str]) -> str:
         lines += [f"- **verdict: {report.outcome.name}** — {report.verdict}"]
     elif not result.failure:
         lines += ["- verdict: not validated (add `validation = true` to [outputs])"]
+    if result.sweep is not None:
+        lines += _sweep_lines(result.sweep)
     if result.work_precision is not None:
         wp = result.work_precision
         best = {}
@@ -241,6 +305,8 @@ def write_report(result, folder) -> tuple[list[str], str]:
         written["work_precision.csv"] = work_precision_as_csv(result.work_precision) + "\n"
     if out.latex and usable:
         written["solution.tex"] = solution_document(result.solution, result.label)
+    if out.sweep and result.sweep is not None:
+        written["sweep.csv"] = sweep_as_csv(result.sweep) + "\n"
     figures = {}
     if out.plots:
         for name in out.plots:
@@ -248,6 +314,8 @@ def write_report(result, folder) -> tuple[list[str], str]:
             if figure is not None:
                 figures[name] = figure
     files = ["scene.toml", SUMMARY, *[n for n in written if n != "scene.toml"]]
+    if out.sweep and result.sweep is not None:
+        files.insert(files.index("sweep.csv"), "sweep.zarr")
     files += [f"{name}.{fmt}" for name in figures for fmt in out.formats]
     if notes:
         result = _with_notes(result, notes)
@@ -257,6 +325,10 @@ def write_report(result, folder) -> tuple[list[str], str]:
         _remove_stale(folder, set(files))
         for name, content in written.items():
             (folder / name).write_text(content, encoding="utf-8")
+        if "sweep.zarr" in files:
+            from perturb.sweep.store import write_dataset
+
+            write_dataset(result.sweep, folder / "sweep.zarr")
         for name, figure in figures.items():
             for fmt in out.formats:
                 figure.savefig(folder / f"{name}.{fmt}", format=fmt)
@@ -282,3 +354,8 @@ def _remove_stale(folder: Path, keep: set[str]) -> None:
         path = folder / name
         if path.is_file():
             path.unlink()
+    store = folder / "sweep.zarr"
+    if "sweep.zarr" not in keep and store.is_dir():
+        from perturb.sweep.store import remove_store
+
+        remove_store(store)  # only a perturb sweep store (the report's own) is removed

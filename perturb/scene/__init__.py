@@ -8,13 +8,16 @@ lazy pipeline: computes only what the outputs need). Writing the folder is the r
 
 from perturb.scene.spec import (
     EULER_PLOTS,
+    MAP_PLOTS,
     PLOT_FORMATS,
     PLOT_NAMES,
     TRUTH_PLOTS,
     Outputs,
     Scene,
+    SweepSettings,
     WorkPrecisionSettings,
     check_parameter_names,
+    check_sweep_names,
     parse_scene,
     read_scene,
 )
@@ -31,14 +34,17 @@ def __getattr__(name: str):
 
 __all__ = [
     "EULER_PLOTS",
+    "MAP_PLOTS",
     "PLOT_FORMATS",
     "PLOT_NAMES",
     "TRUTH_PLOTS",
     "Outputs",
     "Scene",
     "SceneResult",
+    "SweepSettings",
     "WorkPrecisionSettings",
     "check_parameter_names",
+    "check_sweep_names",
     "parse_scene",
     "read_scene",
     "run_scene",

@@ -8,6 +8,7 @@ the analytic state over the horizon      ``table``, or a plot of the state
 the true trajectory (an integration)     the ``time_series``, ``error``, ``phase`` plots
 the validation (integrations, shooting)  ``validation``, the ``convergence`` plot
 the work–precision runs                  ``work_precision`` (table or plot)
+the sweep over ``[sweep]``'s grid        ``sweep``, a validity map (on Dask, in memory)
 the Euler angles                         ``euler``, the ``euler``/``orientation`` plots
 =======================================  =============================================
 
@@ -65,11 +66,13 @@ class SceneResult:
         The Euler angles of the analytic solution at ``t``.
     validation : perturb.validation.ValidationReport or None
     work_precision : perturb.workprecision.WorkPrecision or None
+    sweep : xarray.Dataset or None
+        The ``[sweep]``'s points (:func:`perturb.sweep`), kept in memory.
     notes : tuple of str
         Warnings raised while computing, and steps skipped with the reason.
     computed : tuple of str
         The steps run, in order (``"solve"``, ``"state"``, ``"truth"``, ``"euler"``,
-        ``"validation"``, ``"work_precision"``).
+        ``"validation"``, ``"work_precision"``, ``"sweep"``).
     seconds : dict
         Wall time of each step.
     """
@@ -88,6 +91,7 @@ class SceneResult:
     euler: dict | None = field(default=None, eq=False)
     validation: object | None = None
     work_precision: object | None = None
+    sweep: object | None = field(default=None, eq=False)
     notes: tuple = ()
     computed: tuple = ()
     seconds: dict = field(factory=dict, eq=False)
@@ -219,6 +223,8 @@ def run_scene(scene: Scene, problem) -> SceneResult:
         todo.append(("validation", lambda: _validate(scene, model)))
     if not failure and outputs.needs_work_precision:
         todo.append(("work_precision", lambda: _work_precision(scene, model)))
+    if scene.sweep is not None and outputs.needs_sweep:  # each point says why it failed
+        todo.append(("sweep", lambda: _sweep(scene, model)))
     for name, work in track(todo, label=f"report {model.label()}"):
         step(name, work)
 
@@ -242,6 +248,7 @@ def run_scene(scene: Scene, problem) -> SceneResult:
         euler=values.get("euler"),
         validation=values.get("validation"),
         work_precision=values.get("work_precision"),
+        sweep=values.get("sweep"),
         notes=tuple(state["notes"]),
         computed=tuple(state["computed"]),
         seconds=dict(state["seconds"]),
@@ -269,4 +276,23 @@ def _work_precision(scene: Scene, model: Model):
         periods=settings.periods or scene.periods,
         orders=settings.orders or scene.order,
         repeat=settings.repeat,
+    )
+
+
+def _sweep(scene: Scene, model: Model):
+    from perturb.sweep.api import sweep
+    from perturb.validation import DEFAULT_TOL
+
+    settings = scene.sweep
+    return sweep(
+        model,
+        list(settings.grid),
+        order=scene.order,
+        validate=settings.validate,
+        times=settings.times,
+        tol=DEFAULT_TOL if scene.tol is None else scene.tol,
+        periods=scene.periods,
+        integrator=scene.integrator,
+        derive=settings.derive,
+        workers=settings.workers,
     )

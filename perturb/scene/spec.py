@@ -48,9 +48,12 @@ __all__ = [
     "PLOT_NAMES",
     "TRUTH_PLOTS",
     "Outputs",
+    "MAP_PLOTS",
     "Scene",
+    "SweepSettings",
     "WorkPrecisionSettings",
     "check_parameter_names",
+    "check_sweep_names",
     "parse_scene",
     "read_scene",
 ]
@@ -64,7 +67,15 @@ PLOT_NAMES = (
     "work_precision",
     "euler",
     "orientation",
+    "verdict_map",
+    "error_map",
+    "slope_map",
+    "period_map",
 )
+
+#: Validity maps of the ``[sweep]`` (two axes); all but the period map need ``validate = true``.
+MAP_PLOTS = frozenset({"verdict_map", "error_map", "slope_map", "period_map"})
+VALIDATED_MAPS = frozenset({"verdict_map", "error_map", "slope_map"})
 
 #: Plots drawn beside the true motion: they need an integration of the original equations (the
 #: convergence plot the validation's ε scan, the work-precision plot the integrator runs).
@@ -99,6 +110,8 @@ class Outputs:
         ``work_precision.csv``: error against run time of the analytic solution and integrators.
     latex : bool
         ``solution.tex``: the derived formulas as LaTeX.
+    sweep : bool
+        ``sweep.zarr`` and ``sweep.csv``: the ``[sweep]`` section's points.
     plots : tuple of str
         Names from :data:`PLOT_NAMES`.
     formats : tuple of str
@@ -110,6 +123,7 @@ class Outputs:
     validation: bool = False
     work_precision: bool = False
     latex: bool = False
+    sweep: bool = False
     plots: tuple = field(default=(), converter=tuple)
     formats: tuple = field(default=("png",), converter=tuple)
 
@@ -131,6 +145,10 @@ class Outputs:
         return self.euler or bool(EULER_PLOTS & set(self.plots))
 
     @property
+    def needs_sweep(self) -> bool:
+        return self.sweep or bool(MAP_PLOTS & set(self.plots))
+
+    @property
     def needs_state(self) -> bool:
         """Whether the analytic state is evaluated over the horizon (tables and state plots)."""
         return self.table or self.needs_truth_trajectory
@@ -143,6 +161,31 @@ class WorkPrecisionSettings:
     periods: float | None = None
     orders: int | None = None
     repeat: int = 1
+
+
+@frozen
+class SweepSettings:
+    """The ``[sweep]`` section: the grid over the problem's parameters and what each point gets.
+
+    Attributes
+    ----------
+    grid : tuple of str
+        The axes, as ``perturb sweep --grid`` takes them (``"r0=0.5:1:21"``).
+    validate : bool
+        Validate every point (needed by the verdict, error and slope maps).
+    times : tuple of float
+        Times of the state recorded at each point.
+    workers : int or None
+        Worker processes of the local Dask cluster (None: one per core).
+    derive : str
+        ``"auto"`` or ``"per-point"``.
+    """
+
+    grid: tuple = field(converter=tuple)
+    validate: bool = False
+    times: tuple = field(default=(0.0,), converter=tuple)
+    workers: int | None = None
+    derive: str = "auto"
 
 
 @frozen
@@ -168,6 +211,8 @@ class Scene:
         The validation's accuracy tolerance (None: its default).
     outputs : Outputs
     work_precision : WorkPrecisionSettings
+    sweep : SweepSettings or None
+        The ``[sweep]`` section, if any (computed only when an output needs it).
     source : str
         Where the scene was read from (shown in messages).
     text : str
@@ -184,6 +229,7 @@ class Scene:
     tol: float | None = None
     outputs: Outputs = field(factory=Outputs)
     work_precision: WorkPrecisionSettings = field(factory=WorkPrecisionSettings)
+    sweep: SweepSettings | None = None
     source: str = "<scene>"
     text: str = field(default="", repr=False)
 
@@ -260,8 +306,8 @@ def _line_of(text: str, section: str, key: str | None) -> int | None:
     return None
 
 
-_SECTIONS = ("problem", "parameters", "solve", "outputs", "work_precision")
-_OUTPUT_FLAGS = ("table", "euler", "validation", "work_precision", "latex")
+_SECTIONS = ("problem", "parameters", "solve", "outputs", "work_precision", "sweep")
+_OUTPUT_FLAGS = ("table", "euler", "validation", "work_precision", "latex", "sweep")
 
 
 def _keys(section: str) -> tuple[str, ...]:
@@ -270,6 +316,7 @@ def _keys(section: str) -> tuple[str, ...]:
         "solve": ("order", "periods", "samples", "integrator", "tol"),
         "outputs": (*_OUTPUT_FLAGS, "plots", "formats"),
         "work_precision": ("periods", "orders", "repeat"),
+        "sweep": ("grid", "validate", "times", "workers", "derive"),
     }[section]
 
 
@@ -351,7 +398,71 @@ def _parse_data(data: Mapping, source: str, text: str) -> Scene:
     if "repeat" in wp:
         settings["repeat"] = c.integer("repeat", wp["repeat"], 1, SCENE_MAX_REPEAT)
     fields["work_precision"] = WorkPrecisionSettings(**settings)
+    if "sweep" in data:
+        fields["sweep"] = _sweep_section(tables["sweep"], checkers["sweep"])
+    _check_maps(fields["outputs"], fields.get("sweep"), checkers["outputs"])
     return Scene(**fields, source=source, text=text)
+
+
+def _sweep_section(table: dict, c: _Checker) -> SweepSettings:
+    """The ``[sweep]`` section, its axes parsed (their names are checked against the problem
+    later, :func:`check_sweep_names`)."""
+    from perturb.errors import InvalidParameterError
+    from perturb.sweep.grid import parse_axis
+
+    if "grid" not in table:
+        raise c.fail(None, table, 'give grid = ["NAME=START:STOP:N", ...]')
+    grid = table["grid"]
+    if not isinstance(grid, list) or not grid or not all(isinstance(g, str) for g in grid):
+        raise c.fail("grid", grid, 'write a list of axes in quotes, e.g. ["r0=0.5:1:21"]')
+    for axis in grid:
+        try:
+            parse_axis(axis)
+        except InvalidParameterError as exc:
+            raise c.fail("grid", axis, str(exc).split(": ", 1)[-1]) from None
+    settings: dict = {"grid": tuple(grid)}
+    if "validate" in table:
+        settings["validate"] = c.boolean("validate", table["validate"])
+    if "times" in table:
+        times = table["times"]
+        ok = (
+            isinstance(times, list)
+            and times
+            and all(
+                isinstance(t, int | float) and not isinstance(t, bool) and math.isfinite(t)
+                for t in times
+            )
+        )
+        if not ok:
+            raise c.fail("times", times, "write a list of finite times, e.g. [0.0, 1.5]")
+        settings["times"] = tuple(float(t) for t in times)
+    if "workers" in table:
+        settings["workers"] = c.integer("workers", table["workers"], 1, 4096)
+    if "derive" in table:
+        derive = table["derive"]
+        if derive not in ("auto", "per-point"):
+            raise c.fail("derive", derive, 'write "auto" or "per-point"')
+        settings["derive"] = derive
+    return SweepSettings(**settings)
+
+
+def _check_maps(outputs: Outputs, sweep: SweepSettings | None, c: _Checker) -> None:
+    """The maps and ``sweep = true`` need a ``[sweep]``; maps two axes; three of them validation."""
+    maps = [p for p in outputs.plots if p in MAP_PLOTS]
+    if (maps or outputs.sweep) and sweep is None:
+        asked = "sweep = true" if outputs.sweep else f"plot {maps[0]!r}"
+        raise c.fail(
+            "sweep" if outputs.sweep else "plots",
+            True if outputs.sweep else maps[0],
+            f"{asked} needs a [sweep] section (grid = [...])",
+        )
+    if maps and len(sweep.grid) != 2:
+        raise c.fail(
+            "plots", maps[0], f"a map needs a [sweep] over two axes, not {len(sweep.grid)}"
+        )
+    needing = [p for p in maps if p in VALIDATED_MAPS]
+    if needing and not sweep.validate:
+        raise c.fail("plots", needing[0], "this map needs validate = true in [sweep]")
 
 
 # ---------------------------------------------------------------------------------- front doors
@@ -410,6 +521,23 @@ def read_scene(path) -> Scene:
     except UnicodeDecodeError:
         raise SceneError(f"{path}: the scene file is not UTF-8 text; save it as UTF-8") from None
     return parse_scene(text, str(path))
+
+
+def check_sweep_names(scene: Scene, known: Iterable[str], problem: str) -> None:
+    """Raise :class:`SceneError` unless every ``[sweep]`` axis names a parameter once (the closest
+    name suggested), none also set in ``[parameters]``."""
+    if scene.sweep is None:
+        return
+    from perturb.errors import InvalidParameterError, UnknownNameError
+    from perturb.sweep.grid import check_names, parse_axis
+
+    try:
+        axes = [parse_axis(axis) for axis in scene.sweep.grid]
+        check_names(axes, list(known), problem, fixed=set(scene.parameters))
+    except (UnknownNameError, InvalidParameterError) as exc:
+        line = _line_of(scene.text, "sweep", "grid")
+        where = f"line {line}: " if line else ""
+        raise scene.error(f"{where}[sweep] {exc}") from None
 
 
 def check_parameter_names(scene: Scene, known: Iterable[str], problem: str) -> None:

@@ -212,7 +212,9 @@ class Model(ABC):
     4. optionally override :meth:`integrals_of_motion` (default: the system's declared first
        integrals, else its energy when the forces derive from a potential, else none);
     5. optionally override :meth:`with_epsilon` — the same model with its own small parameter
-       rescaled, for the order check (default: None, the order is then undecided);
+       rescaled, for the order check (default: None, the order is then undecided) — and
+       :meth:`with_parameters` (other parameter values: a sweep's points) and
+       :meth:`evaluates_solution_directly` (whether many points can be evaluated at once);
     6. optionally override :meth:`validity_estimates` (default: none), :meth:`true_orbit` (a
        model-specific true-orbit finder for near-degenerate cases, default: none),
        :meth:`shooting_setup` (default: derived), :meth:`method_options`, :meth:`label` and
@@ -313,6 +315,20 @@ class Model(ABC):
     def with_epsilon(self, eps: float) -> Model | None:
         """The same model with ε replaced by ``eps`` (default: None, not rescalable)."""
         return None
+
+    def with_parameters(self, **values: float) -> Model | None:
+        """The same model with some parameters (names of :meth:`parameters_in_force`) set to
+        ``values`` — a point of a sweep (default: None, the model cannot be re-created).
+
+        Raises the model's own error for values it does not accept.
+        """
+        return None
+
+    def evaluates_solution_directly(self) -> bool:
+        """Whether :meth:`state` and :meth:`period` are the solution's own ``evaluate`` and
+        ``period_at`` at :meth:`parameter_value` and :meth:`symbol_values` (default: False), so
+        that many parameter sets can be evaluated in one vectorised call (a sweep)."""
+        return False
 
     def validity_estimates(self) -> tuple[Condition, ...]:
         """The model's own estimates of where its expansion holds (default: none)."""
@@ -465,6 +481,12 @@ class SystemModel(Model):
 
     def period(self, solution: PeriodicSolution) -> float:
         return float(solution.period_at(self.parameter_value(), self.symbol_values()))
+
+    def with_parameters(self, **values: float) -> SystemModel:
+        return evolve(self, values={**self.values, **values})
+
+    def evaluates_solution_directly(self) -> bool:
+        return self.quasilinear.excitation is None  # a driven state adds the phase
 
     def with_epsilon(self, eps: float) -> SystemModel:
         value = 1.0 / eps if self.quasilinear.regime is Regime.LARGE else eps

@@ -22,7 +22,7 @@ from perturb._defaults import (
     SLOPE_FACTORS,
     STIFFNESS_SAMPLES,
 )
-from perturb.domain import series_domain
+from perturb.domain import DomainCheck, series_domain
 from perturb.errors import PerturbError, bad_value
 from perturb.oracle import Integrator, Trajectory
 from perturb.validation.checks import (
@@ -167,6 +167,7 @@ def validate(
     shooting_setup: Mapping | ShootingSetup | None = None,
     values: Mapping | None = None,
     options: Mapping | None = None,
+    domain: DomainCheck | None = None,
 ) -> ValidationReport:
     """Check ``problem``'s analytic periodic solution against the true motion.
 
@@ -200,6 +201,10 @@ def validate(
     values, options : mapping, optional
         With a bare :class:`perturb.QuasilinearSystem`: numbers for its parameters and its own
         small parameter, by name, and options of :class:`perturb.PoincareMethod`.
+    domain : perturb.domain.DomainCheck, optional
+        :func:`perturb.domain.series_domain` of the solution at the model's values, when the
+        caller has it already (a sweep checks its points together); only its ``ok`` and
+        ``reasons`` are read. Default: checked here.
 
     Returns
     -------
@@ -272,7 +277,8 @@ def validate(
         period = _generating_period(model, solution)
     elif start_override is None:
         # the same domain check as ``perturb solve``: terms that do not decrease are no series
-        domain = series_domain(solution, model.parameter_value(), model.symbol_values())
+        if domain is None:
+            domain = series_domain(solution, model.parameter_value(), model.symbol_values())
         if not domain.ok:
             breakdown = "the series is outside its domain: " + "; ".join(domain.reasons)
     if not np.all(np.isfinite(y_analytic0)):

@@ -20,7 +20,7 @@ from perturb import PeriodicSolution, PoincareMethod
 from perturb.errors import AccuracyWarning, InvalidParameterError
 from perturb.oracle import SymbolicRHS
 from perturb.validation import Condition, Equations, Integrals
-from problems.base import _SOLUTION_CACHE, ParameterSpec, Problem, positive
+from problems.base import _SOLUTION_CACHE, ParameterSpec, Problem, _options_key, positive
 from problems.rigid_body import equations as eq
 from problems.rigid_body import numeric
 from problems.rigid_body._stored import stored
@@ -46,6 +46,10 @@ EPSILON_WARN = 0.1
 ORACLE_RTOL = 1e-12
 #: Periods followed by :meth:`FastSpinBody.true_motion_errors` by default.
 TRACK_PERIODS = 5
+#: Reductions found for solutions (:meth:`FastSpinBody._reduction_of`), by solution, class and
+#: (for a solution specialised to numbers) the body's values; at most REDUCTIONS_KEPT of them.
+_REDUCTIONS: dict[tuple, tuple] = {}
+REDUCTIONS_KEPT = 256
 #: The values the Euler–Poisson equations contain (the initial state's r0, gamma3_0 do not).
 _BODY_DATA = ("A", "B", "C", "M", "g", "R", "x0", "y0", "z0")
 
@@ -258,7 +262,7 @@ class FastSpinBody(Problem):
             type(self).__qualname__,
             order,
             reduction.order,
-            repr(sorted(options.items())),
+            _options_key(options),
             repr(sorted((str(k), v) for k, v in values.items())),
         )
         if key not in _SOLUTION_CACHE:
@@ -267,8 +271,27 @@ class FastSpinBody(Problem):
         return _SOLUTION_CACHE[key]
 
     def _reduction_of(self, solution: PeriodicSolution) -> Reduction:
+        """The reduction whose system ``solution`` solves (kept per solution: the comparison of
+        two systems is sympy's, and every state asks for it)."""
+        symbolic = bool(solution.system.parameters)
+        values = None if symbolic else tuple(sorted(self.symbol_values().items()))
+        key = (id(solution), type(self), values)
+        kept = _REDUCTIONS.get(key)
+        if kept is not None and kept[0] is solution:
+            return kept[1]
+        reduction = self._find_reduction(solution, symbolic)
+        if len(_REDUCTIONS) >= REDUCTIONS_KEPT:
+            _REDUCTIONS.clear()
+        _REDUCTIONS[key] = (solution, reduction)  # the solution kept: its id is not reused
+        return reduction
+
+    def _find_reduction(self, solution: PeriodicSolution, symbolic: bool) -> Reduction:
         orders = [solution.order, *range(1, solution.order)]
         for order in orders:
+            if symbolic and order > self.SYMBOLIC_MAX_ORDER:
+                # that candidate is specialised (no parameters left), so it cannot be this
+                # solution's: skip deriving it (a sweep evaluates a symbolic solution everywhere)
+                continue
             candidate = self._solving_reduction(order)
             if candidate.system == solution.system or candidate.system.rhs == solution.system.rhs:
                 return candidate
@@ -355,7 +378,9 @@ class FastSpinBody(Problem):
 
     def original_symbolic(self) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Expr, ...]]:
         """(state symbols, rhs expressions with every number substituted), e.g. for heyoka."""
-        return _symbolic_rhs(tuple(sorted(self.values.items())))
+        # keyed by the body's data alone: r0 and gamma3_0 do not enter the equations, so every
+        # point of a sweep over them shares one field (and its compiled integrators)
+        return _symbolic_rhs(tuple(sorted((name, self.values[name]) for name in _BODY_DATA)))
 
     def true_motion_errors(
         self, solution: PeriodicSolution, periods: float = TRACK_PERIODS, samples: int = 200
@@ -399,8 +424,9 @@ class FastSpinBody(Problem):
 
     # ------------------------------------------------------------------ validation (Model)
     def original_equations(self, y0=None) -> Equations:
-        """The dimensional Euler–Poisson equations on (p, q, r, gammas), symbolic."""
-        return Equations(SymbolicRHS(*self.original_symbolic()))
+        """The dimensional Euler–Poisson equations on (p, q, r, gammas), symbolic (one field
+        object per body, so that what is derived from it is derived once)."""
+        return Equations(_body_field(tuple(sorted((n, self.values[n]) for n in _BODY_DATA))))
 
     def integrals_of_motion(self, y0=None) -> Integrals:
         """Energy, area and geometric integrals of the physical state."""
@@ -469,6 +495,12 @@ def _user_parameter(solution: PeriodicSolution, eps: float) -> float:
     from perturb import Regime
 
     return 1.0 / eps if solution.system.regime is Regime.LARGE else eps
+
+
+@lru_cache(maxsize=SPECIALISED_CACHE_SIZE)
+def _body_field(body: tuple) -> SymbolicRHS:
+    """The Euler–Poisson field of the body ``body`` ((name, value) pairs), one object per body."""
+    return SymbolicRHS(*_symbolic_rhs(body))
 
 
 @cache

@@ -15,6 +15,7 @@ the several hundred array operations of a compiled expression.
 
 from __future__ import annotations
 
+import operator
 from collections.abc import Mapping, Sequence
 from fractions import Fraction
 
@@ -132,6 +133,20 @@ def _with_divisors(monomials: set[tuple[int, ...]]) -> set[tuple[int, ...]]:
     return out
 
 
+#: Per polynomial (by id, the polynomial kept beside): its monomials split into (Z, Z0) exponents.
+_SPLIT_KEYS: dict[int, tuple] = {}
+
+
+def _picker(indices: list[int]):
+    """``monom -> tuple(monom[i] for i in indices)``, fast (:func:`operator.itemgetter`)."""
+    if not indices:
+        return lambda monom: ()
+    if len(indices) == 1:
+        (index,) = indices
+        return lambda monom: (monom[index],)
+    return operator.itemgetter(*indices)
+
+
 def compile_polynomials(
     ring: SeriesRing,
     polys: Sequence[PolyElement],
@@ -149,15 +164,21 @@ def compile_polynomials(
     where = {s: i for i, s in enumerate(keep)}
     stray = [s for s in keep if s not in first and s not in second]
     split = []
+    stray_of = _picker([where[s] for s in stray])
+    first_of, second_of = _picker([where[s] for s in first]), _picker([where[s] for s in second])
+    shape = (tuple(keep), tuple(first), tuple(second))
     for poly in polys:
-        component: dict[tuple[tuple[int, ...], tuple[int, ...]], float] = {}
-        for monom, coeff in ring.evaluate(poly, numbers, keep).items():
-            if any(monom[where[s]] for s in stray):
+        values = ring.evaluate_float(poly, numbers, keep)
+        keys = _SPLIT_KEYS.get(id(poly))
+        if keys is None or keys[0] is not poly or keys[1] != shape:
+            keys = (poly, shape, {})
+            _SPLIT_KEYS[id(poly)] = keys
+        known = keys[2]
+        for monom in values.keys() - known.keys():  # each monomial split once per polynomial
+            if any(stray_of(monom)):
                 raise AssertionError(f"the series still depends on one of {stray}")
-            mz = tuple(monom[where[s]] for s in first)
-            m0 = tuple(monom[where[s]] for s in second)
-            component[mz, m0] = float(coeff)
-        split.append(component)
+            known[monom] = (first_of(monom), second_of(monom))
+        split.append({known[monom]: coeff for monom, coeff in values.items()})
     needed = _with_divisors({mz for component in split for mz, _ in component})
     if needed:  # register the divisors as zero terms of the first component
         present = {mz for component in split for mz, _ in component}

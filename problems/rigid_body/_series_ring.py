@@ -18,6 +18,7 @@ is the symbolic reduction evaluated at those numbers, for a fraction of the cost
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from fractions import Fraction
 
@@ -29,6 +30,10 @@ __all__ = ["INV_A", "INV_B", "SeriesRing"]
 
 #: Ring generators standing for 1/a and 1/b (polynomial mode of the series ring).
 INV_A, INV_B = sp.symbols("inv_a inv_b")
+
+#: The terms' layout of the polynomials evaluated so far (:meth:`SeriesRing._layout`), by id (the
+#: polynomial is kept beside its layout, so the id is not reused): the reductions' few series.
+_LAYOUTS: dict[int, tuple] = {}
 
 #: A ring element as plain data: exponent tuple -> (numerator, denominator) of its coefficient.
 PolyData = dict[tuple[int, ...], tuple[int, int]]
@@ -257,6 +262,84 @@ class SeriesRing:
             if direct in fixed:
                 fixed.add(inverse)
         return [s for i, s in enumerate(self.symbols) if i not in fixed]
+
+    def evaluate_float(
+        self, poly: PolyElement, values: Mapping[sp.Symbol, Fraction], keep: Sequence[sp.Symbol]
+    ) -> dict[tuple[int, ...], float]:
+        """:meth:`evaluate` rounded once to float: the same numbers, computed faster.
+
+        Each coefficient is the exact rational sum of its terms, formed over one common
+        denominator in integer arithmetic (no gcd of large integers along the way) and rounded
+        once by integer true division, which is correctly rounded, as ``float(Fraction)`` is; a
+        coefficient that is exactly zero is dropped, as :meth:`evaluate` drops it. The terms'
+        layout is kept per polynomial (a sweep evaluates the same series at many points).
+        """
+        if self.fraction_field:
+            return {m: float(c) for m, c in self.evaluate(poly, values, keep).items()}
+        slots = {self.index[s]: Fraction(v) for s, v in values.items() if s in self.index}
+        for direct, inverse in self._inverse_pairs:
+            if direct in slots:
+                slots[inverse] = 1 / slots[direct]
+        kept = tuple(self.index[s] for s in keep)
+        if set(slots) | set(kept) != set(range(len(self.symbols))):
+            raise AssertionError(f"evaluate needs every generator of {self.symbols}")
+        order = tuple(sorted(slots))
+        nums = [slots[i].numerator for i in order]
+        dens = [slots[i].denominator for i in order]
+        num_powers: dict[tuple[int, int], int] = {}
+        den_powers: dict[tuple[int, int], int] = {}
+        out: dict[tuple[int, ...], float] = {}
+        for key, common, top, terms in self._layout(poly, order, kept):
+            denominator = common
+            for k, e in top:
+                if (k, e) not in den_powers:
+                    den_powers[k, e] = dens[k] ** e
+                denominator *= den_powers[k, e]
+            total = 0
+            for term, factors in terms:
+                for k, e, missing in factors:
+                    if e:
+                        if (k, e) not in num_powers:
+                            num_powers[k, e] = nums[k] ** e
+                        term *= num_powers[k, e]
+                    if missing:
+                        if (k, missing) not in den_powers:
+                            den_powers[k, missing] = dens[k] ** missing
+                        term *= den_powers[k, missing]
+                total += term
+            if total:
+                out[key] = total / denominator
+        return out
+
+    def _layout(self, poly: PolyElement, order: tuple, kept: tuple) -> list:
+        """``poly``'s terms grouped by their monomial in the kept generators: for each group its
+        key, the lcm of its coefficients' denominators, the highest exponent of each evaluated
+        generator, and each term as (its numerator scaled to the lcm, [(slot, exponent, top
+        exponent - exponent)]) — kept per polynomial and split of the generators."""
+        cache = _LAYOUTS
+        entry = cache.get(id(poly))
+        if entry is not None and entry[0] is poly and entry[1] == (order, kept):
+            return entry[2]
+        groups: dict[tuple[int, ...], list] = {}
+        for monom, coeff in poly.items():
+            groups.setdefault(tuple(monom[i] for i in kept), []).append(
+                (int(QQ.numer(coeff)), int(QQ.denom(coeff)), tuple(monom[i] for i in order))
+            )
+        layout = []
+        for key, terms in groups.items():
+            top = [max(t[2][k] for t in terms) for k in range(len(order))]
+            common = 1
+            for _, q, _ in terms:
+                common = common * q // math.gcd(common, q)
+            scaled = []
+            for p, q, exponents in terms:
+                factors = tuple(
+                    (k, e, top[k] - e) for k, e in enumerate(exponents) if e or top[k] - e
+                )
+                scaled.append((p * (common // q), factors))
+            layout.append((key, common, tuple((k, e) for k, e in enumerate(top) if e), scaled))
+        cache[id(poly)] = (poly, (order, kept), layout)
+        return layout
 
     def evaluate(
         self, poly: PolyElement, values: Mapping[sp.Symbol, Fraction], keep: Sequence[sp.Symbol]

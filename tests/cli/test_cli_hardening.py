@@ -143,3 +143,17 @@ def test_the_bar_draws_on_one_line_and_ends_it():
 def test_no_bar_when_stderr_is_not_a_terminal(capsys):
     code, _, err = run(capsys, "solve", "duffing", "--times", "0")
     assert code == 0 and "\r" not in err
+
+
+def test_the_bar_shows_the_rate_and_the_time_left():
+    stream = io.StringIO()
+    now = [100.0]
+    bar = cli._ProgressBar(stream, clock=lambda: now[0])
+    bar("sweep", 200, 1000)  # resumed: 200 points were done before; the rate counts from here
+    now[0] += 4.0
+    bar("sweep", 600, 1000)
+    line = stream.getvalue().split("\r")[-1]
+    assert "100/s" in line and "ETA     4s" in line and line.endswith("600/1000")
+    now[0] += 4.0
+    bar("sweep", 1000, 1000)
+    assert stream.getvalue().endswith("1000/1000\n")

@@ -7,8 +7,9 @@ importing this package works without it, and a plot then raises
 
 Modules: :mod:`.timeseries` (state against time, error, phase portraits), :mod:`.convergence`
 (error against ε), :mod:`.workprecision`, :mod:`.rigid_body` (Euler angles, orientation, GIF),
-:mod:`.response` (frequency responses, Floquet multipliers along the branches), :mod:`.style`
-(the publication rc context every function uses).
+:mod:`.response` (frequency responses, Floquet multipliers along the branches),
+:mod:`.validity` (validity maps of a sweep over two parameters), :mod:`.style` (the publication
+rc context every function uses).
 """
 
 from perturb.report.plots.convergence import plot_convergence
@@ -21,18 +22,28 @@ from perturb.report.plots.rigid_body import (
 )
 from perturb.report.plots.style import publication_style
 from perturb.report.plots.timeseries import plot_error, plot_phase, plot_time_series
+from perturb.report.plots.validity import (
+    plot_error_map,
+    plot_period_map,
+    plot_slope_map,
+    plot_verdict_map,
+)
 from perturb.report.plots.workprecision import plot_work_precision
 
 __all__ = [
     "animate_orientation",
     "plot_convergence",
     "plot_error",
+    "plot_error_map",
     "plot_floquet_along_branches",
     "plot_frequency_response",
     "plot_euler_angles",
     "plot_orientation",
+    "plot_period_map",
     "plot_phase",
+    "plot_slope_map",
     "plot_time_series",
+    "plot_verdict_map",
     "plot_work_precision",
     "publication_style",
     "rotation_matrix",

@@ -1,0 +1,156 @@
+"""``perturb sweep PROBLEM --grid NAME=START:STOP:N ... --output STORE``: the sweep's front end.
+
+Loads the problem (the CLI is the one place that knows ``problems``), reads the options, runs
+:func:`perturb.sweep.api.sweep` and prints a summary (or the points as CSV/JSON). Imported only
+when the command runs: ``perturb --help`` loads neither Dask nor xarray nor Zarr.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from collections import Counter
+from pathlib import Path
+
+from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError
+from perturb.cli._values import _parse_order, _parse_positive, _parse_sets, _parse_times
+from perturb.errors import MissingDependencyError, SweepError
+
+#: Exit code of an interrupted run (128 + SIGINT, as shells report it).
+EXIT_INTERRUPTED = 130
+
+
+def _workers(args) -> int | None:
+    if args.workers is None:
+        return None
+    if args.scheduler is not None:
+        raise _UsageError(
+            f"--workers {args.workers}: with --scheduler the cluster's own workers run the "
+            "tasks; drop --workers (start more `dask worker` processes instead)"
+        )
+    return _parse_positive("--workers", args.workers, int)
+
+
+def _check_output(args) -> None:
+    if args.format == "zarr" and args.output is None:
+        raise _UsageError(
+            "--output: name the Zarr store to write, e.g. --output sweep.zarr (or ask for "
+            "--format csv or json)"
+        )
+    if args.resume and args.format != "zarr":
+        raise _UsageError("--resume continues a Zarr store: drop --format or --resume")
+    if args.format != "zarr" and args.output is not None:
+        target = Path(args.output)
+        folder = target.parent if str(target.parent) else Path(".")
+        if target.exists() or not folder.is_dir():
+            raise _UsageError(
+                f"--output {args.output!r}: give a new file in an existing folder (a sweep never "
+                "overwrites a file)"
+            )
+
+
+def _summary(ds, label: str, store: str | None) -> str:
+    from perturb.sweep.status import PointStatus, member_of
+    from perturb.validation import Verdict
+
+    size = int(ds["session"].size)
+    statuses = Counter(int(c) for c in ds["status"].values.ravel())
+    parts = [
+        f"{member_of(PointStatus, code).name.lower().replace('_', ' ')} {n}"
+        for code, n in sorted(statuses.items())
+        if code >= 0
+    ]
+    lines = [
+        f"sweep {label}: {size} points ({' x '.join(f'{n} {d}' for d, n in _dims(ds))}), "
+        f"{ds.attrs.get('seconds', 0.0):.1f} s; points: {', '.join(parts)}"
+    ]
+    if "verdict" in ds:
+        verdicts = Counter(int(c) for c in ds["verdict"].values.ravel())
+        counts = [
+            f"{member_of(Verdict, code).label} {n}"
+            for code, n in sorted(verdicts.items())
+            if code >= 0
+        ]
+        lines.append(f"verdicts: {', '.join(counts) or 'none'}")
+    if store is not None:
+        lines.append(f"written to {store} (open it with xarray.open_zarr)")
+    return "\n".join(lines)
+
+
+def _dims(ds):
+    return [(axis["name"], len(axis["values"])) for axis in json.loads(ds.attrs["grid"])]
+
+
+def _cmd_sweep(args) -> int:
+    from perturb._defaults import DEFAULT_TOL, SWEEP_CONNECT_SECONDS
+    from problems import load_problem
+
+    try:
+        from perturb.sweep.api import axes_of, require_extra, sweep
+        from perturb.sweep.grid import check_names
+
+        require_extra()
+    except (ImportError, MissingDependencyError) as exc:
+        raise _UsageError(
+            f"{exc}" if str(exc) else "sweeps need pip install 'perturb[sweep]'"
+        ) from None
+    if not args.grids:
+        raise _UsageError("--grid: give at least one, e.g. --grid eps=0.01:0.2:20")
+    _check_output(args)
+    cls = load_problem(args.problem)
+    overrides = _parse_sets(args.sets)
+    problem = cls.create(**overrides)
+    order = _parse_order(args.order)
+    if args.family is not None:
+        problem.families(order).get(args.family)  # an unknown name exits 2 with the list
+        problem = problem.with_family(args.family)
+    axes = axes_of(args.grids)
+    check_names(axes, [spec.name for spec in cls.parameter_specs], cls.name, fixed=set(overrides))
+    times = _parse_times(args.times)
+    tol = DEFAULT_TOL if args.tol is None else _parse_positive("--tol", args.tol, float)
+    store = args.output if args.format == "zarr" else None
+    try:
+        ds = sweep(
+            problem,
+            axes,
+            order=order,
+            validate=args.validate,
+            times=(0.0,) if times is None else times,
+            tol=tol,
+            periods=_parse_positive("--periods", args.periods, float),
+            integrator=args.integrator,
+            derive=args.derive,
+            output=store,
+            resume=args.resume,
+            workers=_workers(args),
+            scheduler=args.scheduler,
+            timeout=(
+                SWEEP_CONNECT_SECONDS
+                if args.timeout is None
+                else _parse_positive("--timeout", args.timeout, float)
+            ),
+            yes=args.yes,
+            attrs={"problem_argument": args.problem},
+        )
+    except SweepError as exc:
+        raise _RunFailed(str(exc)) from None
+    except KeyboardInterrupt:
+        where = f"; continue with the same command and --resume (store {store})" if store else ""
+        print(
+            f"\nperturb: interrupted: the points finished so far are written{where}",
+            file=sys.stderr,
+        )
+        return EXIT_INTERRUPTED
+    if args.format == "zarr":
+        print(_summary(ds, problem.label(), store))
+        return EXIT_OK
+    from perturb.report.sweep import sweep_as_csv, sweep_as_dict
+
+    text = (
+        sweep_as_csv(ds) if args.format == "csv" else json.dumps(sweep_as_dict(ds), allow_nan=True)
+    )
+    if args.output is not None:
+        Path(args.output).write_text(text + "\n", encoding="utf-8")
+    else:
+        print(text)
+    return EXIT_OK if ds.attrs.get("complete", True) else EXIT_FAILED

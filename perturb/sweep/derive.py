@@ -1,0 +1,242 @@
+"""Derive once: which derivation serves the grid's points (:func:`plan`), and the model of a point.
+
+Three ways, chosen on the driver (:class:`Derivation`):
+
+``own``
+    The problem's own solution serves every point: it is symbolic in the parameters (Duffing,
+    van der Pol, any problem whose parameters are symbols of its system, the disk at order 1), or
+    the swept parameters do not enter its derivation (the disk's ``r0``: only ε changes). Each
+    point is then exactly what ``perturb validate`` computes there.
+``symbolic``
+    The problem offers ``solve(order, symbolic=True)`` (the rigid bodies above order 1) and a swept
+    parameter enters its specialised derivation: the solution symbolic in the body's parameters is
+    derived once and every point evaluates it. ``perturb validate`` derives for the point's
+    values instead; the two are the same exact series, evaluated in another form, so they agree
+    to rounding (``docs/sweeps.md``); ask for ``per-point`` to get its very numbers.
+``per-point``
+    Each point's own derivation, as ``perturb validate`` does it, kept by the problem's caches:
+    once per distinct derivation and worker process — when asked for, when the problem offers
+    no symbolic derivation, or when each distinct derivation serves many points (a map over one
+    entering parameter and one that does not enter: the disk's ``gamma3_0`` and ``r0``), which
+    is then cheaper than evaluating the heavier symbolic solution everywhere.
+
+A worker rebuilds the derivation once per process from this small description (the problem's
+memory and disk caches keep it); shipping the pickled solution instead was measured and is
+slower for the solutions that matter (``benchmarks/bench_sweep.md``).
+"""
+
+from __future__ import annotations
+
+import enum
+import inspect
+import math
+from collections.abc import Mapping
+
+from attrs import frozen
+
+from perturb._defaults import SWEEP_POINTS_PER_DERIVATION
+from perturb.errors import InvalidParameterError, PerturbError
+from perturb.solution import PeriodicSolution
+from perturb.validation.model import Model
+
+__all__ = ["DeriveMode", "Derivation", "SymbolicModel", "plan"]
+
+
+class DeriveMode(enum.Enum):
+    """How the grid's points get their solution; the values are the messages shown to users."""
+
+    OWN = "the problem's own solution serves every point (one derivation)"
+    SYMBOLIC = "one derivation symbolic in the swept parameters serves every point"
+    PER_POINT = "each point's own derivation (once per distinct derivation and worker)"
+
+
+#: What ``derive=`` accepts: the choice made here, or each point's own derivation.
+DERIVE_CHOICES = ("auto", "per-point")
+
+
+@frozen
+class Derivation:
+    """The derivation plan of a sweep (data: shipped to the workers inside the job).
+
+    Attributes
+    ----------
+    mode : DeriveMode
+    reason : str
+        Why this mode (for the store's attributes and the log).
+    """
+
+    mode: DeriveMode
+    reason: str
+    #: The swept parameters that enter the derivation (per point: chunks keep them fixed).
+    entering: tuple = ()
+
+    def model_at(self, base: Model, values: Mapping[str, float]) -> Model:
+        """The model of the point ``values`` (raises the model's own error for bad values)."""
+        model = base.with_parameters(**values)
+        if model is None:
+            raise InvalidParameterError(
+                f"`problem` = {base.label()!r} cannot be re-created at other parameter values "
+                "(its with_parameters gives none): it cannot be swept"
+            )
+        return SymbolicModel(model) if self.mode is DeriveMode.SYMBOLIC else model
+
+
+def _offers_symbolic(model: Model) -> bool:
+    """Whether the model's ``solve`` takes ``symbolic=`` (the rigid bodies do)."""
+    try:
+        parameters = inspect.signature(type(model).solve).parameters
+    except (TypeError, ValueError):
+        return False
+    return "symbolic" in parameters
+
+
+def _entering(base: Model, axes) -> dict[str, int]:
+    """The axes whose values change the numbers the derivation is made for (symbol_values),
+    with how many distinct sets of those numbers each gives."""
+    reference = tuple(sorted(base.symbol_values().items()))
+    found = {}
+    for axis in axes:
+        seen = {reference}
+        for value in axis.values:
+            try:
+                other = base.with_parameters(**{axis.name: value})
+            except (PerturbError, ValueError):
+                continue  # a value the problem refuses: that point will say so
+            if other is not None:
+                seen.add(tuple(sorted(other.symbol_values().items())))
+        if len(seen) > 1:
+            found[axis.name] = len(seen - {reference}) or 1
+    return found
+
+
+def plan(base: Model, axes, order: int, derive: str = "auto") -> tuple[Derivation, object]:
+    """The derivation for a sweep of ``base`` over ``axes`` at ``order``, and the solution
+    derived here (which also fills the caches the workers of this machine read).
+
+    With ``derive="auto"``, a problem whose derivation the swept parameters enter and that
+    offers a symbolic one is derived once symbolically — unless its own derivations would each
+    serve :data:`SWEEP_POINTS_PER_DERIVATION` points or more (a map over one entering parameter
+    and one that only scales ε): then each distinct derivation is made once, which is cheaper
+    and gives ``perturb validate``'s very numbers.
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        ``derive`` not one of :data:`DERIVE_CHOICES`.
+    """
+    if derive not in DERIVE_CHOICES:
+        raise InvalidParameterError(
+            f"`derive` = {derive!r} is invalid: choose from {list(DERIVE_CHOICES)}"
+        )
+    entering = _entering(base, axes)
+    if derive == "per-point":
+        return Derivation(
+            DeriveMode.PER_POINT, "asked for (derive='per-point')", tuple(entering)
+        ), None
+    own = base.solve(order)
+    if own.system.parameters:
+        return Derivation(
+            DeriveMode.OWN, "the problem's solution is symbolic in its parameters"
+        ), own
+    if not entering:
+        return Derivation(
+            DeriveMode.OWN, "the swept parameters do not enter the problem's derivation"
+        ), own
+    names = ", ".join(entering)
+    points = math.prod(axis.size for axis in axes)
+    derivations = math.prod(entering.values())
+    if points >= SWEEP_POINTS_PER_DERIVATION * derivations:
+        return Derivation(
+            DeriveMode.PER_POINT,
+            f"{names} enter the derivation, {derivations} distinct derivations serve "
+            f"{points} points: each made once",
+            tuple(entering),
+        ), own
+    if _offers_symbolic(base):
+        solution = base.solve(order, symbolic=True)
+        return Derivation(
+            DeriveMode.SYMBOLIC,
+            f"{names} enter the derivation: derived once, symbolic in them",
+        ), solution
+    return Derivation(
+        DeriveMode.PER_POINT,
+        f"{names} enter the derivation and the problem offers no symbolic one",
+        tuple(entering),
+    ), own
+
+
+class SymbolicModel(Model):
+    """A model whose :meth:`solve` is its own ``solve(order, symbolic=True)``: the one
+    derivation symbolic in its parameters (the problem's own checks of a point still apply, such
+    as the disk's k = 0). Everything else is the model's."""
+
+    __slots__ = ("model",)
+
+    def __init__(self, model: Model):
+        self.model = model
+
+    def __repr__(self) -> str:
+        return f"SymbolicModel({self.model!r})"
+
+    def solve(self, order: int = 1) -> PeriodicSolution:
+        return self.model.solve(order, symbolic=True)
+
+    def with_epsilon(self, eps: float) -> Model | None:
+        other = self.model.with_epsilon(eps)
+        return None if other is None else SymbolicModel(other)
+
+    def with_parameters(self, **values) -> Model | None:
+        other = self.model.with_parameters(**values)
+        return None if other is None else SymbolicModel(other)
+
+    # ------------------------------------------------------------------ the model's own
+    def state_names(self):
+        return self.model.state_names()
+
+    def state(self, solution, t):
+        return self.model.state(solution, t)
+
+    def period(self, solution):
+        return self.model.period(solution)
+
+    def epsilon(self):
+        return self.model.epsilon()
+
+    def system(self):
+        return self.model.system()
+
+    def symbol_values(self):
+        return self.model.symbol_values()
+
+    def parameter_value(self):
+        return self.model.parameter_value()
+
+    def label(self):
+        return self.model.label()
+
+    def parameters_in_force(self):
+        return self.model.parameters_in_force()
+
+    def method_options(self):
+        return self.model.method_options()
+
+    def original_equations(self, y0=None):
+        return self.model.original_equations(y0)
+
+    def integrals_of_motion(self, y0=None):
+        return self.model.integrals_of_motion(y0)
+
+    def validity_estimates(self):
+        return self.model.validity_estimates()
+
+    def true_orbit(self, solution):
+        return self.model.true_orbit(solution)
+
+    def shooting_setup(self):
+        return self.model.shooting_setup()
+
+    def euler_angles(self, solution, t):
+        return self.model.euler_angles(solution, t)
+
+    def evaluates_solution_directly(self) -> bool:
+        return self.model.evaluates_solution_directly()

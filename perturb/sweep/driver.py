@@ -1,0 +1,313 @@
+"""The Dask driver: connect to a cluster, size the chunks, run the tasks, write what finishes.
+
+By default a :class:`distributed.LocalCluster` of single-threaded worker processes over this
+machine's cores; with a scheduler address, the identical tasks on an existing cluster (``dask
+scheduler`` and ``dask worker`` started by hand, dask-jobqueue, Kubernetes). The job (spec and
+derivation plan) travels inside each task as a few kB of cloudpickle; a worker unpacks it once per
+process (:func:`run_packed`). Results come back to this process, which is the store's only
+writer: a chunk is written as soon as it finishes, in any order.
+
+A worker that dies has its chunk run again by Dask elsewhere (its points were never written);
+a chunk that kills workers again and again is left unwritten and reported (``--resume`` retries
+it). Ctrl-C stops the run after the chunk being written; everything written stays.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import importlib.util
+import logging
+import math
+import os
+import statistics
+import sys
+import time
+import uuid
+from collections.abc import Callable
+
+from attrs import frozen
+
+from perturb._defaults import (
+    SWEEP_CHUNKS_PER_WORKER,
+    SWEEP_CONNECT_SECONDS,
+    SWEEP_MAX_CHUNK_POINTS,
+    SWEEP_PILOT_POINTS,
+    SWEEP_PILOT_VALIDATIONS,
+    SWEEP_TASK_SECONDS,
+)
+from perturb.errors import InvalidParameterError
+from perturb.progress import notify
+from perturb.sweep.grid import Chunking
+from perturb.sweep.spec import SweepJob
+from perturb.sweep.task import run_chunk
+
+__all__ = [
+    "Cluster",
+    "RunStats",
+    "chunk_points",
+    "pack",
+    "pilot_seconds",
+    "run_packed",
+    "run_tasks",
+]
+
+#: Per worker process: the jobs unpacked, by key.
+_JOBS: dict[str, SweepJob] = {}
+
+
+# ---------------------------------------------------------------------------------- packing
+def _importable_elsewhere(module_name: str) -> bool:
+    """Whether a fresh interpreter could import ``module_name`` (its top-level package is found
+    by the import system's finders, not merely present in this process's ``sys.modules``)."""
+    top = module_name.partition(".")[0]
+    if top in sys.builtin_module_names or top == "__main__":
+        return top != "__main__"
+    for finder in sys.meta_path:
+        find = getattr(finder, "find_spec", None)
+        if find is None:
+            continue
+        try:
+            if find(top, None) is not None:
+                return True
+        except (ImportError, ValueError, AttributeError, TypeError):
+            continue
+    return False
+
+
+def pack(job: SweepJob) -> bytes:
+    """The job as cloudpickle bytes; the problem's class travels by value when a worker could
+    not import it (a problem from a file, ``perturb sweep path/file.py:Class``)."""
+    import cloudpickle
+
+    module = sys.modules.get(type(job.spec.model).__module__)
+    registered = False
+    if module is not None and not _importable_elsewhere(module.__name__):
+        cloudpickle.register_pickle_by_value(module)
+        registered = True
+    try:
+        return cloudpickle.dumps(job)
+    finally:
+        if registered:
+            cloudpickle.unregister_pickle_by_value(module)
+
+
+def run_packed(blob: bytes, key: str, shape, chunk, number: int, session: int) -> dict:
+    """The task a worker runs: unpack the job (once per process), compute chunk ``number``."""
+    job = _JOBS.get(key)
+    if job is None:
+        import cloudpickle
+
+        job = _JOBS[key] = cloudpickle.loads(blob)
+    chunking = Chunking(shape, chunk)
+    return run_chunk(job, chunking.indices(number), session)
+
+
+# ---------------------------------------------------------------------------------- sizing
+def pilot_seconds(job: SweepJob) -> float:
+    """Seconds one point takes, timed here on the grid's first points after a run that pays the
+    one-time costs (compiling, caches): a batch of :data:`SWEEP_PILOT_POINTS` for an evaluation,
+    the median of :data:`SWEEP_PILOT_VALIDATIONS` single points for a validation."""
+    size = job.spec.grid.size
+    if job.spec.validate:
+        times = []
+        for index in range(min(1 + SWEEP_PILOT_VALIDATIONS, size)):
+            clock = time.perf_counter()
+            run_chunk(job, [index])
+            times.append(time.perf_counter() - clock)
+        return statistics.median(times[1:] or times)
+    n = SWEEP_PILOT_POINTS
+    first = list(range(min(n, size)))
+    second = list(range(min(n, size), min(2 * n, size))) or first
+    run_chunk(job, first)
+    clock = time.perf_counter()
+    run_chunk(job, second)
+    return (time.perf_counter() - clock) / len(second)
+
+
+def chunk_points(seconds_per_point: float, size: int, workers: int) -> int:
+    """Points per chunk: about :data:`SWEEP_TASK_SECONDS` of work, at most
+    :data:`SWEEP_MAX_CHUNK_POINTS`, and at least :data:`SWEEP_CHUNKS_PER_WORKER` chunks per worker
+    when the grid has enough points."""
+    per = max(seconds_per_point, 1e-9)
+    points = math.ceil(SWEEP_TASK_SECONDS / per)
+    points = min(points, SWEEP_MAX_CHUNK_POINTS)
+    share = math.ceil(size / (SWEEP_CHUNKS_PER_WORKER * max(workers, 1)))
+    return max(1, min(points, share))
+
+
+# ---------------------------------------------------------------------------------- the cluster
+class Cluster:
+    """A Dask client: to the scheduler at ``address``, or to a new LocalCluster of ``workers``
+    single-threaded processes (default: one per core). A context manager: a cluster it started
+    is closed on exit, an existing one is left running.
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        No scheduler answers at ``address`` within ``timeout`` seconds (one line), or
+        ``workers`` < 1.
+    """
+
+    def __init__(
+        self,
+        workers: int | None = None,
+        address: str | None = None,
+        client=None,
+        timeout: float = SWEEP_CONNECT_SECONDS,
+    ):
+        self.workers = workers
+        self.address = address
+        self.timeout = timeout
+        self.client = client
+        self._owned = client is None
+        self._cluster = None
+
+    def __enter__(self) -> Cluster:
+        if self.client is not None:
+            return self
+        from distributed import Client
+
+        if self.address is not None:
+            try:
+                self.client = Client(self.address, timeout=self.timeout, set_as_default=False)
+            except (OSError, TimeoutError, ValueError, TypeError) as exc:
+                reason = " ".join(str(exc).split()) or type(exc).__name__
+                raise InvalidParameterError(
+                    f"--scheduler {self.address!r}: no Dask scheduler answered within "
+                    f"{self.timeout:g} s ({reason}); start one with `dask scheduler` "
+                    "and check the address (tcp://HOST:PORT)"
+                ) from None
+            return self
+        from distributed import LocalCluster
+
+        n = self.workers if self.workers is not None else (os.cpu_count() or 1)
+        if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+            raise InvalidParameterError(f"--workers {n!r} is invalid: give a whole number >= 1")
+        self._cluster = LocalCluster(
+            n_workers=n,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=None,
+            silence_logs=logging.ERROR,
+            env=_worker_environment(),
+        )
+        self.client = Client(self._cluster, set_as_default=False)
+        return self
+
+    def n_workers(self) -> int:
+        """Workers connected now (at least 1, so that chunk sizing can divide by it)."""
+        info = self.client.scheduler_info()
+        return max(len(info.get("workers", {})), 1)
+
+    def __exit__(self, *exc) -> None:
+        if not self._owned:
+            return
+        with contextlib.suppress(Exception):
+            self.client.close()
+        if self._cluster is not None:
+            with contextlib.suppress(Exception):
+                self._cluster.close()
+
+
+def _worker_environment() -> dict[str, str]:
+    """Variables for the workers: single-threaded BLAS (as the ``perturb`` command sets them),
+    and this process's disk cache folder (so that they read what the driver derived)."""
+    env = {name: os.environ.get(name, "1") for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS")}
+    for name in ("PERTURB_CACHE_DIR", "PERTURB_CACHE_KEY_FILE"):
+        if name in os.environ:
+            env[name] = os.environ[name]
+    return env
+
+
+# ---------------------------------------------------------------------------------- running
+@frozen
+class RunStats:
+    """How a run of tasks went.
+
+    Attributes
+    ----------
+    lost : tuple of (int, str)
+        Chunks that could not be computed (their workers died again and again), with the reason.
+    tasks : int
+        Chunks computed and written.
+    cpu : float
+        CPU seconds the tasks took on their workers.
+    writing : float
+        Seconds this process spent writing results.
+    """
+
+    lost: tuple
+    tasks: int
+    cpu: float
+    writing: float
+
+
+def run_tasks(
+    cluster: Cluster,
+    job: SweepJob,
+    chunking: Chunking,
+    pending: list[int],
+    write: Callable[[int, dict], None],
+    *,
+    session: int,
+    done: int,
+    label: str,
+) -> RunStats:
+    """Run the chunks ``pending`` on the cluster, ``write`` each as it finishes.
+
+    ``done`` points are already written (for the progress report).
+    """
+    from distributed import as_completed
+
+    client = cluster.client
+    blob = pack(job)
+    token = uuid.uuid4().hex[:8]
+    total = math.prod(chunking.shape)
+    futures = {}
+    for number in pending:
+        future = client.submit(
+            run_packed,
+            blob,
+            job.key,
+            chunking.shape,
+            chunking.chunk,
+            number,
+            session,
+            key=f"perturb-sweep-{job.key[:10]}-{token}-{number}",
+            pure=False,
+        )
+        futures[future] = number
+    lost: list[tuple[int, str]] = []
+    cpu = writing = 0.0
+    tasks = 0
+    notify(label, done, total)
+    try:
+        for future in as_completed(futures, loop=client.loop):
+            number = futures[future]
+            try:
+                # a result lost with its worker after it finished is recomputed: this waits for it
+                result = future.result()
+            except Exception as exc:  # noqa: BLE001 - a chunk that kept killing its workers
+                lost.append((number, " ".join(f"{type(exc).__name__}: {exc}".split())))
+                continue
+            cpu += result.get("cpu", 0.0)
+            clock = time.perf_counter()
+            write(number, result)
+            writing += time.perf_counter() - clock
+            tasks += 1
+            done += _points(chunking, number)
+            notify(label, done, total)
+            future.release()
+    except BaseException:
+        client.cancel(list(futures))
+        raise
+    return RunStats(tuple(lost), tasks, cpu, writing)
+
+
+def _points(chunking: Chunking, number: int) -> int:
+    return math.prod(s.stop - s.start for s in chunking.region(number))
+
+
+def importable(name: str) -> bool:
+    """Whether ``name`` can be imported here (the extra ``perturb[sweep]`` installed)."""
+    return importlib.util.find_spec(name) is not None

@@ -1,0 +1,302 @@
+"""The sweep's results on disk: a Zarr store written chunk by chunk, resumable (:class:`SweepStore`).
+
+Layout (Zarr format 3, consolidated metadata; ``xarray.open_zarr(path)`` reads it as a Dataset):
+one coordinate per swept parameter, ``component`` (the state's names), ``time`` (the times asked
+for), ``multiplier`` and ``check``; one variable per quantity
+(:func:`perturb.sweep.quantities.variables`), chunked like the tasks, so that a task's results
+are one write per variable. The group's attributes name the problem, its fixed parameters, the
+order, the grid, the settings, the perturb version and the sweep's fingerprint.
+
+A chunk's ``session`` is written last: it is the commit mark. ``--resume`` computes exactly the
+chunks some of whose points still have session 0 — no point twice, none lost — after checking
+that the store holds this very sweep (same fingerprint). A store is never overwritten: a path
+that holds anything else (another sweep, other data, a file) is refused.
+
+Only this module (with :mod:`perturb.sweep.driver`) imports zarr and xarray.
+"""
+
+from __future__ import annotations
+
+import json
+import warnings
+from datetime import UTC, datetime
+from pathlib import Path
+
+import numpy as np
+
+from perturb.errors import InvalidParameterError
+from perturb.sweep.grid import Chunking
+from perturb.sweep.quantities import TIMINGS, check_names, stored_name, variables
+from perturb.sweep.spec import STORE_FORMAT, SweepJob
+
+__all__ = ["SweepStore", "open_dataset", "remove_store", "write_dataset"]
+
+#: The group attribute that marks a perturb sweep store (its value: the store format).
+MARK = "perturb_sweep"
+
+
+def _zarr():
+    import zarr
+
+    return zarr
+
+
+def _consolidate(path: Path) -> None:
+    zarr = _zarr()
+    with warnings.catch_warnings():
+        # consolidated metadata is an extension of Zarr format 3 (zarr-python says so on each
+        # call); it is what lets ``xarray.open_zarr`` read the store without a warning
+        warnings.simplefilter("ignore")
+        zarr.consolidate_metadata(str(path))
+
+
+def _refuse(path: Path, why: str, fix: str) -> InvalidParameterError:
+    return InvalidParameterError(f"--output {str(path)!r}: {why}; {fix}")
+
+
+def _attrs_of(path: Path) -> dict | None:
+    """The attributes of the sweep store at ``path``, None if it is not one."""
+    zarr = _zarr()
+    try:
+        group = zarr.open_group(str(path), mode="r")
+    except Exception:  # noqa: BLE001 - anything unreadable is "not a sweep store"
+        return None
+    attrs = dict(group.attrs)
+    return attrs if MARK in attrs else None
+
+
+class SweepStore:
+    """An open sweep store (see the module docstring)."""
+
+    def __init__(self, path: Path, group, chunking: Chunking, swept: tuple[str, ...]):
+        self.path = path
+        self.group = group
+        self.chunking = chunking
+        self.swept = swept
+        self._arrays = {name: group[name] for name in group.array_keys()}
+
+    # ------------------------------------------------------------------ opening
+    @staticmethod
+    def check(path, spec, *, resume: bool, version: str) -> bool:
+        """Raise unless ``path`` can take this sweep: new (its folder exists), or — with
+        ``resume`` — a store of this very sweep. Returns whether the store exists.
+
+        Raises
+        ------
+        perturb.errors.InvalidParameterError
+            ``path`` holds something else than this sweep (another sweep, other data, a file),
+            or a sweep without ``resume``; its folder does not exist.
+        """
+        path = Path(path)
+        if path.exists():
+            attrs = _attrs_of(path) if path.is_dir() else None
+            if attrs is None:
+                raise _refuse(
+                    path,
+                    "exists and is not a perturb sweep store",
+                    "choose a new path (a sweep never overwrites other data)",
+                )
+            if not resume:
+                raise _refuse(
+                    path,
+                    f"already holds a sweep of {attrs.get('problem')!r}",
+                    "pass --resume to continue it, or choose a new path",
+                )
+            if attrs.get("fingerprint") != spec.fingerprint(version):
+                raise _refuse(path, _difference(attrs, spec, version), "choose a new path")
+            return True
+        parent = path.parent if str(path.parent) else Path(".")
+        if not parent.is_dir():
+            raise _refuse(path, "its folder does not exist", "create the folder first")
+        return False
+
+    @classmethod
+    def prepare(
+        cls, path, job: SweepJob, *, resume: bool, version: str, chunk_points, extra: dict
+    ) -> SweepStore:
+        """Create the store at ``path``, or open it to resume ``job`` (checked by :meth:`check`).
+
+        ``chunk_points`` is called (with no argument) for the points per chunk only when the
+        store is created; ``extra`` goes into the attributes (the problem as named, ...).
+        """
+        path = Path(path)
+        if cls.check(path, job.spec, resume=resume, version=version):
+            return cls._open(path)
+        return cls._create(path, job, job.spec.fingerprint(version), version, chunk_points(), extra)
+
+    @classmethod
+    def _open(cls, path: Path) -> SweepStore:
+        zarr = _zarr()
+        group = zarr.open_group(str(path), mode="r+")
+        attrs = dict(group.attrs)
+        grid = json.loads(attrs["grid"])
+        shape = tuple(len(axis["values"]) for axis in grid)
+        chunking = Chunking(shape, attrs["chunk"])
+        return cls(path, group, chunking, tuple(axis["name"] for axis in grid))
+
+    @classmethod
+    def _create(cls, path, job, fingerprint, version, points, extra) -> SweepStore:
+        zarr = _zarr()
+        spec = job.spec
+        grid = spec.grid
+        chunking = Chunking.of(grid.shape, points, job.fill_first())
+        names = tuple(spec.model.state_names())
+        try:
+            group = zarr.open_group(str(path), mode="w-")
+        except Exception as exc:  # noqa: BLE001 - any reason it cannot be created
+            raise _refuse(path, f"cannot be created ({exc})", "choose a writable path") from None
+        dims = {
+            "component": np.array(names, dtype=str),
+            "time": np.asarray(spec.times, dtype=float),
+            "multiplier": np.arange(len(names)),
+            "check": np.array(check_names(), dtype=str),
+        }
+        for axis in grid.axes:
+            _coordinate(group, axis.name, np.asarray(axis.values, dtype=float))
+        for name, values in dims.items():
+            _coordinate(group, name, values)
+        sizes = {name: len(values) for name, values in dims.items()}
+        for var in variables(spec.validate):
+            shape = (*grid.shape, *(sizes[d] for d in var.dims))
+            chunks = (*chunking.chunk, *(sizes[d] for d in var.dims))
+            array = group.create_array(
+                stored_name(var.name, grid.names),
+                shape=shape,
+                chunks=chunks,
+                dtype=str if var.dtype == "str" else var.dtype,
+                fill_value=var.fill,
+                dimension_names=(*grid.names, *var.dims),
+            )
+            array.attrs.update(var.attrs)
+        group.attrs.update(
+            {
+                MARK: STORE_FORMAT,
+                "fingerprint": fingerprint,
+                "problem": spec.label,
+                "model_class": type(spec.model).__qualname__,
+                "order": spec.order,
+                "perturb_version": version,
+                "fixed_parameters": json.dumps(spec.fixed_parameters()),
+                "grid": json.dumps(grid.as_list()),
+                "settings": json.dumps(spec.settings()),
+                "derivation": job.derivation.mode.name.lower(),
+                "derivation_reason": job.derivation.reason,
+                "chunk": list(chunking.chunk),
+                "created": datetime.now(UTC).isoformat(timespec="seconds"),
+                "sessions": 0,
+                "complete": False,
+                **extra,
+            }
+        )
+        _consolidate(path)
+        return cls(path, group, chunking, grid.names)
+
+    # ------------------------------------------------------------------ progress of the sweep
+    def pending(self) -> list[int]:
+        """The chunks not written yet (some point with session 0), in order."""
+        session = self._arrays[stored_name("session", self.swept)]
+        done = np.asarray(session[...]) > 0
+        out = []
+        for number in self.chunking:
+            if not np.all(done[self.chunking.region(number)]):
+                out.append(number)
+        return out
+
+    def begin_session(self) -> int:
+        """Count a new run of the sweep; returns its number (1 for the first)."""
+        session = int(self.group.attrs.get("sessions", 0)) + 1
+        self.group.attrs.update({"sessions": session, "complete": False})
+        _consolidate(self.path)
+        return session
+
+    def write(self, number: int, result: dict) -> None:
+        """Write chunk ``number``'s results (``session`` last: the commit mark)."""
+        region = self.chunking.region(number)
+        block = tuple(s.stop - s.start for s in region)
+        session_name = stored_name("session", self.swept)
+        names = [n for n in result if n not in TIMINGS]
+        names.sort(key=lambda n: stored_name(n, self.swept) == session_name)
+        for name in names:
+            array = self._arrays[stored_name(name, self.swept)]
+            values = np.asarray(result[name])
+            values = values.reshape(block + values.shape[1:])
+            if values.dtype == object:
+                values = values.astype(str)
+            array[region + (slice(None),) * (values.ndim - len(block))] = values
+
+    def finish(self) -> None:
+        """Mark the store complete when every chunk is written."""
+        if not self.pending():
+            self.group.attrs.update({"complete": True})
+            _consolidate(self.path)
+
+
+def _coordinate(group, name: str, values: np.ndarray) -> None:
+    array = group.create_array(
+        name,
+        shape=values.shape,
+        chunks=values.shape,
+        dtype=str if values.dtype.kind in "US" else values.dtype,
+        dimension_names=(name,),
+    )
+    array[...] = values
+
+
+def _difference(attrs: dict, spec, version: str) -> str:
+    """What differs between the sweep in a store and ``spec`` (for the refusal)."""
+    theirs = {
+        "problem": attrs.get("problem"),
+        "grid": attrs.get("grid"),
+        "settings": attrs.get("settings"),
+        "fixed parameters": attrs.get("fixed_parameters"),
+        "perturb version": attrs.get("perturb_version"),
+    }
+    ours = {
+        "problem": spec.label,
+        "grid": json.dumps(spec.grid.as_list()),
+        "settings": json.dumps(spec.settings()),
+        "fixed parameters": json.dumps(spec.fixed_parameters()),
+        "perturb version": version,
+    }
+    differ = [key for key in ours if theirs[key] != ours[key]]
+    what = ", ".join(differ) if differ else "the problem's definition"
+    return f"holds another sweep ({what} differ), so --resume cannot continue it there"
+
+
+def write_dataset(dataset, path) -> None:
+    """Write a sweep's Dataset (kept in memory) as a store at ``path``, replacing only a perturb
+    sweep store already there (a report folder's own ``sweep.zarr``).
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        ``path`` holds something else.
+    """
+    import shutil
+
+    path = Path(path)
+    if path.exists():
+        if not (path.is_dir() and _attrs_of(path) is not None):
+            raise _refuse(path, "exists and is not a perturb sweep store", "move it away")
+        shutil.rmtree(path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # consolidated metadata in Zarr format 3 (see above)
+        dataset.to_zarr(str(path), mode="w-", consolidated=True)
+
+
+def remove_store(path) -> bool:
+    """Remove the perturb sweep store at ``path`` (nothing else); returns whether it did."""
+    import shutil
+
+    path = Path(path)
+    if path.is_dir() and _attrs_of(path) is not None:
+        shutil.rmtree(path)
+        return True
+    return False
+
+
+def open_dataset(path):
+    """The store at ``path`` as an :class:`xarray.Dataset` (read lazily)."""
+    import xarray as xr
+
+    return xr.open_zarr(str(path))
