@@ -10,11 +10,10 @@ keeping the values every polynomial of that variable shares. Never Newton from a
 
 from __future__ import annotations
 
-import enum
-
 import numpy as np
 import sympy as sp
-from attrs import field, frozen
+
+from perturb.algebra.rootset import RootSet, RootStatus
 
 __all__ = ["RootSet", "RootStatus", "real_roots"]
 
@@ -23,40 +22,6 @@ __all__ = ["RootSet", "RootStatus", "real_roots"]
 ROOT_WIDTH = 1e-13
 #: A back-substituted polynomial counts as vanishing below this, relative to its coefficients.
 BACK_RESIDUAL = 1e-8
-
-
-class RootStatus(enum.Enum):
-    """How the root search ended; the values are the messages."""
-
-    SOLVED = "every real root was isolated (the count is proved by exact interval arithmetic)"
-    NO_REAL_ROOT = "the system has no real root (proved: no isolating interval exists)"
-    POSITIVE_DIMENSIONAL = (
-        "the system has a continuum of roots: its Groebner basis is not zero-dimensional"
-    )
-    UNDECIDED = "the roots could not be enumerated (a variable is left free by the basis)"
-
-    @property
-    def success(self) -> bool:
-        return self in (RootStatus.SOLVED, RootStatus.NO_REAL_ROOT)
-
-
-@frozen
-class RootSet:
-    """The real roots of a polynomial system.
-
-    Attributes
-    ----------
-    status : RootStatus
-    roots : tuple of dict
-        ``{unknown: float}`` per real root, sorted by the last unknown then the others.
-    unknowns : tuple of sympy.Symbol
-    message : str
-    """
-
-    status: RootStatus
-    roots: tuple = field(converter=tuple)
-    unknowns: tuple = field(converter=tuple)
-    message: str = ""
 
 
 def _isolated(poly: sp.Poly) -> list[float]:

@@ -1,0 +1,70 @@
+"""What a real-root search returns: the roots, each certified, and a status that says what happened."""
+
+from __future__ import annotations
+
+import enum
+
+from attrs import field, frozen
+
+__all__ = ["RootSet", "RootStatus"]
+
+
+class RootStatus(enum.Enum):
+    """How the root search ended; the values are the messages.
+
+    Examples
+    --------
+    >>> RootStatus.NO_REAL_ROOT.success, RootStatus.BUDGET_EXCEEDED.success
+    (True, False)
+    """
+
+    SOLVED = "every real root was isolated (the count is proved by exact interval arithmetic)"
+    NO_REAL_ROOT = "the system has no real root (proved: no isolating interval exists)"
+    POSITIVE_DIMENSIONAL = (
+        "the system has a continuum of roots: its Groebner basis is not zero-dimensional"
+    )
+    UNDECIDED = "the roots could not be enumerated (a variable is left free by the basis)"
+    BUDGET_EXCEEDED = "the solver ran out of its time budget before it could decide"
+
+    @property
+    def success(self) -> bool:
+        return self in (RootStatus.SOLVED, RootStatus.NO_REAL_ROOT)
+
+
+@frozen
+class RootSet:
+    """The real roots of a polynomial system.
+
+    Attributes
+    ----------
+    status : RootStatus
+    roots : tuple of dict
+        ``{unknown: float}`` per real root.
+    unknowns : tuple of sympy.Symbol
+    message : str
+    exact : tuple of dict
+        ``{unknown: exact algebraic number}`` per root, in the order of ``roots`` (rationals,
+        radicals, or polynomials in a ``CRootOf``); empty when the route gives boxes only.
+    certificates : tuple of str
+        Per root, the isolating interval that proves it (one root of a named univariate
+        polynomial, or msolve's box), in the order of ``roots``.
+    backend : str
+        The route that answered: ``"sympy"`` or ``"msolve"``.
+    dimension : int or None
+        The dimension of the complex solution set (0: finitely many roots; -1: none) when known.
+    free : tuple of sympy.Symbol
+        For a positive-dimensional set: unknowns that stay free on its largest part.
+    size : object
+        The :class:`~perturb.algebra.size.SystemSize` of the system that was solved.
+    """
+
+    status: RootStatus
+    roots: tuple = field(converter=tuple)
+    unknowns: tuple = field(converter=tuple)
+    message: str = ""
+    exact: tuple = field(default=(), converter=tuple)
+    certificates: tuple = field(default=(), converter=tuple)
+    backend: str = "sympy"
+    dimension: int | None = None
+    free: tuple = field(default=(), converter=tuple)
+    size: object = None
