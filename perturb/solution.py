@@ -52,6 +52,13 @@ class Status(enum.Enum):
     NOT_POLYNOMIAL = (
         "the right-hand side is not polynomial in the state; give numeric parameter values"
     )
+    SOLVER_BUDGET = (
+        "the polynomial solver ran out of its time budget before it could decide whether the "
+        "amplitude equations have a root (not a proof that none exists): raise `solve_seconds` "
+        "(PoincareMethod(solve_seconds=...), or `solve_seconds` in a problem's method_options) "
+        "or install the extra "
+        "roots (pip install 'perturb[roots]')"
+    )
 
     @property
     def ok(self) -> bool:

@@ -22,6 +22,9 @@ from attrs import frozen
 
 from perturb._defaults import ROOT_RESIDUAL
 from perturb.algebra.budget import solve_bounded, sympy_roots
+from perturb.algebra.certified import certified_real_roots
+from perturb.algebra.rootset import RootStatus
+from perturb.algebra.size import SystemSize
 from perturb.errors import InvalidSystemError, bad_value
 from perturb.method.exact import exact_if_close, is_zero, probe_values, vanishes
 from perturb.method.steps import GeneratingSolution
@@ -127,12 +130,19 @@ class ConditionSolver:
 
     # ------------------------------------------------------------------ nonlinear
     def _solve_nonlinear(self, eqs, unknowns, k, generating, solved, open_unknowns):
-        numeric = self._numeric_system_roots(eqs, unknowns, generating)
+        numeric, found = self._numeric_system_roots(eqs, unknowns, generating)
+        if numeric == []:
+            raise OrderFailed(
+                Status.NO_ROOT,
+                f"order {k}: the amplitude equations have no admissible real root (proved: "
+                f"{found.message}; {found.backend} route)",
+            )
         exact = numeric is not None and all(
             not v.has(sp.Float) for root in numeric for v in root.values()
         )
+        certified = numeric is not None and found is not None
         try:
-            if exact:
+            if exact or certified:
                 roots = numeric
             else:
                 try:
@@ -150,11 +160,15 @@ class ConditionSolver:
             rescued = self._solve_with_branch_values(eqs, unknowns, k)
             if rescued is not None:
                 return rescued, ()
+            size = SystemSize.of([_rational_form(e) for e in eqs], unknowns)
+            tried = f"; the certified solver: {found.status.name}" if found is not None else ""
             raise OrderFailed(
-                Status.NO_ROOT,
-                f"order {k}: sympy did not solve the amplitude equations {eqs} for {unknowns} within "
-                f"{self.solve_seconds:g} s (PoincareMethod(solve_seconds=...)); if you know the "
-                "root, give its generating amplitudes with `branch={name: value}`",
+                Status.SOLVER_BUDGET,
+                f"order {k}: the amplitude equations ({size}) in {unknowns} were not solved "
+                f"within the budget of {self.solve_seconds:g} s{tried} — raise it with "
+                "PoincareMethod(solve_seconds=...) or install the extra (pip install "
+                "'perturb[roots]'); if you know the root, give its generating amplitudes with "
+                "`branch={name: value}`",
             ) from None
         if not roots:
             raise OrderFailed(Status.NO_ROOT, f"order {k}: amplitude equations {eqs} have no root")
@@ -180,21 +194,24 @@ class ConditionSolver:
         chosen = self._choose_branch(admissible, unknowns, generating, open_unknowns)
         return chosen, tuple(admissible)
 
-    def _numeric_system_roots(self, eqs, unknowns, generating) -> list[dict] | None:
-        """Roots by a Groebner basis when the coefficients are numbers (None: not applicable).
+    def _numeric_system_roots(self, eqs, unknowns, generating):
+        """Every real root by the certified solver when the coefficients are numbers.
 
-        Used as they are when every root is rational (exact); irrational roots come back as floats
-        and are used only if sympy cannot write them in radicals within the time budget.
+        Returns ``(roots, found)``: the roots (None: not applicable or not decided) and the
+        :class:`~perturb.algebra.RootSet` (None when not applicable). Exact values are kept exact:
+        rationals and radicals as they are, a root of an irreducible factor of degree >= 3 as a
+        30-digit float; msolve's boxes are rationalised and kept when the equations vanish
+        exactly there.
 
         The trivial equilibrium makes the system positive-dimensional (any frequency correction
         solves it there), so an unknown amplitude of the phase coordinate is required non-zero
         (Rabinowitsch: a new unknown w with w * amplitude = 1).
         """
         if any(e.free_symbols - set(unknowns) for e in eqs):
-            return None
+            return None, None
         if any(e.has(sp.Float) for e in eqs):
-            return None
-        system, variables = list(eqs), list(unknowns)
+            return None, None
+        system, variables = [_rational_form(e) for e in eqs], list(unknowns)
         phase_amplitude = generating.cos_amplitudes[self.phase]
         if (
             not self.driven
@@ -205,10 +222,27 @@ class ConditionSolver:
             system.append(inverse * phase_amplitude - 1)
             variables = [inverse, *variables]
         try:
-            roots = solve_bounded(system, variables, self.solve_seconds, groebner_real_roots)
-        except (NotImplementedError, TimeoutError):
-            return None
-        return [{s: v for s, v in root.items() if s in unknowns} for root in roots]
+            found = certified_real_roots(system, variables, seconds=self.solve_seconds)
+        except InvalidSystemError:
+            return None, None
+        if found.status is not RootStatus.SOLVED:
+            return ([] if found.status is RootStatus.NO_REAL_ROOT else None), found
+        roots = []
+        for index, values in enumerate(found.roots):
+            exact = found.exact[index] if found.exact else {}
+            root = {}
+            for s in unknowns:
+                value = exact.get(s)
+                if value is None or value.has(sp.CRootOf):
+                    value = sp.Float(sp.N(value, 30), 30) if value is not None else None
+                root[s] = value if value is not None else exact_if_close(values[s])
+            if not found.exact and not all(vanishes(e.xreplace(root)) for e in eqs):
+                root = {s: sp.Float(values[s]) for s in unknowns}
+            roots.append(root)
+        # Largest values first, the last unknown deciding first (the order of the former
+        # numeric route: in-phase before anti-phase when the phase amplitudes tie).
+        roots.sort(key=lambda r: [-float(r[s]) for s in reversed(unknowns)])
+        return roots, found
 
     def _given_branch_values(self, unknowns) -> dict:
         selector = self.branch
@@ -309,6 +343,16 @@ class ConditionSolver:
                 return 0.0
 
         return sorted(pool, key=key)[0]
+
+
+def _rational_form(expr) -> sp.Expr:
+    """``expr`` with a common factor pi (the conditions' 2π-integrals) taken out, expanded."""
+    expr = sp.expand(expr)
+    if expr.has(sp.pi):
+        reduced = sp.expand(expr / sp.pi)
+        if not reduced.has(sp.pi):
+            return reduced
+    return expr
 
 
 def _amplitude_symbols(generating: GeneratingSolution) -> set:

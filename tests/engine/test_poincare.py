@@ -223,8 +223,11 @@ def test_numeric_amplitude_equations_are_solved_by_a_groebner_basis():
 
 
 def test_amplitude_equations_sympy_cannot_solve_end_in_a_status_not_a_hang():
+    """Issue 22: a budget spent is SOLVER_BUDGET (not NO_ROOT, which means proved), and the
+    message names the option that raises the budget and the size of the system."""
     sol = PoincareMethod(order=1, cache=False, solve_seconds=SHORT_BUDGET).solve(COUPLED_VDP)
-    assert sol.status is Status.NO_ROOT and "branch=" in sol.message
+    assert sol.status is Status.SOLVER_BUDGET and "branch=" in sol.message
+    assert "solve_seconds" in sol.message and "unknowns" in sol.message
 
 
 def test_branch_supplies_the_root_sympy_cannot_enumerate():
