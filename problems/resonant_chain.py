@@ -22,9 +22,6 @@ from perturb import EPS, QuasilinearSystem
 from problems import register
 from problems.base import ParameterSpec, Problem, positive
 
-AMPLITUDE = sp.Symbol("amplitude", positive=True)
-
-
 def chain_symbols(n: int) -> tuple[list[sp.Symbol], list[sp.Symbol]]:
     """The coordinates ``x1 … xn`` and velocities ``x1dot … xndot`` of a chain of ``n``."""
     return (
@@ -54,7 +51,6 @@ def chain_system(n: int) -> QuasilinearSystem:
         frequencies=[1] * n,
         rhs=rhs,
         parameter=EPS,
-        parameters=[AMPLITUDE],
         name=f"resonant-chain-{n}",
         first_integrals=[energy + EPS * potential],
     )
@@ -83,7 +79,9 @@ class ResonantChain(Problem):
         return chain_system(cls.n)
 
     def method_options(self) -> dict:
-        return {"amplitudes": {"x1": AMPLITUDE}}
+        # A number, put in exactly: the amplitude equations then have numeric coefficients and
+        # every branch is found by the certified real-root solver (perturb.algebra).
+        return {"amplitudes": {"x1": sp.nsimplify(self.values["amplitude"], rational=True)}}
 
 
 @register

@@ -22,6 +22,8 @@ import sympy as sp
 from attrs import frozen
 
 from perturb._defaults import NUMERIC_ZERO, PROBE_DIGITS
+from perturb.algebra.certified import certified_real_roots
+from perturb.algebra.rootset import RootStatus
 from perturb.method.conditions import solve_bounded
 from perturb.method.exact import probe_values, vanishes
 
@@ -161,6 +163,27 @@ def _polynomial_form(eqs: list, unknowns: set) -> tuple[list, dict]:
     return polys, {d: atom for atom, d in names.items()}
 
 
+def _certified(part: list, targets: list, seconds: float) -> list[dict] | None:
+    """The real roots of an isolated part with numeric coefficients, certified (None: not that).
+
+    Exact where they are rationals or radicals; a root of an irreducible factor of degree >= 3 as
+    a 30-digit float (sympy's ``solve`` would seek it in radicals for as long as it is let).
+    """
+    if any(sp.sympify(g).free_symbols - set(targets) for g in part):
+        return None
+    found = certified_real_roots(part, targets, seconds=seconds)
+    if found.status is RootStatus.NO_REAL_ROOT:
+        return []
+    if found.status is not RootStatus.SOLVED:
+        return None
+    if not found.exact:
+        return [{s: sp.Float(v, 30) for s, v in root.items()} for root in found.roots]
+    return [
+        {s: sp.Float(sp.N(v, 30), 30) if v.has(sp.CRootOf) else v for s, v in root.items()}
+        for root in found.exact
+    ]
+
+
 def _components(eqs, unknowns, preference, seconds) -> list[Component]:
     parts = _split(eqs, unknowns)
     unique: list[tuple[list, object]] = []
@@ -185,7 +208,9 @@ def _components(eqs, unknowns, preference, seconds) -> list[Component]:
             if candidate in unknowns and _independent(part, unknowns, [*free, candidate]):
                 free.append(candidate)
         targets = [u for u in unknowns if u not in free]
-        roots = solve_bounded(part, targets, seconds) if targets else [{}]
+        roots = _certified(part, targets, seconds) if targets and not free else None
+        if roots is None:
+            roots = solve_bounded(part, targets, seconds) if targets else [{}]
         for root in roots:
             root = {s: v for s, v in root.items() if s in targets}
             if not all(_is_real(v) for v in root.values()):
