@@ -1,0 +1,24 @@
+"""The resonant chain problems: derived from their potential, registered by size."""
+
+import sympy as sp
+
+from perturb import EPS
+from problems import get_problem
+from problems.resonant_chain import chain_of, chain_system
+
+
+def test_the_equations_are_minus_the_gradient_of_the_springs_energy():
+    x1, x2, x3 = sp.symbols("x1 x2 x3")
+    rhs = chain_system(3).rhs
+    by_hand = [
+        -EPS * (x1**3 + (x1 - x2) ** 3),
+        -EPS * ((x2 - x1) ** 3 + (x2 - x3) ** 3),
+        -EPS * ((x3 - x2) ** 3 + x3**3),
+    ]
+    assert all(sp.expand(a - b) == 0 for a, b in zip(rhs, by_hand, strict=True))
+
+
+def test_every_size_is_registered_and_any_size_can_be_made():
+    for n in (2, 3, 4, 6):
+        assert get_problem(f"resonant-chain-{n}").n == n
+    assert len(chain_of(5).build_system().coordinates) == 5
