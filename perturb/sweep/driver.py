@@ -104,24 +104,34 @@ def run_packed(blob: bytes, key: str, shape, chunk, number: int, session: int) -
 
 # ---------------------------------------------------------------------------------- sizing
 def pilot_seconds(job: SweepJob) -> float:
-    """Seconds one point takes, timed here on the grid's first points after a run that pays the
-    one-time costs (compiling, caches): a batch of :data:`SWEEP_PILOT_POINTS` for an evaluation,
-    the median of :data:`SWEEP_PILOT_VALIDATIONS` single points for a validation."""
-    size = job.spec.grid.size
+    """Seconds one point takes, timed here on the points of the grid's first chunk (which share a
+    derivation) after a run that pays the one-time costs (compiling, caches): a batch of
+    :data:`SWEEP_PILOT_POINTS` for an evaluation, the median of :data:`SWEEP_PILOT_VALIDATIONS`
+    single points for a validation."""
     if job.spec.validate:
         times = []
-        for index in range(min(1 + SWEEP_PILOT_VALIDATIONS, size)):
+        for index in _pilot_indices(job, 1 + SWEEP_PILOT_VALIDATIONS):
             clock = time.perf_counter()
             run_chunk(job, [index])
             times.append(time.perf_counter() - clock)
         return statistics.median(times[1:] or times)
     n = SWEEP_PILOT_POINTS
-    first = list(range(min(n, size)))
-    second = list(range(min(n, size), min(2 * n, size))) or first
+    indices = _pilot_indices(job, 2 * n)
+    first = indices[:n]
+    second = indices[n:] or first
     run_chunk(job, first)
     clock = time.perf_counter()
     run_chunk(job, second)
     return (time.perf_counter() - clock) / len(second)
+
+
+def _pilot_indices(job: SweepJob, count: int) -> list[int]:
+    """The (at most ``count``) points of a chunk at the grid's origin, as the sweep's chunks are
+    filled: with one derivation per distinct parameter set they share a derivation, as a chunk's
+    points do, so the pilot times a point and not a derivation per point (which made the disk's
+    r0 x gamma3_0 map run in one-point chunks, each paying its own derivation)."""
+    block = Chunking.of(job.spec.grid.shape, count, job.fill_first())
+    return [int(i) for i in block.indices(0)]
 
 
 def chunk_points(seconds_per_point: float, size: int, workers: int) -> int:
