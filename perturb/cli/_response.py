@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 
 from perturb.cli._errors import EXIT_OK, _UsageError
-from perturb.cli._values import _parse_order, _parse_sets
+from perturb.cli._values import _check_plot_backend, _parse_order, _parse_sets
 
 
 def _parse_sweep(text: str):
@@ -34,13 +34,7 @@ def _cmd_response(args) -> int:
         raise _UsageError(f"--validate {args.validate!r}: give a whole number >= 0") from None
     if count < 0:
         raise _UsageError(f"--validate {count}: give a whole number >= 0")
-    if args.plot is not None:
-        try:
-            import matplotlib  # noqa: F401
-        except ImportError:
-            raise _UsageError(
-                "--plot needs matplotlib: pip install 'perturb[plot]', or drop --plot"
-            ) from None
+    _check_plot_backend(args.plot)
     result = problem_response(problem, parameter, grid, order=order, validate=count)
     if args.format == "json":
         print(json.dumps(response_as_dict(result), allow_nan=False))
