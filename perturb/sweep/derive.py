@@ -32,11 +32,12 @@ import inspect
 import math
 from collections.abc import Mapping
 
-from attrs import frozen
+from attrs import evolve, frozen
 
 from perturb._defaults import SWEEP_POINTS_PER_DERIVATION
 from perturb.errors import InvalidParameterError, PerturbError
 from perturb.solution import PeriodicSolution
+from perturb.validation.columns import ParameterColumns
 from perturb.validation.model import Model
 
 __all__ = ["DeriveMode", "Derivation", "SymbolicModel", "plan"]
@@ -79,6 +80,12 @@ class Derivation:
                 "(its with_parameters gives none): it cannot be swept"
             )
         return SymbolicModel(model) if self.mode is DeriveMode.SYMBOLIC else model
+
+    def columns_at(self, base: Model, columns: Mapping) -> ParameterColumns | None:
+        """The points whose changed values are ``columns`` (name -> array), all at once
+        (:meth:`Model.parameter_columns`; None: the model makes them one by one)."""
+        model = SymbolicModel(base) if self.mode is DeriveMode.SYMBOLIC else base
+        return model.parameter_columns(columns)
 
 
 def _offers_symbolic(model: Model) -> bool:
@@ -240,3 +247,9 @@ class SymbolicModel(Model):
 
     def evaluates_solution_directly(self) -> bool:
         return self.model.evaluates_solution_directly()
+
+    def parameter_columns(self, columns) -> ParameterColumns | None:
+        found = self.model.parameter_columns(columns)
+        if found is None or found.model is None:
+            return found
+        return evolve(found, model=SymbolicModel(found.model))

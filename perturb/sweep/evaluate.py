@@ -266,14 +266,9 @@ class DomainScreen:
             ok &= terms[k1] < terms[k0] * (1 - margin)
         return ok
 
-    def check(self, parameter_values, values: Mapping[str, np.ndarray], omega) -> list:
-        """For each point, its :class:`perturb.domain.DomainCheck`: built from the screen's
-        numbers when the point is clearly inside the domain (``ok``, no reasons), else
-        ``series_domain``'s own.
-
-        ``omega`` are the points' frequencies (from the evaluation), ``values`` the solution's
-        parameters by name.
-        """
+    def screen(self, parameter_values, values: Mapping[str, np.ndarray], omega):
+        """``(clear, frequency sizes, coordinate sizes)``: which points are clearly inside the
+        domain (boolean, shape (P,)), and the sizes of the series' terms the test read."""
         pv = np.atleast_1d(np.asarray(parameter_values, dtype=float))
         large = self.solution.system.regime is Regime.LARGE
         with np.errstate(all="ignore"):
@@ -287,6 +282,19 @@ class DomainScreen:
         clear &= self._clear(freq, self.zero_frequency)
         for sizes, zeros in zip(own, self.zero_terms, strict=True):
             clear &= self._clear(sizes, zeros)
+        return clear, freq, own
+
+    def check(self, parameter_values, values: Mapping[str, np.ndarray], omega) -> list:
+        """For each point, its :class:`perturb.domain.DomainCheck`: built from the screen's
+        numbers when the point is clearly inside the domain (``ok``, no reasons), else
+        ``series_domain``'s own.
+
+        ``omega`` are the points' frequencies (from the evaluation), ``values`` the solution's
+        parameters by name.
+        """
+        pv = np.atleast_1d(np.asarray(parameter_values, dtype=float))
+        clear, freq, own = self.screen(pv, values, omega)
+        omega = np.broadcast_to(np.asarray(omega, dtype=float), pv.shape)
         names = self.solution.coordinates
         out: list = []
         for i in range(pv.size):
