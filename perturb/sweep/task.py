@@ -146,10 +146,7 @@ def _collection_paused():
 
 def _points(job: SweepJob, indices: Sequence[int]) -> list[_Point]:
     grid = job.spec.grid
-    where = np.unravel_index(np.asarray(indices, dtype=np.int64), grid.shape)
-    columns = [
-        np.asarray(axis.values)[w].tolist() for axis, w in zip(grid.axes, where, strict=True)
-    ]
+    columns = [column.tolist() for column in grid.columns(indices).values()]
     names = grid.names
     with _collection_paused(), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -247,12 +244,7 @@ def _check_domains(points: list[_Point], pending: dict[int, tuple]) -> None:
 def _columns(job: SweepJob, indices: Sequence[int]):
     """The chunk's points as :class:`~perturb.validation.ParameterColumns` (None: not offered,
     or its making warned: the per-point route says to which point a warning belongs)."""
-    grid = job.spec.grid
-    where = np.unravel_index(np.asarray(indices, dtype=np.int64), grid.shape)
-    columns = {
-        axis.name: np.asarray(axis.values, dtype=float)[w]
-        for axis, w in zip(grid.axes, where, strict=True)
-    }
+    columns = job.spec.grid.columns(indices)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
