@@ -15,6 +15,10 @@ from collections.abc import Callable
 
 __all__ = ["numpy_lambdify"]
 
+#: The largest integer numpy's functions take as a Python ``int`` (int64): a larger literal becomes
+#: an object array, on which ``sqrt``, ``exp``, ``cos`` ... fail ("no callable sqrt method").
+INT64_MAX = 2**63 - 1
+
 
 @functools.cache
 def _namespace() -> dict:
@@ -51,6 +55,28 @@ def _printer():
     )
 
 
+def _big_integers_as_floats(expr):
+    """``expr`` with each integer beyond :data:`INT64_MAX` written as a float of all its digits.
+
+    Exact results can hold such integers (``sqrt(847504615198858776185891631)`` in a specialised
+    solution of the disk). As a Python ``int`` in the generated code, a ufunc fails on it; as a
+    float literal of all its digits it is the double nearest to it, the very number Python's
+    arithmetic makes of it where it worked (a product, a quotient).
+    """
+    import sympy
+
+    if isinstance(expr, list | tuple):
+        return type(expr)(_big_integers_as_floats(e) for e in expr)
+    if isinstance(expr, sympy.MatrixBase):
+        return expr.applyfunc(_big_integers_as_floats)
+    if not isinstance(expr, sympy.Basic):
+        return expr
+    big = [n for n in expr.atoms(sympy.Integer) if abs(int(n)) > INT64_MAX]
+    if not big:
+        return expr
+    return expr.xreplace({n: sympy.Float(n, len(str(abs(int(n))))) for n in big})
+
+
 def numpy_lambdify(args, expr, cse: bool = False) -> Callable:
     """``sympy.lambdify(args, expr, "numpy", cse=cse)``: the same function, built more cheaply.
 
@@ -77,4 +103,5 @@ def numpy_lambdify(args, expr, cse: bool = False) -> Callable:
     """
     import sympy
 
+    expr = _big_integers_as_floats(expr)
     return sympy.lambdify(args, expr, modules=[_namespace()], printer=_printer(), cse=cse)

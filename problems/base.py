@@ -54,6 +54,7 @@ from perturb.validation import (
     Integrals,
     Model,
     OrbitEstimate,
+    ParameterColumns,
     ShootingSetup,
     quasilinear_state_names,
     state_along,
@@ -465,6 +466,14 @@ class Problem(Model, ABC):
         ``period`` overridden)."""
         own = type(self).state is Problem.state and type(self).period is Problem.period
         return own and self.system().excitation is None  # a driven state adds the phase
+
+    def parameter_columns(self, columns) -> ParameterColumns | None:
+        """Many points at once (the Model hook of a sweep's fast route): offered when ε is the
+        parameter ``eps``, the symbols' values are the parameters of the same names and the
+        method options do not read the parameters that change (:mod:`problems._columns`)."""
+        from problems._columns import problem_columns
+
+        return problem_columns(self, columns)
 
     def _epsilon_knob(self) -> tuple[str, float] | None:
         """``(name, exponent)`` of a parameter with ε ∝ p^exponent that leaves ``symbol_values()``

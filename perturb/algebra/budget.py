@@ -27,7 +27,8 @@ def solve_bounded(eqs, unknowns, seconds: float, solver=sympy_roots):
     """``solver(eqs, unknowns)`` (default :func:`sympy_roots`) with a time budget.
 
     The solve runs in a forked child process, which is killed when the budget is spent.
-    Where the platform cannot fork, it runs in-process without a budget.
+    Where the platform cannot fork, or in a daemonic process (which may not have children: a
+    Dask worker, a ``multiprocessing`` pool's worker), it runs in-process without a budget.
 
     Parameters
     ----------
@@ -60,6 +61,10 @@ def solve_bounded(eqs, unknowns, seconds: float, solver=sympy_roots):
     >>> solve_bounded([x**2 - 4], [x], 10.0)
     [{x: -2}, {x: 2}]
     """
+    if multiprocessing.current_process().daemon:
+        # a daemonic process (a Dask worker, a multiprocessing pool's worker) may not start
+        # children: the solve runs here, without a budget, as where the platform cannot fork
+        return solver(eqs, unknowns)
     try:
         context = multiprocessing.get_context("fork")
     except ValueError:  # pragma: no cover - platforms without fork

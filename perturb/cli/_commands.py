@@ -12,6 +12,7 @@ import numpy as np
 from perturb._defaults import DEFAULT_SAMPLES
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError
 from perturb.cli._values import (
+    _check_plot_backend,
     _parse_order,
     _parse_output,
     _parse_positive,
@@ -172,13 +173,7 @@ def _cmd_work_precision(args) -> int:
     periods = _parse_positive("--periods", args.periods, float)
     orders = _parse_positive("--orders", args.orders, int)
     repeat = _parse_positive("--repeat", args.repeat, int)
-    if args.plot is not None:
-        try:
-            import matplotlib  # noqa: F401
-        except ImportError:
-            raise _UsageError(
-                "--plot needs matplotlib: pip install 'perturb[plot]', or drop --plot"
-            ) from None
+    _check_plot_backend(args.plot)
     result = work_precision(problem, periods=periods, orders=orders, repeat=repeat)
     if args.format == "json":
         print(json.dumps(work_precision_as_dict(result), allow_nan=True))

@@ -4,35 +4,19 @@ from __future__ import annotations
 
 import json
 
-from perturb._defaults import MAX_TIMES
 from perturb.cli._errors import EXIT_OK, _UsageError
-from perturb.cli._values import _parse_order, _parse_sets
+from perturb.cli._values import _check_plot_backend, _parse_order, _parse_sets
 
 
 def _parse_sweep(text: str):
-    """``NAME=START:STOP:N`` (N >= 2, START < STOP, finite): (name, array)."""
-    import numpy as np
+    """``NAME=START:STOP:N``: (name, array), or a usage error (exit 2)."""
+    from perturb.errors import InvalidParameterError
+    from perturb.response.model import parse_sweep
 
-    name, sep, spec = text.partition("=")
-    parts = spec.split(":")
-    if not sep or not name.strip() or len(parts) != 3:
-        raise _UsageError(
-            f"--sweep {text!r}: write NAME=START:STOP:N, e.g. --sweep Omega=0.9:1.2:61"
-        )
     try:
-        start, stop = float(parts[0]), float(parts[1])
-        count = int(parts[2])
-    except ValueError:
-        raise _UsageError(
-            f"--sweep {text!r}: START and STOP must be numbers and N a whole number"
-        ) from None
-    if not (np.isfinite(start) and np.isfinite(stop)):
-        raise _UsageError(f"--sweep {text!r}: START and STOP must be finite")
-    if not 2 <= count <= MAX_TIMES:
-        raise _UsageError(f"--sweep {text!r}: N = {count} must be between 2 and {MAX_TIMES}")
-    if not start < stop:
-        raise _UsageError(f"--sweep {text!r}: START must be below STOP (bounds reversed?)")
-    return name.strip(), np.linspace(start, stop, count)
+        return parse_sweep(text)
+    except InvalidParameterError as exc:
+        raise _UsageError(str(exc)) from None
 
 
 def _cmd_response(args) -> int:
@@ -50,13 +34,7 @@ def _cmd_response(args) -> int:
         raise _UsageError(f"--validate {args.validate!r}: give a whole number >= 0") from None
     if count < 0:
         raise _UsageError(f"--validate {count}: give a whole number >= 0")
-    if args.plot is not None:
-        try:
-            import matplotlib  # noqa: F401
-        except ImportError:
-            raise _UsageError(
-                "--plot needs matplotlib: pip install 'perturb[plot]', or drop --plot"
-            ) from None
+    _check_plot_backend(args.plot)
     result = problem_response(problem, parameter, grid, order=order, validate=count)
     if args.format == "json":
         print(json.dumps(response_as_dict(result), allow_nan=False))

@@ -116,3 +116,15 @@ def _parse_output(flag: str, text: str | None) -> Path | None:
     if path.exists() and not path.is_dir():
         raise _UsageError(f"{flag} {text!r} is an existing file: name a folder")
     return path
+
+
+def _check_plot_backend(plot: str | None) -> None:
+    """A usage error when ``--plot`` is given and matplotlib is not installed."""
+    if plot is None:
+        return
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        raise _UsageError(
+            "--plot needs matplotlib: pip install 'perturb[plot]', or drop --plot"
+        ) from None

@@ -22,9 +22,9 @@ import sympy as sp
 from attrs import frozen
 
 from perturb._defaults import NUMERIC_ZERO, PROBE_DIGITS
+from perturb.algebra.budget import solve_bounded
 from perturb.algebra.certified import certified_real_roots
 from perturb.algebra.rootset import RootStatus
-from perturb.method.conditions import solve_bounded
 from perturb.method.exact import probe_values, vanishes
 
 __all__ = ["Component", "solution_components"]

@@ -5,10 +5,12 @@ corrections, the frequency corrections :math:`\\Omega_k`). Linear ones are solve
 free unknowns left as parameters for a later order. Nonlinear ones (the amplitude equations of the
 first non-zero order) are solved for all roots and one branch is chosen:
 
-1. with numeric coefficients, by a lexicographic Groebner basis (:func:`groebner_real_roots`), used
-   as it is when every root is rational;
-2. else by sympy's ``solve`` in a forked child process under a time budget (:func:`solve_bounded`);
-   irrational Groebner roots are the fallback when sympy cannot write them in radicals in time;
+1. with numeric coefficients, by the certified real-root solver of :mod:`perturb.algebra`
+   (msolve where the extra ``roots`` is installed, else the exact sympy route): every real root,
+   each isolated; ``NO_ROOT`` only when it is proved that none exists;
+2. else by sympy's ``solve`` in a forked child process under a time budget
+   (:func:`perturb.algebra.budget.solve_bounded`); a spent budget is ``SOLVER_BUDGET``, with the
+   size of the system and the option that raises the budget;
 3. when no root can be enumerated in time, from the generating amplitudes the user gives in
    ``branch`` (the frequency corrections are then solved for and every condition checked).
 """
@@ -35,7 +37,6 @@ __all__ = [
     "OrderFailed",
     "compatibility_conditions",
     "groebner_real_roots",
-    "solve_bounded",
 ]
 
 

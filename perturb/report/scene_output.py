@@ -12,6 +12,7 @@ file                        written when ``[outputs]`` has
 ``work_precision.csv``      ``work_precision = true`` (``method,setting,error,seconds``)
 ``solution.tex``            ``latex = true``
 ``sweep.zarr``, ``.csv``    ``sweep = true`` (the ``[sweep]``'s points: a Zarr store, a table)
+``response.csv``, ``.json`` ``response = true`` (the ``[response]``: as ``perturb response``)
 ``NAME.png`` (``.pdf``...)  ``plots = ["NAME", ...]`` (``formats``: png, pdf, svg)
 ==========================  ==================================================
 
@@ -32,10 +33,11 @@ import numpy as np
 
 from perturb.errors import SceneError
 from perturb.report.latex import solution_document
+from perturb.report.response import response_as_csv, response_as_dict
 from perturb.report.sweep import sweep_as_csv
 from perturb.report.validation import validation_as_dict
 from perturb.report.workprecision import work_precision_as_csv
-from perturb.scene.spec import MAP_PLOTS, PLOT_FORMATS, PLOT_NAMES
+from perturb.scene.spec import MAP_PLOTS, PLOT_FORMATS, PLOT_NAMES, RESPONSE_PLOTS
 
 __all__ = ["SUMMARY", "prepare_folder", "report_files", "summary_markdown", "write_report"]
 
@@ -44,6 +46,8 @@ SUMMARY = "summary.md"
 
 _DATA_FILES = (
     "sweep.csv",
+    "response.csv",
+    "response.json",
     "solution.csv",
     "solution.json",
     "euler.csv",
@@ -89,6 +93,7 @@ def report_files(scene) -> list[str]:
     names += ["work_precision.csv"] if out.work_precision else []
     names += ["solution.tex"] if out.latex else []
     names += ["sweep.zarr", "sweep.csv"] if out.sweep else []
+    names += ["response.csv", "response.json"] if out.response else []
     names += [f"{plot}.{fmt}" for plot in out.plots for fmt in out.formats]
     return names
 
@@ -158,6 +163,13 @@ def _draw(name: str, result, notes: list[str]):
             slope=fit.slope if math.isfinite(fit.slope) else None,
             slope_band=fit.band,
         )
+    if name in RESPONSE_PLOTS:
+        if result.response is None:
+            notes.append(f"plot {name!r} skipped: the response was not computed")
+            return None
+        if name == "frequency_response":
+            return plots.plot_frequency_response(result.response)
+        return plots.plot_floquet_along_branches(result.response)
     if name in MAP_PLOTS:
         return _map(name, result, notes)
     if name == "work_precision":
@@ -231,6 +243,34 @@ def _sweep_lines(ds) -> list[str]:
     return lines
 
 
+def _response_lines(result) -> list[str]:
+    """The summary's lines about the frequency response: branches, folds, the true motion."""
+    response = result.response.response
+    lines = [
+        f"- response: {len(response.points)} steady states over {len(response.grid)} values of "
+        f"{response.parameter} ({response.grid[0]:g} to {response.grid[-1]:g}), "
+        f"{len(set(result.response.branches))} branches"
+    ]
+    kept = sum(1 for p in response.points if p.note)
+    if kept:
+        lines.append(
+            f"- {kept} steady states kept their first-order amplitudes (the order-{response.order} "
+            "continuation did not converge there: response.json says why, point by point)"
+        )
+    for fold in response.folds:
+        lines.append(f"- fold at {response.parameter} = {fold.value:.6g}")
+    for failure in response.failures:
+        lines.append(f"- not solved: {failure}")
+    for shot in result.response.true:
+        agree = "agree" if shot.stable_true == shot.stable_analytic else "DISAGREE"
+        lines.append(
+            f"- true orbit at {response.parameter} = {shot.value:.6g} ({shot.branch}): amplitude "
+            f"error {shot.amplitude_error:.2e}, stable {shot.stable_true} (slow flow "
+            f"{shot.stable_analytic}: {agree})"
+        )
+    return lines
+
+
 def _full(truth, n: int):
     """The true trajectory when it covers the whole grid (else None: drawn without it)."""
     if truth is None or min(len(v) for v in truth.values()) < n:
@@ -255,6 +295,8 @@ def summary_markdown(result, files: list[str]) -> str:
         lines += ["- verdict: not validated (add `validation = true` to [outputs])"]
     if result.sweep is not None:
         lines += _sweep_lines(result.sweep)
+    if result.response is not None:
+        lines += _response_lines(result)
     if result.work_precision is not None:
         wp = result.work_precision
         best = {}
@@ -307,6 +349,10 @@ def write_report(result, folder) -> tuple[list[str], str]:
         written["solution.tex"] = solution_document(result.solution, result.label)
     if out.sweep and result.sweep is not None:
         written["sweep.csv"] = sweep_as_csv(result.sweep) + "\n"
+    if out.response and result.response is not None:
+        written["response.csv"] = response_as_csv(result.response) + "\n"
+        data = response_as_dict(result.response)
+        written["response.json"] = json.dumps(data, allow_nan=False, indent=1) + "\n"
     figures = {}
     if out.plots:
         for name in out.plots:

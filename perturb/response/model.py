@@ -100,6 +100,45 @@ class ProblemResponse:
     true: tuple = field(converter=tuple, factory=tuple)
 
 
+def parse_sweep(text: str, argument: str = "--sweep") -> tuple[str, np.ndarray]:
+    """``NAME=START:STOP:N`` (finite bounds, START < STOP, 2 <= N <= ``MAX_TIMES``) as
+    ``(name, values)``: the sweep of ``perturb response --sweep`` and of a scene's ``[response]``.
+
+    Raises
+    ------
+    InvalidParameterError
+        One line naming ``argument``, the text and the fix.
+
+    Examples
+    --------
+    >>> name, values = parse_sweep("Omega=0.9:1.1:3")
+    >>> name, values.tolist()
+    ('Omega', [0.9, 1.0, 1.1])
+    """
+    from perturb._defaults import MAX_TIMES
+
+    name, sep, spec = str(text).partition("=")
+    parts = spec.split(":")
+
+    def fail(fix: str) -> InvalidParameterError:
+        return InvalidParameterError(f"{argument} {text!r}: {fix}")
+
+    if not sep or not name.strip() or len(parts) != 3:
+        raise fail(f"write NAME=START:STOP:N, e.g. {argument} Omega=0.9:1.2:61")
+    try:
+        start, stop = float(parts[0]), float(parts[1])
+        count = int(parts[2])
+    except ValueError:
+        raise fail("START and STOP must be numbers and N a whole number") from None
+    if not (math.isfinite(start) and math.isfinite(stop)):
+        raise fail("START and STOP must be finite")
+    if not 2 <= count <= MAX_TIMES:
+        raise fail(f"N = {count} must be between 2 and {MAX_TIMES}")
+    if not start < stop:
+        raise fail("START must be below STOP (bounds reversed?)")
+    return name.strip(), np.linspace(start, stop, count)
+
+
 def _check_grid(parameter: str, grid) -> np.ndarray:
     grid = np.asarray(grid, dtype=float)
     if grid.ndim != 1 or grid.size < 2:
@@ -115,6 +154,35 @@ def _check_grid(parameter: str, grid) -> np.ndarray:
             "give increasing values (START < STOP)", InvalidParameterError,
         )  # fmt: skip
     return grid
+
+
+def check_request(problem, parameter: str):
+    """The driven ``problem``'s system, once ``parameter`` is known to be one of its parameters.
+
+    Raises
+    ------
+    InvalidParameterError
+        A problem that is not driven, or an unknown parameter (the closest is suggested).
+    """
+    system = problem.system()
+    if system.excitation is None:
+        raise bad_value(
+            "problem", problem.name,
+            "it is not driven (its system has no excitation): the frequency response is for "
+            "forced, damped or parametrically excited systems; use `perturb solve`",
+            InvalidParameterError,
+        )  # fmt: skip
+    if parameter not in problem.values:
+        from difflib import get_close_matches
+
+        close = get_close_matches(parameter, list(problem.values), n=1)
+        hint = f" (did you mean {close[0]!r}?)" if close else ""
+        raise bad_value(
+            "sweep", parameter,
+            f"it is not a parameter of {problem.name}: choose from {sorted(problem.values)}{hint}",
+            InvalidParameterError,
+        )  # fmt: skip
+    return system
 
 
 def problem_response(
@@ -145,24 +213,7 @@ def problem_response(
         A problem that is not driven, an unknown parameter, a grid of fewer than 2 increasing
         finite values, or invalid parameter values at a grid point.
     """
-    system = problem.system()
-    if system.excitation is None:
-        raise bad_value(
-            "problem", problem.name,
-            "it is not driven (its system has no excitation): the frequency response is for "
-            "forced, damped or parametrically excited systems; use `perturb solve`",
-            InvalidParameterError,
-        )  # fmt: skip
-    if parameter not in problem.values:
-        from difflib import get_close_matches
-
-        close = get_close_matches(parameter, list(problem.values), n=1)
-        hint = f" (did you mean {close[0]!r}?)" if close else ""
-        raise bad_value(
-            "sweep", parameter,
-            f"it is not a parameter of {problem.name}: choose from {sorted(problem.values)}{hint}",
-            InvalidParameterError,
-        )  # fmt: skip
+    system = check_request(problem, parameter)
     grid = _check_grid(parameter, grid)
     equations = amplitude_equations(system, order)
     points, names, failures, variants = [], [], [], []

@@ -9,6 +9,7 @@ the true trajectory (an integration)     the ``time_series``, ``error``, ``phase
 the validation (integrations, shooting)  ``validation``, the ``convergence`` plot
 the work–precision runs                  ``work_precision`` (table or plot)
 the sweep over ``[sweep]``'s grid        ``sweep``, a validity map (on Dask, in memory)
+the frequency response of ``[response]`` ``response``, its plots (every branch, folds, backbone)
 the Euler angles                         ``euler``, the ``euler``/``orientation`` plots
 =======================================  =============================================
 
@@ -68,11 +69,14 @@ class SceneResult:
     work_precision : perturb.workprecision.WorkPrecision or None
     sweep : xarray.Dataset or None
         The ``[sweep]``'s points (:func:`perturb.sweep`), kept in memory.
+    response : perturb.response.model.ProblemResponse or None
+        The ``[response]``'s frequency response (every branch, its stability, the folds, the
+        backbone, the points shot against the true motion).
     notes : tuple of str
         Warnings raised while computing, and steps skipped with the reason.
     computed : tuple of str
         The steps run, in order (``"solve"``, ``"state"``, ``"truth"``, ``"euler"``,
-        ``"validation"``, ``"work_precision"``, ``"sweep"``).
+        ``"validation"``, ``"work_precision"``, ``"sweep"``, ``"response"``).
     seconds : dict
         Wall time of each step.
     """
@@ -92,6 +96,7 @@ class SceneResult:
     validation: object | None = None
     work_precision: object | None = None
     sweep: object | None = field(default=None, eq=False)
+    response: object | None = field(default=None, eq=False)
     notes: tuple = ()
     computed: tuple = ()
     seconds: dict = field(factory=dict, eq=False)
@@ -138,9 +143,20 @@ def check_scene(scene: Scene, problem) -> None:
         Euler angles (``euler``, the ``euler``/``orientation`` plots) of a problem without them.
     perturb.errors.UnknownNameError
         An unknown ``[solve] integrator`` of a scene that integrates.
+    perturb.errors.SceneError
+        A ``[response]`` of a problem that is not driven, or over a parameter it does not have.
     """
     model = as_model(problem)
     outputs = scene.outputs
+    if scene.response is not None and outputs.needs_response:
+        from perturb.errors import InvalidParameterError
+        from perturb.response.model import check_request, parse_sweep
+
+        name, _ = parse_sweep(scene.response.sweep, "sweep")
+        try:
+            check_request(problem, name)
+        except InvalidParameterError as exc:
+            raise scene.error(f"[response] {exc}") from None
     if outputs.needs_euler and not has_euler_angles(model):
         asked = ["euler = true"] if outputs.euler else []
         asked += [f"plot {p!r}" for p in outputs.plots if p in ("euler", "orientation")]
@@ -225,6 +241,8 @@ def run_scene(scene: Scene, problem) -> SceneResult:
         todo.append(("work_precision", lambda: _work_precision(scene, model)))
     if scene.sweep is not None and outputs.needs_sweep:  # each point says why it failed
         todo.append(("sweep", lambda: _sweep(scene, model)))
+    if scene.response is not None and outputs.needs_response:  # failures are in the result
+        todo.append(("response", lambda: _response(scene, problem)))
     for name, work in track(todo, label=f"report {model.label()}"):
         step(name, work)
 
@@ -249,6 +267,7 @@ def run_scene(scene: Scene, problem) -> SceneResult:
         validation=values.get("validation"),
         work_precision=values.get("work_precision"),
         sweep=values.get("sweep"),
+        response=values.get("response"),
         notes=tuple(state["notes"]),
         computed=tuple(state["computed"]),
         seconds=dict(state["seconds"]),
@@ -296,3 +315,11 @@ def _sweep(scene: Scene, model: Model):
         derive=settings.derive,
         workers=settings.workers,
     )
+
+
+def _response(scene: Scene, problem):
+    from perturb.response.model import parse_sweep, problem_response
+
+    settings = scene.response
+    name, grid = parse_sweep(settings.sweep, "sweep")
+    return problem_response(problem, name, grid, order=scene.order, validate=settings.validate)

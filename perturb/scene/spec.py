@@ -46,9 +46,11 @@ __all__ = [
     "EULER_PLOTS",
     "PLOT_FORMATS",
     "PLOT_NAMES",
+    "RESPONSE_PLOTS",
     "TRUTH_PLOTS",
     "Outputs",
     "MAP_PLOTS",
+    "ResponseSettings",
     "Scene",
     "SweepSettings",
     "WorkPrecisionSettings",
@@ -71,11 +73,20 @@ PLOT_NAMES = (
     "error_map",
     "slope_map",
     "period_map",
+    "frequency_response",
+    "floquet_multipliers",
 )
 
 #: Validity maps of the ``[sweep]`` (two axes); all but the period map need ``validate = true``.
 MAP_PLOTS = frozenset({"verdict_map", "error_map", "slope_map", "period_map"})
 VALIDATED_MAPS = frozenset({"verdict_map", "error_map", "slope_map"})
+
+#: Plots of the ``[response]`` (a driven problem's frequency response).
+RESPONSE_PLOTS = frozenset({"frequency_response", "floquet_multipliers"})
+
+#: Points per branch a ``[response]`` may shoot (``validate``): each is a shooting with its
+#: Floquet multipliers, a few tenths of a second.
+RESPONSE_MAX_VALIDATE = 100
 
 #: Plots drawn beside the true motion: they need an integration of the original equations (the
 #: convergence plot the validation's ε scan, the work-precision plot the integrator runs).
@@ -112,6 +123,8 @@ class Outputs:
         ``solution.tex``: the derived formulas as LaTeX.
     sweep : bool
         ``sweep.zarr`` and ``sweep.csv``: the ``[sweep]`` section's points.
+    response : bool
+        ``response.csv`` and ``response.json``: the ``[response]`` section's frequency response.
     plots : tuple of str
         Names from :data:`PLOT_NAMES`.
     formats : tuple of str
@@ -124,6 +137,7 @@ class Outputs:
     work_precision: bool = False
     latex: bool = False
     sweep: bool = False
+    response: bool = False
     plots: tuple = field(default=(), converter=tuple)
     formats: tuple = field(default=("png",), converter=tuple)
 
@@ -147,6 +161,10 @@ class Outputs:
     @property
     def needs_sweep(self) -> bool:
         return self.sweep or bool(MAP_PLOTS & set(self.plots))
+
+    @property
+    def needs_response(self) -> bool:
+        return self.response or bool(RESPONSE_PLOTS & set(self.plots))
 
     @property
     def needs_state(self) -> bool:
@@ -189,6 +207,23 @@ class SweepSettings:
 
 
 @frozen
+class ResponseSettings:
+    """The ``[response]`` section: the frequency response of a driven problem.
+
+    Attributes
+    ----------
+    sweep : str
+        The swept parameter and its values, as ``perturb response --sweep`` takes them
+        (``"Omega=0.95:1.2:51"``).
+    validate : int
+        Points of each branch shot against the true motion (Floquet multipliers; 0: none).
+    """
+
+    sweep: str
+    validate: int = 0
+
+
+@frozen
 class Scene:
     """A parsed scene file (data only: :func:`perturb.scene.run.run_scene` computes it).
 
@@ -213,6 +248,8 @@ class Scene:
     work_precision : WorkPrecisionSettings
     sweep : SweepSettings or None
         The ``[sweep]`` section, if any (computed only when an output needs it).
+    response : ResponseSettings or None
+        The ``[response]`` section, if any (computed only when an output needs it).
     source : str
         Where the scene was read from (shown in messages).
     text : str
@@ -230,6 +267,7 @@ class Scene:
     outputs: Outputs = field(factory=Outputs)
     work_precision: WorkPrecisionSettings = field(factory=WorkPrecisionSettings)
     sweep: SweepSettings | None = None
+    response: ResponseSettings | None = None
     source: str = "<scene>"
     text: str = field(default="", repr=False)
 
@@ -306,8 +344,8 @@ def _line_of(text: str, section: str, key: str | None) -> int | None:
     return None
 
 
-_SECTIONS = ("problem", "parameters", "solve", "outputs", "work_precision", "sweep")
-_OUTPUT_FLAGS = ("table", "euler", "validation", "work_precision", "latex", "sweep")
+_SECTIONS = ("problem", "parameters", "solve", "outputs", "work_precision", "sweep", "response")
+_OUTPUT_FLAGS = ("table", "euler", "validation", "work_precision", "latex", "sweep", "response")
 
 
 def _keys(section: str) -> tuple[str, ...]:
@@ -317,6 +355,7 @@ def _keys(section: str) -> tuple[str, ...]:
         "outputs": (*_OUTPUT_FLAGS, "plots", "formats"),
         "work_precision": ("periods", "orders", "repeat"),
         "sweep": ("grid", "validate", "times", "workers", "derive"),
+        "response": ("sweep", "validate"),
     }[section]
 
 
@@ -401,6 +440,15 @@ def _parse_data(data: Mapping, source: str, text: str) -> Scene:
     if "sweep" in data:
         fields["sweep"] = _sweep_section(tables["sweep"], checkers["sweep"])
     _check_maps(fields["outputs"], fields.get("sweep"), checkers["outputs"])
+    if "response" in data:
+        fields["response"] = _response_section(tables["response"], checkers["response"])
+    if fields["outputs"].needs_response and "response" not in fields:
+        outputs = fields["outputs"]
+        asked = "response" if outputs.response else "plots"
+        value = True if outputs.response else next(p for p in outputs.plots if p in RESPONSE_PLOTS)
+        raise checkers["outputs"].fail(
+            asked, value, 'it needs a [response] section (sweep = "Omega=0.9:1.2:61")'
+        )
     return Scene(**fields, source=source, text=text)
 
 
@@ -444,6 +492,27 @@ def _sweep_section(table: dict, c: _Checker) -> SweepSettings:
             raise c.fail("derive", derive, 'write "auto" or "per-point"')
         settings["derive"] = derive
     return SweepSettings(**settings)
+
+
+def _response_section(table: dict, c: _Checker) -> ResponseSettings:
+    """The ``[response]`` section (its parameter is checked against the problem later,
+    :func:`perturb.scene.run.check_scene`)."""
+    from perturb.errors import InvalidParameterError
+    from perturb.response.model import parse_sweep
+
+    if "sweep" not in table:
+        raise c.fail(None, table, 'give sweep = "NAME=START:STOP:N", e.g. "Omega=0.9:1.2:61"')
+    sweep = table["sweep"]
+    if not isinstance(sweep, str):
+        raise c.fail("sweep", sweep, 'write it in quotes, e.g. "Omega=0.9:1.2:61"')
+    try:
+        parse_sweep(sweep, "sweep")
+    except InvalidParameterError as exc:
+        raise c.fail("sweep", sweep, str(exc).split(": ", 1)[-1]) from None
+    settings: dict = {"sweep": sweep}
+    if "validate" in table:
+        settings["validate"] = c.integer("validate", table["validate"], 0, RESPONSE_MAX_VALIDATE)
+    return ResponseSettings(**settings)
 
 
 def _check_maps(outputs: Outputs, sweep: SweepSettings | None, c: _Checker) -> None:

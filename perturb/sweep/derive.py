@@ -32,11 +32,13 @@ import inspect
 import math
 from collections.abc import Mapping
 
-from attrs import frozen
+import numpy as np
+from attrs import evolve, frozen
 
 from perturb._defaults import SWEEP_POINTS_PER_DERIVATION
 from perturb.errors import InvalidParameterError, PerturbError
 from perturb.solution import PeriodicSolution
+from perturb.validation.columns import ParameterColumns
 from perturb.validation.model import Model
 
 __all__ = ["DeriveMode", "Derivation", "SymbolicModel", "plan"]
@@ -80,6 +82,12 @@ class Derivation:
             )
         return SymbolicModel(model) if self.mode is DeriveMode.SYMBOLIC else model
 
+    def columns_at(self, base: Model, columns: Mapping) -> ParameterColumns | None:
+        """The points whose changed values are ``columns`` (name -> array), all at once
+        (:meth:`Model.parameter_columns`; None: the model makes them one by one)."""
+        model = SymbolicModel(base) if self.mode is DeriveMode.SYMBOLIC else base
+        return model.parameter_columns(columns)
+
 
 def _offers_symbolic(model: Model) -> bool:
     """Whether the model's ``solve`` takes ``symbolic=`` (the rigid bodies do)."""
@@ -90,12 +98,41 @@ def _offers_symbolic(model: Model) -> bool:
     return "symbolic" in parameters
 
 
+def _seen_in_columns(base: Model, axis, reference: tuple) -> int | None:
+    """:func:`_entering` for one axis from the model's columns (no model per value): the number
+    of distinct symbol values other than ``reference`` (at least 1 if any differs), 0 if none
+    differs, None if the model does not offer columns."""
+    try:
+        found = base.parameter_columns({axis.name: axis.array()})
+    except (PerturbError, ValueError):
+        return None
+    if found is None:
+        return None
+    valid = found.valid()
+    names = [name for name, _ in reference]
+    if set(found.symbol_values) != set(names):
+        return None
+    if not names or not valid.any():
+        return 0
+    rows = np.stack([found.symbol_values[name][valid] for name in names], axis=1)
+    distinct = {tuple(row) for row in np.unique(rows, axis=0).tolist()}
+    values = tuple(value for _, value in reference)
+    if distinct <= {values}:
+        return 0
+    return len(distinct - {values}) or 1
+
+
 def _entering(base: Model, axes) -> dict[str, int]:
     """The axes whose values change the numbers the derivation is made for (symbol_values),
     with how many distinct sets of those numbers each gives."""
     reference = tuple(sorted(base.symbol_values().items()))
     found = {}
     for axis in axes:
+        seen = _seen_in_columns(base, axis, reference)
+        if seen is not None:
+            if seen:
+                found[axis.name] = seen
+            continue
         seen = {reference}
         for value in axis.values:
             try:
@@ -240,3 +277,9 @@ class SymbolicModel(Model):
 
     def evaluates_solution_directly(self) -> bool:
         return self.model.evaluates_solution_directly()
+
+    def parameter_columns(self, columns) -> ParameterColumns | None:
+        found = self.model.parameter_columns(columns)
+        if found is None or found.model is None:
+            return found
+        return evolve(found, model=SymbolicModel(found.model))

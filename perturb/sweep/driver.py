@@ -3,7 +3,7 @@
 By default a :class:`distributed.LocalCluster` of single-threaded worker processes over this
 machine's cores; with a scheduler address, the identical tasks on an existing cluster (``dask
 scheduler`` and ``dask worker`` started by hand, dask-jobqueue, Kubernetes). The job (spec and
-derivation plan) travels inside each task as a few kB of cloudpickle; a worker unpacks it once per
+derivation plan, as cloudpickle) is scattered to the workers once; a worker unpacks it once per
 process (:func:`run_packed`). Results come back to this process, which is the store's only
 writer: a chunk is written as soon as it finishes, in any order.
 
@@ -104,24 +104,34 @@ def run_packed(blob: bytes, key: str, shape, chunk, number: int, session: int) -
 
 # ---------------------------------------------------------------------------------- sizing
 def pilot_seconds(job: SweepJob) -> float:
-    """Seconds one point takes, timed here on the grid's first points after a run that pays the
-    one-time costs (compiling, caches): a batch of :data:`SWEEP_PILOT_POINTS` for an evaluation,
-    the median of :data:`SWEEP_PILOT_VALIDATIONS` single points for a validation."""
-    size = job.spec.grid.size
+    """Seconds one point takes, timed here on the points of the grid's first chunk (which share a
+    derivation) after a run that pays the one-time costs (compiling, caches): a batch of
+    :data:`SWEEP_PILOT_POINTS` for an evaluation, the median of :data:`SWEEP_PILOT_VALIDATIONS`
+    single points for a validation."""
     if job.spec.validate:
         times = []
-        for index in range(min(1 + SWEEP_PILOT_VALIDATIONS, size)):
+        for index in _pilot_indices(job, 1 + SWEEP_PILOT_VALIDATIONS):
             clock = time.perf_counter()
             run_chunk(job, [index])
             times.append(time.perf_counter() - clock)
         return statistics.median(times[1:] or times)
     n = SWEEP_PILOT_POINTS
-    first = list(range(min(n, size)))
-    second = list(range(min(n, size), min(2 * n, size))) or first
+    indices = _pilot_indices(job, 2 * n)
+    first = indices[:n]
+    second = indices[n:] or first
     run_chunk(job, first)
     clock = time.perf_counter()
     run_chunk(job, second)
     return (time.perf_counter() - clock) / len(second)
+
+
+def _pilot_indices(job: SweepJob, count: int) -> list[int]:
+    """The (at most ``count``) points of a chunk at the grid's origin, as the sweep's chunks are
+    filled: with one derivation per distinct parameter set they share a derivation, as a chunk's
+    points do, so the pilot times a point and not a derivation per point (which made the disk's
+    r0 x gamma3_0 map run in one-point chunks, each paying its own derivation)."""
+    block = Chunking.of(job.spec.grid.shape, count, job.fill_first())
+    return [int(i) for i in block.indices(0)]
 
 
 def chunk_points(seconds_per_point: float, size: int, workers: int) -> int:
@@ -178,19 +188,21 @@ class Cluster:
                     "and check the address (tcp://HOST:PORT)"
                 ) from None
             return self
+        import dask
         from distributed import LocalCluster
 
         n = self.workers if self.workers is not None else (os.cpu_count() or 1)
         if isinstance(n, bool) or not isinstance(n, int) or n < 1:
             raise InvalidParameterError(f"--workers {n!r} is invalid: give a whole number >= 1")
-        self._cluster = LocalCluster(
-            n_workers=n,
-            threads_per_worker=1,
-            processes=True,
-            dashboard_address=None,
-            silence_logs=logging.ERROR,
-            env=_worker_environment(),
-        )
+        with dask.config.set({PRE_SPAWN: _pre_spawn_environment()}):
+            self._cluster = LocalCluster(
+                n_workers=n,
+                threads_per_worker=1,
+                processes=True,
+                dashboard_address=None,
+                silence_logs=logging.ERROR,
+                env=_worker_environment(),
+            )
         self.client = Client(self._cluster, set_as_default=False)
         return self
 
@@ -207,6 +219,25 @@ class Cluster:
         if self._cluster is not None:
             with contextlib.suppress(Exception):
                 self._cluster.close()
+
+
+#: Dask's setting of the variables its nanny sets before it starts a worker process.
+PRE_SPAWN = "distributed.nanny.pre-spawn-environ"
+
+#: Variables of :data:`PRE_SPAWN` left out for the workers perturb starts: MALLOC_TRIM_THRESHOLD_
+#: fixes malloc's threshold for mapping fresh pages, so that every array above 128 kB is mapped
+#: and unmapped again; a chunk's evaluation ran 3 times slower on such a worker (0.59 s against
+#: 0.17 s for 44,601 van der Pol points, benchmarks/bench_sweep.md). A sweep's chunks hold little
+#: memory, which is what that setting returns to the system.
+PRE_SPAWN_LEFT_OUT = ("MALLOC_TRIM_THRESHOLD_",)
+
+
+def _pre_spawn_environment() -> dict:
+    """Dask's pre-spawn variables without :data:`PRE_SPAWN_LEFT_OUT`."""
+    import dask
+
+    environ = dict(dask.config.get(PRE_SPAWN, default={}) or {})
+    return {k: v for k, v in environ.items() if k not in PRE_SPAWN_LEFT_OUT}
 
 
 def _worker_environment() -> dict[str, str]:
@@ -260,7 +291,8 @@ def run_tasks(
     from distributed import as_completed
 
     client = cluster.client
-    blob = pack(job)
+    # the job once to every worker, not inside every task (an axis of 10^6 values is 9 MB)
+    blob = client.scatter(pack(job), broadcast=True, hash=False)
     token = uuid.uuid4().hex[:8]
     total = math.prod(chunking.shape)
     futures = {}

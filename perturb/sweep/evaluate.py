@@ -83,9 +83,11 @@ def half_range(samples: np.ndarray) -> np.ndarray:
 #: A smooth periodic component's steps differ by O(1) factors, a phase's wrap by the sample count.
 NOT_PERIODIC_STEP = 8.0
 
-#: Rows of samples computed at once: 512 x 256 samples (1 MiB) stay in the cache; one product of
-#: all rows at once is several times slower on a machine whose memory is slow.
-SAMPLE_BLOCK = 512
+#: Rows computed at once: the Newton steps' temporaries (4096 complex numbers, 64 KiB) stay below
+#: the size from which malloc maps fresh pages from the system for each array — which a Dask
+#: worker's MALLOC_TRIM_THRESHOLD_ makes it do for every large one (the temporaries of a whole
+#: chunk made the amplitudes 4 times slower on a worker than here); measured best of 512 to 4096.
+SAMPLE_BLOCK = 4096
 
 #: Newton steps that polish an extreme of a trigonometric polynomial found on the samples (the
 #: sample is within half a spacing; Newton converges quadratically from there).
@@ -104,21 +106,25 @@ def trig_half_range(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     flat_a, flat_b = a.reshape(-1, h), b.reshape(-1, h)
     coefficients = np.concatenate([flat_a, flat_b], axis=1)
     table = np.concatenate([np.cos(np.outer(j, s)), np.sin(np.outer(j, s))], axis=0)
-    rows = coefficients.shape[0]
-    where = {1.0: np.empty(rows, dtype=int), -1.0: np.empty(rows, dtype=int)}
-    extreme = {1.0: np.empty(rows), -1.0: np.empty(rows)}
-    for lo in range(0, rows, SAMPLE_BLOCK):  # blocks that stay in the cache: one BLAS call each
-        block = coefficients[lo : lo + SAMPLE_BLOCK] @ table
-        rows_in = np.arange(block.shape[0])
-        for sign, pick in ((1.0, np.argmax), (-1.0, np.argmin)):
-            at = pick(block, axis=-1)
-            where[sign][lo : lo + SAMPLE_BLOCK] = at
-            extreme[sign][lo : lo + SAMPLE_BLOCK] = sign * block[rows_in, at]
-    # x = Re sum_j c_j z^j, dx/ds = Re sum_j i j c_j z^j, d2x/ds2 = -Re sum_j j^2 c_j z^j
     c = flat_a - 1j * flat_b
-    out = []
-    for sign in (1.0, -1.0):
-        at = s[where[sign]]
+    out = np.empty(coefficients.shape[0])
+    for lo in range(0, out.size, SAMPLE_BLOCK):  # every temporary of a block stays small
+        rows = slice(lo, lo + SAMPLE_BLOCK)
+        out[rows] = _block_half_range(coefficients[rows] @ table, c[rows], s)
+    return out.reshape(shape)
+
+
+def _block_half_range(samples: np.ndarray, c: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """:func:`trig_half_range` of a block of rows: ``samples`` of each row on ``s``, ``c`` its
+    complex coefficients a_j - i b_j."""
+    h = c.shape[1]
+    rows_in = np.arange(samples.shape[0])
+    # x = Re sum_j c_j z^j, dx/ds = Re sum_j i j c_j z^j, d2x/ds2 = -Re sum_j j^2 c_j z^j
+    found = []
+    for sign, pick in ((1.0, np.argmax), (-1.0, np.argmin)):
+        where = pick(samples, axis=-1)
+        extreme = sign * samples[rows_in, where]
+        at = s[where]
         for _ in range(NEWTON_STEPS):
             z = np.exp(1j * at)
             d1 = d2 = 0j
@@ -133,8 +139,8 @@ def trig_half_range(a: np.ndarray, b: np.ndarray) -> np.ndarray:
         value = np.zeros(at.shape, dtype=complex)
         for k in range(h - 1, -1, -1):
             value = value * z + c[:, k]
-        out.append(sign * np.maximum(sign * value.real, extreme[sign]))  # never below the samples
-    return ((out[0] - out[1]) / 2).reshape(shape)
+        found.append(sign * np.maximum(sign * value.real, extreme))  # never below the samples
+    return (found[0] - found[1]) / 2
 
 
 def evaluate_group(
@@ -266,14 +272,9 @@ class DomainScreen:
             ok &= terms[k1] < terms[k0] * (1 - margin)
         return ok
 
-    def check(self, parameter_values, values: Mapping[str, np.ndarray], omega) -> list:
-        """For each point, its :class:`perturb.domain.DomainCheck`: built from the screen's
-        numbers when the point is clearly inside the domain (``ok``, no reasons), else
-        ``series_domain``'s own.
-
-        ``omega`` are the points' frequencies (from the evaluation), ``values`` the solution's
-        parameters by name.
-        """
+    def screen(self, parameter_values, values: Mapping[str, np.ndarray], omega):
+        """``(clear, frequency sizes, coordinate sizes)``: which points are clearly inside the
+        domain (boolean, shape (P,)), and the sizes of the series' terms the test read."""
         pv = np.atleast_1d(np.asarray(parameter_values, dtype=float))
         large = self.solution.system.regime is Regime.LARGE
         with np.errstate(all="ignore"):
@@ -287,6 +288,19 @@ class DomainScreen:
         clear &= self._clear(freq, self.zero_frequency)
         for sizes, zeros in zip(own, self.zero_terms, strict=True):
             clear &= self._clear(sizes, zeros)
+        return clear, freq, own
+
+    def check(self, parameter_values, values: Mapping[str, np.ndarray], omega) -> list:
+        """For each point, its :class:`perturb.domain.DomainCheck`: built from the screen's
+        numbers when the point is clearly inside the domain (``ok``, no reasons), else
+        ``series_domain``'s own.
+
+        ``omega`` are the points' frequencies (from the evaluation), ``values`` the solution's
+        parameters by name.
+        """
+        pv = np.atleast_1d(np.asarray(parameter_values, dtype=float))
+        clear, freq, own = self.screen(pv, values, omega)
+        omega = np.broadcast_to(np.asarray(omega, dtype=float), pv.shape)
         names = self.solution.coordinates
         out: list = []
         for i in range(pv.size):

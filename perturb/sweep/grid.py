@@ -71,6 +71,24 @@ class Axis:
     def as_dict(self) -> dict:
         return {"name": self.name, "values": list(self.values), "spec": self.spec}
 
+    def array(self) -> np.ndarray:
+        """The values as a read-only float array, made once per process (an axis of 10⁶ values
+        converted for every chunk cost more than evaluating the chunk)."""
+        entry = _ARRAYS.get(id(self))
+        if entry is None or entry[0] is not self:
+            if len(_ARRAYS) >= _ARRAYS_KEPT:
+                _ARRAYS.clear()
+            array = np.array(self.values, dtype=float)
+            array.flags.writeable = False
+            entry = _ARRAYS[id(self)] = (self, array)
+        return entry[1]
+
+
+#: Per process: each axis's values as an array, by the axis object's id (the axis kept beside it
+#: so that the id is not reused); at most :data:`_ARRAYS_KEPT` axes.
+_ARRAYS: dict[int, tuple] = {}
+_ARRAYS_KEPT = 64
+
 
 def parse_axis(text: str) -> Axis:
     """An axis from ``NAME=START:STOP:N`` (N evenly spaced values, both ends included),
@@ -214,6 +232,11 @@ class Grid:
         """The parameter values of the point numbered ``index`` (C order)."""
         where = np.unravel_index(index, self.shape)
         return {axis.name: axis.values[int(i)] for axis, i in zip(self.axes, where, strict=True)}
+
+    def columns(self, indices) -> dict[str, np.ndarray]:
+        """The parameter values of the points numbered ``indices`` (C order), one array per axis."""
+        where = np.unravel_index(np.asarray(indices, dtype=np.int64), self.shape)
+        return {axis.name: axis.array()[w] for axis, w in zip(self.axes, where, strict=True)}
 
     def as_list(self) -> list[dict]:
         return [axis.as_dict() for axis in self.axes]

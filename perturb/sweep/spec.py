@@ -113,7 +113,15 @@ class SweepSpec:
 
 @frozen
 class SweepJob:
-    """What a task needs: the spec and the derivation plan (the solution is rebuilt per worker)."""
+    """What a task needs: the spec and the derivation plan (the solution is rebuilt per worker).
+
+    Attributes
+    ----------
+    spec : SweepSpec
+    derivation : Derivation
+    key : str
+        The spec's :meth:`~SweepSpec.fingerprint` (stored with the results; it names the tasks).
+    """
 
     spec: SweepSpec
     derivation: Derivation

@@ -122,7 +122,7 @@ class SweepStore:
         path = Path(path)
         if cls.check(path, job.spec, resume=resume, version=version):
             return cls._open(path)
-        return cls._create(path, job, job.spec.fingerprint(version), version, chunk_points(), extra)
+        return cls._create(path, job, job.key, version, chunk_points(), extra)  # the fingerprint
 
     @classmethod
     def _open(cls, path: Path) -> SweepStore:
@@ -159,15 +159,15 @@ class SweepStore:
         for var in variables(spec.validate):
             shape = (*grid.shape, *(sizes[d] for d in var.dims))
             chunks = (*chunking.chunk, *(sizes[d] for d in var.dims))
-            array = group.create_array(
+            group.create_array(
                 stored_name(var.name, grid.names),
                 shape=shape,
                 chunks=chunks,
                 dtype=str if var.dtype == "str" else var.dtype,
                 fill_value=var.fill,
                 dimension_names=(*grid.names, *var.dims),
+                attributes=dict(var.attrs),
             )
-            array.attrs.update(var.attrs)
         group.attrs.update(
             {
                 MARK: STORE_FORMAT,

@@ -19,6 +19,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from perturb.domain import series_domain
 from perturb.errors import PerturbError
 from perturb.sweep.evaluate import (
     DomainScreen,
@@ -145,10 +146,7 @@ def _collection_paused():
 
 def _points(job: SweepJob, indices: Sequence[int]) -> list[_Point]:
     grid = job.spec.grid
-    where = np.unravel_index(np.asarray(indices, dtype=np.int64), grid.shape)
-    columns = [
-        np.asarray(axis.values)[w].tolist() for axis, w in zip(grid.axes, where, strict=True)
-    ]
+    columns = [column.tolist() for column in grid.columns(indices).values()]
     names = grid.names
     with _collection_paused(), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -243,6 +241,88 @@ def _check_domains(points: list[_Point], pending: dict[int, tuple]) -> None:
             _domain(points[k], check)
 
 
+def _columns(job: SweepJob, indices: Sequence[int]):
+    """The chunk's points as :class:`~perturb.validation.ParameterColumns` (None: not offered,
+    or its making warned: the per-point route says to which point a warning belongs)."""
+    columns = job.spec.grid.columns(indices)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            found = job.derivation.columns_at(job.spec.model, columns)
+        except Exception:  # noqa: BLE001 - the per-point route records it point by point
+            return None
+    return None if caught else found
+
+
+def _run_columns(job: SweepJob, indices: Sequence[int], out) -> list[PointStatus] | None:
+    """The chunk evaluated from its columns, into ``out``: the points' statuses (reasons and notes
+    written), or None where the per-point route must do it (a model that does not offer
+    columns or does not evaluate its solution directly, a warning, a point that is singular)."""
+    found = _columns(job, indices)
+    if found is None:
+        return None
+    spec = job.spec
+    valid = np.flatnonzero(found.valid())
+    statuses = [PointStatus.OK if not e else PointStatus.INVALID_PARAMETERS for e in found.errors]
+    if found.model is not None:
+        model = found.model
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            try:
+                direct = model.evaluates_solution_directly()
+                solution = model.solve(spec.order) if direct else None
+            except Exception:  # noqa: BLE001 - the per-point route records it point by point
+                return None
+        if caught or solution is None:
+            return None
+        out["epsilon"][valid] = found.epsilon[valid]
+        if not solution.success:
+            reason = f"{solution.status.value}: {solution.message}"
+            for k in valid:
+                statuses[k] = PointStatus.CONSTRUCTION_FAILED
+                out["reason"][k] = reason
+        elif not _columns_evaluated(job, solution, found, valid, statuses, out):
+            return None
+    for k, error in enumerate(found.errors):
+        if error:
+            out["reason"][k] = " ".join(error.split())
+        if found.notes[k]:
+            out["warnings"][k] = found.notes[k]
+    return statuses
+
+
+def _columns_evaluated(job, solution, found, valid, statuses, out) -> bool:
+    """The valid points' quantities and domain statuses; False: leave them to the per-point
+    route (a warning, an error or a value that is not finite)."""
+    pv = found.parameter_value[valid]
+    values = {name: column[valid] for name, column in found.symbol_values.items()}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            result = evaluate_group(solution, pv, values, np.asarray(job.spec.times))
+            clear = _screen(solution).screen(pv, values, result["omega"])[0]
+        except (SolutionFailed, PerturbError, ValueError, ArithmeticError):
+            return False
+    finite = np.all(np.isfinite(result["state"])) and np.all(np.isfinite(result["period"]))
+    if caught or not finite:
+        return False
+    for name in ("period", "frequency", "amplitude", "state"):
+        out[name][valid] = result[name]
+    for i in np.flatnonzero(~clear):
+        point = {name: float(column[i]) for name, column in values.items()}
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            check = series_domain(solution, float(pv[i]), point)
+        k = valid[i]
+        if caught:
+            out["warnings"][k] = "; ".join(dict.fromkeys(str(w.message) for w in caught))
+        if not check.ok:
+            statuses[k] = PointStatus.OUTSIDE_DOMAIN
+            reasons = "; ".join(check.reasons)
+            out["reason"][k] = f"the series is outside its domain: {reasons}"
+    return True
+
+
 def validate_point(job: SweepJob, model, domain=None):
     """The validation of one point: exactly ``perturb validate``'s call (``domain``: the point's
     :func:`perturb.domain.series_domain`, when the evaluation has it already)."""
@@ -287,8 +367,14 @@ def _store_validation(out, k: int, report) -> None:
             out["check_passed"][k, i] = CHECK_CODES[check.passed]
 
 
-def run_chunk(job: SweepJob, indices: Sequence[int], session: int = 1) -> ChunkResult:
+def run_chunk(
+    job: SweepJob, indices: Sequence[int], session: int = 1, columns: bool = True
+) -> ChunkResult:
     """Compute the points numbered ``indices`` (flat, C order) of ``job``'s grid.
+
+    An evaluation-only chunk of a model that offers :meth:`~perturb.validation.Model.
+    parameter_columns` is computed from its columns, without a model per point; ``columns=False``
+    makes every point's model (the reference route: the same numbers, statuses and reasons).
 
     Returns
     -------
@@ -299,6 +385,17 @@ def run_chunk(job: SweepJob, indices: Sequence[int], session: int = 1) -> ChunkR
     clock, cpu = time.perf_counter(), time.process_time()
     spec = job.spec
     n_components = len(spec.model.state_names())
+    if columns and not spec.validate:
+        out = _empty(job, len(indices), n_components)
+        with _collection_paused():
+            statuses = _run_columns(job, indices, out)
+        if statuses is not None:
+            codes = {status: code_of(status) for status in PointStatus}
+            out["status"][:] = [codes[status] for status in statuses]
+            out["session"][:] = session
+            out["seconds"] = time.perf_counter() - clock
+            out["cpu"] = time.process_time() - cpu
+            return out
     points = _points(job, indices)
     out = _empty(job, len(points), n_components)
     groups: dict[int, list[int]] = {}

@@ -37,6 +37,7 @@ from perturb._defaults import (
 from perturb.validation._compat import OriginalSystem, original_system
 from perturb.validation._quasilinear import quasilinear_state_names, state_along
 from perturb.validation.checks import stiffness_indicator
+from perturb.validation.columns import ParameterColumns
 from perturb.validation.model import (
     Equations,
     Integrals,
@@ -93,6 +94,7 @@ __all__ = [
     "OrbitCheck",
     "OrbitEstimate",
     "OriginalSystem",
+    "ParameterColumns",
     "ShootingSetup",
     "SlopeFit",
     "Stiffness",

@@ -27,6 +27,7 @@ from perturb.validation._quasilinear import (
     state_along,
     substitutions,
 )
+from perturb.validation.columns import ParameterColumns
 from perturb.validation.report import Condition
 
 __all__ = [
@@ -329,6 +330,24 @@ class Model(ABC):
         ``period_at`` at :meth:`parameter_value` and :meth:`symbol_values` (default: False), so
         that many parameter sets can be evaluated in one vectorised call (a sweep)."""
         return False
+
+    def parameter_columns(self, columns: Mapping[str, np.ndarray]) -> ParameterColumns | None:
+        """:meth:`with_parameters` for many points at once (a sweep's fast route).
+
+        Parameters
+        ----------
+        columns : mapping of str to ndarray of shape (P,)
+            The changed parameters' values at each point, by name.
+
+        Returns
+        -------
+        ParameterColumns or None
+            Each point's ε, parameter value, symbol values and error, and the one model whose
+            solution serves them all — exactly what the points give one by one; None (the
+            default) where the model cannot promise that: the sweep then makes each point's
+            model with :meth:`with_parameters`.
+        """
+        return None
 
     def validity_estimates(self) -> tuple[Condition, ...]:
         """The model's own estimates of where its expansion holds (default: none)."""

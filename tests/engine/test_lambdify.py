@@ -73,3 +73,19 @@ def test_does_not_import_numpy_submodules_it_never_calls():
         env={"PYTHONPATH": str(ROOT), "PATH": ""},
     ).stdout.split()  # fmt: skip
     assert out == ["0.0", "[]"]
+
+
+def test_integers_beyond_int64_reach_numpy_functions_as_their_nearest_doubles():
+    """A specialised disk solution holds sqrt(847504615198858776185891631): as a Python int in
+    the generated code numpy's sqrt failed on it (``perturb validate disk --set r0=0.5 --set
+    gamma3_0=0.1424... --order 2`` was an internal error). Each value is checked against exact
+    arithmetic; where such an integer worked before (a product) the number is the same bits."""
+    n = sp.Integer(847504615198858776185891631)
+    f = numpy_lambdify(x, [sp.sqrt(n) * x, n * x, sp.exp(-n / n) + sp.cos(x)], cse=True)
+    at = np.array([1.0, 3.0])
+    root, product, small = f(at)
+    exact_root = sp.sqrt(n).evalf(40)
+    for value, point in zip(root, at, strict=True):
+        assert abs(value - float(exact_root * sp.Float(point, 40))) <= 1e-16 * abs(value)
+    assert list(product) == [float(n) * 1.0, float(n) * 3.0]  # what Python's int * float makes
+    np.testing.assert_array_equal(small, np.exp(-1.0) + np.cos(at))

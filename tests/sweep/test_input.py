@@ -191,3 +191,21 @@ def test_a_model_that_cannot_be_recreated_cannot_be_swept():
     with pytest.raises(InvalidParameterError, match="cannot be swept"):
         check_spec(model, [parse_axis("epsilon=0.1,0.2")])
     assert np.isfinite(SystemModel(system, {"epsilon": 0.1}, {"amplitudes": {"x": 1}}).epsilon())
+
+
+def test_the_pilot_times_points_that_share_a_derivation():
+    """With a derivation per distinct parameter set, the pilot's points are those of a chunk
+    (the entering parameter fixed): timing points of different derivations sized the disk's
+    r0 x gamma3_0 map into one-point chunks, each paying a derivation."""
+    from perturb.sweep.driver import _pilot_indices
+
+    spec = check_spec(
+        get_problem("duffing").create(),
+        [parse_axis("eps=0.05:0.1:5"), parse_axis("amplitude=1:2:6")],
+    )
+    per_point = SweepJob(spec, Derivation(DeriveMode.PER_POINT, "test", ("amplitude",)), "k")
+    indices = _pilot_indices(per_point, 4)
+    where = np.unravel_index(indices, spec.grid.shape)
+    assert len(indices) == 4 and set(where[1]) == {0}  # amplitude fixed, eps varies
+    own = SweepJob(spec, Derivation(DeriveMode.OWN, "test"), "k")
+    assert _pilot_indices(own, 4) == [0, 1, 2, 3]  # the grid's first points, as before

@@ -1,0 +1,48 @@
+"""The time-budgeted solve of the amplitude equations (``solve_bounded``), also where it may not
+start a child process: a daemonic process such as a Dask worker (the 100 x 100 disk map's points
+derived on the workers failed with "daemonic processes are not allowed to have children")."""
+
+from __future__ import annotations
+
+import multiprocessing
+
+import pytest
+import sympy as sp
+
+from perturb.algebra.budget import solve_bounded
+from perturb.method.conditions import groebner_real_roots
+
+X, Y = sp.symbols("x y")
+#: A circle cut by a line: two real roots, irrational, found by the Groebner route.
+EQUATIONS = [X**2 + Y**2 - 3, X - 2 * Y]
+
+
+def _in_a_daemon(queue):
+    try:
+        roots = solve_bounded(EQUATIONS, [X, Y], 30.0, groebner_real_roots)
+        queue.put(("ok", sorted(str(sorted(r.items(), key=str)) for r in roots)))
+    except BaseException as exc:  # noqa: BLE001 - reported to the parent
+        queue.put(("error", f"{type(exc).__name__}: {exc}"))
+
+
+def test_the_budgeted_solve_gives_its_roots():
+    roots = solve_bounded(EQUATIONS, [X, Y], 30.0, groebner_real_roots)
+    assert len(roots) == 2
+    for root in roots:
+        assert abs(float(root[X] ** 2 + root[Y] ** 2) - 3) < 1e-12
+        assert abs(float(root[X] - 2 * root[Y])) < 1e-12
+
+
+@pytest.mark.skipif(
+    "fork" not in multiprocessing.get_all_start_methods(), reason="needs fork to start a daemon"
+)
+def test_a_daemonic_process_solves_in_process_with_the_same_roots():
+    context = multiprocessing.get_context("fork")
+    queue = context.Queue()
+    daemon = context.Process(target=_in_a_daemon, args=(queue,), daemon=True)
+    daemon.start()
+    kind, value = queue.get(timeout=120)
+    daemon.join(timeout=30)
+    here = solve_bounded(EQUATIONS, [X, Y], 30.0, groebner_real_roots)
+    assert kind == "ok", value
+    assert value == sorted(str(sorted(r.items(), key=str)) for r in here)
