@@ -1,19 +1,26 @@
-"""The front door of the real-root solvers: the route chosen, the budget kept, the status honest."""
+"""The front door of the real-root solvers: the system cut, each piece solved, the status honest."""
 
 from __future__ import annotations
 
+import time
+
 import sympy as sp
+from attrs import evolve
 
 from perturb.algebra.budget import solve_bounded
 from perturb.algebra.msolve import INSTALL_HINT, msolve_binary, msolve_real_roots
 from perturb.algebra.rootset import RootSet, RootStatus
 from perturb.algebra.size import SystemSize
-from perturb.algebra.triangular import exact_real_roots
+from perturb.algebra.split import BudgetSpent, Piece, cut, frequency_eliminants
+from perturb.algebra.triangular import eliminate_linear, exact_real_roots
 
 __all__ = ["BACKENDS", "certified_real_roots"]
 
 #: The routes: ``auto`` is msolve when the extra is installed, else the exact sympy route.
 BACKENDS = ("auto", "msolve", "sympy")
+#: Digits of an irrational exact root's approximation, carried through the back-substitution
+#: (the construction is handed 30, :data:`~perturb.algebra.rootset.NUMBER_DIGITS`).
+LIFT_DIGITS = 40
 
 
 def _check(eqs, unknowns) -> None:
@@ -31,8 +38,15 @@ def _check(eqs, unknowns) -> None:
             )
 
 
-def certified_real_roots(eqs, unknowns, *, seconds: float, backend: str = "auto") -> RootSet:
+def certified_real_roots(
+    eqs, unknowns, *, seconds: float, backend: str = "auto", pairs=()
+) -> RootSet:
     """Every real root of ``eqs = 0``, each certified by an isolating interval, within a budget.
+
+    The system is first cut into disjoint pieces (:mod:`perturb.algebra.split`: linear pivots,
+    factors read over the reals, sign symmetry); each piece is solved by msolve or the exact
+    route, and the roots are put together. Each root's certificate names the cuts that led to
+    its piece and the isolating box or interval that holds it.
 
     Parameters
     ----------
@@ -45,6 +59,10 @@ def certified_real_roots(eqs, unknowns, *, seconds: float, backend: str = "auto"
     backend : {"auto", "msolve", "sympy"}
         ``msolve`` needs the extra ``roots``; ``sympy`` is the exact route of
         :mod:`perturb.algebra.triangular` (exact algebraic values).
+    pairs : sequence of (sympy.Symbol, sympy.Symbol), optional
+        Amplitude equations: each coordinate's (cosine, sine) amplitudes, in the coordinates'
+        order; the frequency-free combinations they give (:func:`~perturb.algebra.split.
+        frequency_eliminants`) are used to cut the system.
 
     Returns
     -------
@@ -75,17 +93,120 @@ def certified_real_roots(eqs, unknowns, *, seconds: float, backend: str = "auto"
     binary = msolve_binary() if backend in ("auto", "msolve") else None
     if backend == "msolve" and binary is None:
         raise MissingDependencyError(f"`backend='msolve'` needs msolve: {INSTALL_HINT}")
-    if binary is not None:
-        return msolve_real_roots(eqs, unknowns, seconds, binary)
+    size = SystemSize.of(eqs, unknowns)
+    route = "msolve" if binary is not None else "sympy"
+
+    def failed(status, message, **extra):
+        return RootSet(status, (), unknowns, message, size=size, backend=route, **extra)
+
+    deadline = time.monotonic() + seconds
+    members = frequency_eliminants(eqs, unknowns, pairs) if pairs else []
     try:
-        return solve_bounded(eqs, unknowns, seconds, exact_real_roots)
-    except TimeoutError:
-        size = SystemSize.of(eqs, unknowns)
-        return RootSet(
-            RootStatus.BUDGET_EXCEEDED,
+        leaves = cut(eqs, unknowns, members=members, deadline=deadline)
+    except BudgetSpent:
+        return failed(RootStatus.BUDGET_EXCEEDED, f"cutting the system ran past {seconds:g} s ({size})")
+    roots, certificates, dimensions = [], [], []
+    for leaf in leaves:
+        found, leaf = _solve_leaf(leaf, binary, deadline - time.monotonic())
+        if found.status is RootStatus.BUDGET_EXCEEDED:
+            return failed(
+                RootStatus.BUDGET_EXCEEDED,
+                f"the {route} route ran past {seconds:g} s on {size} (a piece: {found.size})",
+            )
+        if found.status in (RootStatus.UNDECIDED, RootStatus.POSITIVE_DIMENSIONAL):
+            return failed(
+                found.status,
+                f"{found.message} (on the piece {'; '.join(leaf.path) or 'the whole system'})",
+                dimension=found.dimension,
+                free=found.free,
+            )
+        dimensions.append(found.dimension)
+        for index in range(len(found.roots)):
+            roots.append(_lift(leaf, found, index, unknowns))
+            path = "; ".join(leaf.path)
+            certificates.append(f"{path}: {found.certificates[index]}" if path else found.certificates[index])
+    if not roots:
+        dimension = -1 if all(d == -1 for d in dimensions) else 0
+        how = f"{len(leaves)} pieces, none with a real root" if leaves else "every piece was empty"
+        return failed(RootStatus.NO_REAL_ROOT, f"no real root ({how}; {route} route)", dimension=dimension)
+    if _has_repeats(roots, unknowns):
+        return failed(RootStatus.UNDECIDED, "two pieces gave the same root (the cut is not disjoint)")
+    order = sorted(range(len(roots)), key=lambda i: [roots[i][1][u] for u in reversed(unknowns)])
+    return RootSet(
+        RootStatus.SOLVED,
+        [{u: float(roots[i][1][u]) for u in unknowns} for i in order],
+        unknowns,
+        f"{len(roots)} real roots, isolated by the {route} route in {len(leaves)} pieces",
+        exact=[roots[i][0] for i in order],
+        approximations=[roots[i][1] for i in order],
+        certificates=[certificates[i] for i in order],
+        backend=route,
+        dimension=0,
+        size=size,
+    )
+
+
+def _solve_leaf(leaf: Piece, binary: str | None, seconds: float) -> tuple[RootSet, Piece]:
+    """The real roots of one piece (its remaining linear pivots put in first, its non-zero
+    conditions imposed by one more unknown), and the piece as solved."""
+    polys, eliminated = eliminate_linear(list(leaf.polys), list(leaf.unknowns))
+    nonzero = list(leaf.nonzero)
+    for var, value in eliminated:
+        nonzero = [sp.expand(q.xreplace({var: value})) for q in nonzero]
+    leaf = evolve(
+        leaf,
+        polys=polys,
+        unknowns=[u for u in leaf.unknowns if u not in dict(eliminated)],
+        nonzero=[q for q in nonzero if not q.is_number],
+        eliminated=[*leaf.eliminated, *eliminated],
+    )
+    polys, variables = list(leaf.polys), list(leaf.unknowns)
+    if any(q == 0 for q in nonzero) or any(p.is_number for p in polys):
+        return RootSet(RootStatus.NO_REAL_ROOT, (), variables, "empty", dimension=-1), leaf
+    if leaf.nonzero:
+        inverse = sp.Dummy("nonzero")
+        polys.append(sp.expand(inverse * sp.Mul(*leaf.nonzero) - 1))
+        variables.append(inverse)
+    if seconds <= 0:
+        return RootSet(RootStatus.BUDGET_EXCEEDED, (), variables, size=SystemSize.of(polys, variables)), leaf
+    if not leaf.unknowns:  # everything was put in: one root, the checks done by the cut
+        found = RootSet(RootStatus.SOLVED, [{}], [], exact=[{}], approximations=[{}], certificates=["exact"], dimension=0)
+        return found, leaf
+    if not leaf.polys:
+        found = RootSet(
+            RootStatus.POSITIVE_DIMENSIONAL,
             (),
-            unknowns,
-            f"the exact route ran past {seconds:g} s on {size}",
-            size=size,
-            backend="sympy",
+            variables,
+            f"{list(leaf.unknowns)} appear in no equation",
+            dimension=len(leaf.unknowns),
+            free=leaf.unknowns,
         )
+        return found, leaf
+    if binary is not None:
+        return msolve_real_roots(polys, variables, seconds, binary), leaf
+    try:
+        return solve_bounded(polys, variables, seconds, exact_real_roots), leaf
+    except TimeoutError:
+        return RootSet(RootStatus.BUDGET_EXCEEDED, (), variables, size=SystemSize.of(polys, variables)), leaf
+
+
+def _lift(leaf: Piece, found: RootSet, index: int, unknowns: list) -> tuple[dict, dict]:
+    """A leaf's root as ``(exact, approximation)`` in every unknown (the eliminated put back)."""
+    exact = dict(found.exact[index]) if found.exact else {}
+    approx = dict(found.approximations[index]) if found.approximations else {}
+    for u, value in exact.items():
+        approx.setdefault(u, value if value.is_Rational else sp.Float(sp.N(value, LIFT_DIGITS), LIFT_DIGITS))
+    for u, value in found.roots[index].items():
+        approx.setdefault(u, sp.Float(value))
+    for var, expr in reversed(leaf.eliminated):
+        if expr.free_symbols <= set(exact):
+            exact[var] = sp.expand(expr.xreplace(exact))
+        approx[var] = sp.expand(expr.xreplace(approx))
+    keep = set(unknowns)
+    return {u: v for u, v in exact.items() if u in keep}, {u: v for u, v in approx.items() if u in keep}
+
+
+def _has_repeats(roots: list, unknowns: list) -> bool:
+    """Whether two roots coincide (the pieces are disjoint by construction: a bug if so)."""
+    points = [tuple(sp.Float(r[1][u], 25) for u in unknowns) for r in roots]
+    return len(set(points)) < len(points)

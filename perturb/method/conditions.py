@@ -23,12 +23,12 @@ import sympy as sp
 from attrs import frozen
 
 from perturb._defaults import ROOT_RESIDUAL
-from perturb.algebra.budget import solve_bounded, sympy_roots
+from perturb.algebra.budget import solve_bounded
 from perturb.algebra.certified import certified_real_roots
 from perturb.algebra.rootset import RootStatus
 from perturb.algebra.size import SystemSize
 from perturb.errors import InvalidSystemError, bad_value
-from perturb.method.exact import exact_if_close, is_zero, probe_values, vanishes
+from perturb.method.exact import exact_if_close, is_zero, probe_values, rational_form, vanishes
 from perturb.method.steps import GeneratingSolution
 from perturb.solution import Status
 
@@ -161,7 +161,7 @@ class ConditionSolver:
             rescued = self._solve_with_branch_values(eqs, unknowns, k)
             if rescued is not None:
                 return rescued, ()
-            size = SystemSize.of([_rational_form(e) for e in eqs], unknowns)
+            size = SystemSize.of([rational_form(e) for e in eqs], unknowns)
             tried = f"; the certified solver: {found.status.name}" if found is not None else ""
             raise OrderFailed(
                 Status.SOLVER_BUDGET,
@@ -199,10 +199,8 @@ class ConditionSolver:
         """Every real root by the certified solver when the coefficients are numbers.
 
         Returns ``(roots, found)``: the roots (None: not applicable or not decided) and the
-        :class:`~perturb.algebra.RootSet` (None when not applicable). Exact values are kept exact:
-        rationals and radicals as they are, a root of an irreducible factor of degree >= 3 as a
-        30-digit float; msolve's boxes are rationalised and kept when the equations vanish
-        exactly there.
+        :class:`~perturb.algebra.RootSet` (None when not applicable). Exact values are kept exact
+        (rationals and radicals); any other root is a 30-digit float (:meth:`RootSet.numbers`).
 
         The trivial equilibrium makes the system positive-dimensional (any frequency correction
         solves it there), so an unknown amplitude of the phase coordinate is required non-zero
@@ -212,7 +210,7 @@ class ConditionSolver:
             return None, None
         if any(e.has(sp.Float) for e in eqs):
             return None, None
-        system, variables = [_rational_form(e) for e in eqs], list(unknowns)
+        system, variables = [rational_form(e) for e in eqs], list(unknowns)
         phase_amplitude = generating.cos_amplitudes[self.phase]
         if (
             not self.driven
@@ -223,23 +221,14 @@ class ConditionSolver:
             system.append(inverse * phase_amplitude - 1)
             variables = [inverse, *variables]
         try:
-            found = certified_real_roots(system, variables, seconds=self.solve_seconds)
+            found = certified_real_roots(
+                system, variables, seconds=self.solve_seconds, pairs=amplitude_pairs(generating)
+            )
         except InvalidSystemError:
             return None, None
         if found.status is not RootStatus.SOLVED:
             return ([] if found.status is RootStatus.NO_REAL_ROOT else None), found
-        roots = []
-        for index, values in enumerate(found.roots):
-            exact = found.exact[index] if found.exact else {}
-            root = {}
-            for s in unknowns:
-                value = exact.get(s)
-                if value is None or value.has(sp.CRootOf):
-                    value = sp.Float(sp.N(value, 30), 30) if value is not None else None
-                root[s] = value if value is not None else exact_if_close(values[s])
-            if not found.exact and not all(vanishes(e.xreplace(root)) for e in eqs):
-                root = {s: sp.Float(values[s]) for s in unknowns}
-            roots.append(root)
+        roots = [{s: root[s] for s in unknowns} for root in found.numbers()]
         # Largest values first, the last unknown deciding first (the order of the former
         # numeric route: in-phase before anti-phase when the phase amplitudes tie).
         roots.sort(key=lambda r: [-float(r[s]) for s in reversed(unknowns)])
@@ -346,14 +335,10 @@ class ConditionSolver:
         return sorted(pool, key=key)[0]
 
 
-def _rational_form(expr) -> sp.Expr:
-    """``expr`` with a common factor pi (the conditions' 2π-integrals) taken out, expanded."""
-    expr = sp.expand(expr)
-    if expr.has(sp.pi):
-        reduced = sp.expand(expr / sp.pi)
-        if not reduced.has(sp.pi):
-            return reduced
-    return expr
+def amplitude_pairs(generating: GeneratingSolution) -> tuple:
+    """Each coordinate's (cosine, sine) generating amplitudes, in the coordinates' order: the
+    certified solver cuts the amplitude equations with their frequency-free combinations."""
+    return tuple(zip(generating.cos_amplitudes, generating.sin_amplitudes, strict=True))
 
 
 def _amplitude_symbols(generating: GeneratingSolution) -> set:

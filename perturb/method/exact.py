@@ -26,6 +26,7 @@ from perturb.trig import SympyRing, TrigPoly
 __all__ = [
     "chop",
     "exact_if_close",
+    "rational_form",
     "is_zero",
     "probe_values",
     "taylor_coefficient",
@@ -40,6 +41,22 @@ def exact_if_close(value: float) -> sp.Expr:
     if rational.q <= ROOT_MAX_DENOMINATOR and abs(float(rational) - value) <= ROOT_RATIONAL_TOL:
         return rational
     return sp.Float(value, 17)
+
+
+def rational_form(expr) -> sp.Expr:
+    """``expr`` with a common factor pi (the conditions' 2π-integrals) taken out, expanded.
+
+    Examples
+    --------
+    >>> rational_form(sp.pi * sp.Symbol("a") / 4 - sp.pi)
+    a/4 - 1
+    """
+    expr = sp.expand(expr)
+    if expr.has(sp.pi):
+        reduced = sp.expand(expr / sp.pi)
+        if not reduced.has(sp.pi):
+            return reduced
+    return expr
 
 
 def taylor_coefficient(expr: sp.Expr, k: int) -> sp.Expr:
