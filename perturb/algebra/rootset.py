@@ -80,7 +80,8 @@ class RootSet:
 
     def numbers(self, digits: int = NUMBER_DIGITS) -> list[dict]:
         """Per root, ``{unknown: sympy number}``: exact where it is a rational or a radical, else
-        a Float of ``digits`` digits (a ``CRootOf`` evaluated, or msolve's box midpoint).
+        a Float of ``digits`` digits (a ``CRootOf`` evaluated, or msolve's box midpoint), or of
+        more where the root was refined to its size (:func:`~perturb.algebra.msolve._refined`).
 
         Examples
         --------
@@ -103,7 +104,8 @@ class RootSet:
                     root[u] = value
                 elif value is not None:
                     root[u] = sp.Float(sp.N(value, digits), digits)
-                else:
-                    root[u] = sp.Float(approx.get(u, floats[u]), digits)
+                else:  # a refined Float keeps its own (larger) precision
+                    value = approx.get(u, floats[u])
+                    root[u] = value if isinstance(value, sp.Float) else sp.Float(value, digits)
             out.append(root)
         return out
