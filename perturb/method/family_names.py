@@ -36,7 +36,22 @@ coordinate's generating amplitudes are not identically zero on the family.
    ``line-30``, ``line-150`` (straight: 210° and 330° point the other way along them),
    ``bowed-0``, ``bowed-60``, ``bowed-120``, ``circle-ccw``, ``circle-cw``.
 
-4. Anything else: ``family-1``, ``family-2``, … in canonical order.
+4. Three or more resonant coordinates, an isolated root with every sine amplitude zero (a
+   standing wave: every coordinate passes through zero at the same instants), named by its mode
+   shape, the signs and zeros of its amplitude vector in the coordinates' order (the phase
+   coordinate's amplitude is positive):
+
+   * no coordinate at rest, all of one sign: ``in-phase``; neighbours of opposite signs:
+     ``anti-phase``; any other pattern: ``shape-`` and the signs (``p`` positive, ``n``
+     negative, ``0`` at rest), e.g. ``shape-ppnn`` or ``shape-p0n``;
+   * followed by ``-localised-c`` when the motion is concentrated on fewer than about half of the
+     n coordinates: the participation number ``(Σ a²)² / Σ a⁴`` (1 for one coordinate, n for
+     equal amplitudes) is below ``LOCALISED_BELOW`` · (n + 1), and c is the coordinate of
+     largest amplitude (a chain of 4's ``(1, -6.03, 6.03, -1)`` is ``anti-phase-localised-x2``).
+
+   The chain of 3's five branches: ``in-phase``, ``shape-p0n`` and three ``anti-phase-k``.
+
+5. Anything else: ``family-1``, ``family-2``, … in canonical order.
 
 Signs of expressions are read at generic positive values of the symbols (those of
 :func:`perturb.method.exact.probe_values`). Two families that would get the same name are told
@@ -54,6 +69,10 @@ import sympy as sp
 from perturb.method.exact import is_zero, probe_values
 
 __all__ = ["name_families"]
+
+#: A standing wave of n coordinates is "localised" when its participation number is at most this
+#: fraction of n + 1: it moves fewer than about half of the coordinates (module notes, rule 4).
+LOCALISED_BELOW = 0.5
 
 
 def _sign(expr: sp.Expr) -> int:
@@ -88,11 +107,40 @@ def _angle(coords: list, direction: dict) -> str | None:
     return f"{degrees:.1f}"
 
 
+def _mode_shape(coords: list, value) -> str | None:
+    """The name of a standing wave of three or more coordinates (module notes, rule 4)."""
+    if any(not is_zero(value(f"b_{c}")) for c in coords):
+        return None
+    amplitudes = [value(f"a_{c}") for c in coords]
+    if not all(a.is_number for a in amplitudes):
+        return None
+    signs = [0 if is_zero(a) else _sign(a) for a in amplitudes]
+    if signs[0] < 0 or next(s for s in signs if s) < 0:
+        signs = [-s for s in signs]  # the phase coordinate's amplitude counts as positive
+    if 0 not in signs and len(set(signs)) == 1:
+        name = "in-phase"
+    elif 0 not in signs and all(a != b for a, b in zip(signs, signs[1:])):
+        name = "anti-phase"
+    else:
+        name = "shape-" + "".join({1: "p", -1: "n", 0: "0"}[s] for s in signs)
+    squares = [float(sp.N(a, 30)) ** 2 for a in amplitudes]
+    participation = sum(squares) ** 2 / sum(q * q for q in squares)
+    if participation < LOCALISED_BELOW * (len(coords) + 1):
+        peak = max(range(len(coords)), key=lambda i: squares[i])
+        name += f"-localised-{coords[peak]}"
+    return name
+
+
 def _structural(amplitudes: dict, free: tuple, straight: bool | None = None) -> str | None:
     coords = _coordinates(amplitudes)
 
     def value(key):
         return sp.sympify(amplitudes.get(key, 0))
+
+    if len(coords) >= 3 and not free:
+        shape = _mode_shape(coords, value)
+        if shape is not None:
+            return shape
 
     moving = [c for c in coords if not (is_zero(value(f"a_{c}")) and is_zero(value(f"b_{c}")))]
     if len(moving) == 1:

@@ -7,9 +7,13 @@ import pytest
 import sympy as sp
 from scipy.optimize import root
 
-from perturb.algebra import RootStatus, certified_real_roots
+from perturb.algebra import RootStatus, certified_real_roots, msolve_binary
+from perturb.algebra.msolve import msolve_real_roots
+from perturb.algebra.split import cut, frequency_eliminants
 from problems import get_problem
 from problems.resonant_chain import chain_system
+
+needs_msolve = pytest.mark.skipif(msolve_binary() is None, reason="needs the extra roots (msolve)")
 
 
 def _equations(n):
@@ -32,6 +36,17 @@ def _equations(n):
     finally:
         conditions.ConditionSolver._solve_nonlinear = original
     return captured["eqs"], captured["unknowns"]
+
+
+def _pairs(n):
+    """Each coordinate's (cosine, sine) generating amplitudes (x1: 1 and 0, put in)."""
+    return [(sp.Integer(1), sp.Integer(0))] + [
+        (sp.Symbol(f"a_x{j}0"), sp.Symbol(f"b_x{j}0")) for j in range(2, n + 1)
+    ]
+
+
+def _sine(unknowns):
+    return [u for u in unknowns if str(u).startswith("b_")]
 
 
 def _newton_roots(eqs, unknowns, starts=2000, seed=2024):
@@ -72,10 +87,62 @@ def test_the_chain_of_three_count_agrees_with_newton():
         )
 
 
+@pytest.mark.parametrize("n", [3, 4])
+def test_the_cuts_refute_every_piece_with_a_sine_amplitude(n):
+    """With the spring-power members, every piece where some sine amplitude is non-zero is
+    proved empty (no leaf is left to solve); the one leaf is the standing waves b = 0."""
+    eqs, unknowns = _equations(n)
+    leaves = cut(eqs, unknowns, members=frequency_eliminants(eqs, unknowns, _pairs(n)))
+    assert len(leaves) == 1
+    assert not set(leaves[0].unknowns) & set(_sine(unknowns))
+    assert leaves[0].path == (f"sign symmetry in ({', '.join(map(str, _sine(unknowns)))}): all zero",)
+
+
+@needs_msolve
+def test_the_cut_system_and_the_whole_system_have_the_same_roots():
+    """Two routes for the chain of 4: cut then solved, and msolve on the whole system at once
+    (which knows nothing of the cuts): the same 8 roots."""
+    eqs, unknowns = _equations(4)
+    cut_route = certified_real_roots(eqs, unknowns, seconds=120, pairs=_pairs(4))
+    whole = msolve_real_roots(eqs, unknowns, 120)
+    assert cut_route.status is whole.status is RootStatus.SOLVED
+    assert len(cut_route.roots) == len(whole.roots) == 8
+    for r in whole.roots:
+        assert any(
+            np.allclose([r[u] for u in unknowns], [c[u] for u in unknowns], rtol=1e-9, atol=1e-9)
+            for c in cut_route.roots
+        )
+
+
 @pytest.mark.slow
 def test_perturb_families_lists_every_branch_of_the_chain_of_three():
+    """The five branches, each carried, each named by its mode shape (family_names rule 4)."""
     families = get_problem("resonant-chain-3").create(eps=0.01).families(1)
     assert len(families) == 5 and all(f.status.ok for f in families)
+    assert sorted(f.name for f in families) == [
+        "anti-phase-1", "anti-phase-2", "anti-phase-3", "in-phase", "shape-p0n"
+    ]
+
+
+@pytest.mark.slow
+@needs_msolve
+def test_the_chain_of_four_every_branch_counted_twice():
+    """n = 4: the families (certified solver, every branch carried to order 1) against Newton
+    from 2000 seeded starts on the whole amplitude system, which knows nothing of the cuts: a
+    lower bound (it misses the branch with Omega1 = 1.3e6, amplitudes up to 662, outside its
+    starts), and every root it finds is one of the families'."""
+    eqs, unknowns = _equations(4)
+    families = get_problem("resonant-chain-4").create(eps=0.01).families(1)
+    assert len(families) == 8 and all(f.status.ok for f in families)
+    numeric = _newton_roots(eqs, unknowns)
+    assert 0 < len(numeric) <= len(families)
+    cosines = [i for i, u in enumerate(unknowns) if str(u).startswith("a_")]
+    branches = [[float(sp.N(f.amplitudes[str(unknowns[i])[:-1]])) for i in cosines] for f in families]
+    for r in numeric:
+        # the standing waves are multiple roots of the whole system in the sine amplitudes (msolve:
+        # 128 roots with multiplicity, 120 without): Newton creeps there, b ~ 1e-3 when it stops
+        assert np.max(np.abs(np.delete(r, [0, *cosines]))) < 1e-2
+        assert any(np.allclose(r[cosines], b, rtol=1e-5, atol=1e-3) for b in branches), r
 
 
 @pytest.mark.slow
