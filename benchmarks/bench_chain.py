@@ -64,7 +64,9 @@ def newton_count(eqs, unknowns) -> int:
     found: list[np.ndarray] = []
     for _ in range(STARTS):
         start = rng.choice([-1, 1], len(unknowns)) * 10 ** rng.uniform(-2, 3, len(unknowns))
-        sol = root(lambda v: np.asarray(f(v), float), start, jac=lambda v: np.asarray(jac(v), float))
+        sol = root(
+            lambda v: np.asarray(f(v), float), start, jac=lambda v: np.asarray(jac(v), float)
+        )
         if not sol.success or np.max(np.abs(f(sol.x))) > 1e-8 * max(1, np.max(np.abs(sol.x))):
             continue
         if not any(np.allclose(sol.x, r, rtol=1e-5, atol=1e-3) for r in found):  # slow b -> 0
@@ -87,8 +89,10 @@ def main(argv=None) -> None:
     parser.add_argument("--order2", type=int, default=3, help="size carried to order 2 (0: none)")
     parser.add_argument("--backend", default="auto")
     args = parser.parse_args(argv)
-    print("| n | order | unknowns | certified: status, real roots, s | sympy.solve: roots, s |"
-          " newton (lower bound), s | construction: families, s |")
+    print(
+        "| n | order | unknowns | certified: status, real roots, s | sympy.solve: roots, s |"
+        " newton (lower bound), s | construction: families, s |"
+    )
     print("|---|---|---|---|---|---|---|")
     cases = [(n, 1) for n in args.sizes] + ([(args.order2, 2)] if args.order2 else [])
     for n, order in cases:
@@ -103,12 +107,16 @@ def main(argv=None) -> None:
         count, t_newton = timed(lambda: newton_count(eqs, unknowns))
         with cache.bypassed():
             families, t_build = timed(
-                lambda: find_families(chain_system(n), order=order, amplitudes={"x1": 1},
-                                      solve_seconds=args.budget)
+                lambda: find_families(
+                    chain_system(n), order=order, amplitudes={"x1": 1}, solve_seconds=args.budget
+                )
             )
         ok = sum(f.status.ok for f in families)
-        print(f"| {n} | {order} | {len(unknowns)} | {cert} | {plain}, {t_plain:.1f} | "
-              f"{count}, {t_newton:.1f} | {ok}/{len(families)} SUCCESS, {t_build:.1f} |", flush=True)
+        print(
+            f"| {n} | {order} | {len(unknowns)} | {cert} | {plain}, {t_plain:.1f} | "
+            f"{count}, {t_newton:.1f} | {ok}/{len(families)} SUCCESS, {t_build:.1f} |",
+            flush=True,
+        )
 
 
 if __name__ == "__main__":

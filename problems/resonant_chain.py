@@ -22,6 +22,7 @@ from perturb import EPS, QuasilinearSystem
 from problems import register
 from problems.base import ParameterSpec, Problem, positive
 
+
 def chain_symbols(n: int) -> tuple[list[sp.Symbol], list[sp.Symbol]]:
     """The coordinates ``x1 … xn`` and velocities ``x1dot … xndot`` of a chain of ``n``."""
     return (

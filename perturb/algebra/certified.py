@@ -104,7 +104,9 @@ def certified_real_roots(
     try:
         leaves = cut(eqs, unknowns, members=members, deadline=deadline)
     except BudgetSpent:
-        return failed(RootStatus.BUDGET_EXCEEDED, f"cutting the system ran past {seconds:g} s ({size})")
+        return failed(
+            RootStatus.BUDGET_EXCEEDED, f"cutting the system ran past {seconds:g} s ({size})"
+        )
     roots, certificates, dimensions = [], [], []
     for leaf in leaves:
         found, leaf = _solve_leaf(leaf, binary, deadline - time.monotonic())
@@ -124,13 +126,19 @@ def certified_real_roots(
         for index in range(len(found.roots)):
             roots.append(_lift(leaf, found, index, unknowns))
             path = "; ".join(leaf.path)
-            certificates.append(f"{path}: {found.certificates[index]}" if path else found.certificates[index])
+            certificates.append(
+                f"{path}: {found.certificates[index]}" if path else found.certificates[index]
+            )
     if not roots:
         dimension = -1 if all(d == -1 for d in dimensions) else 0
         how = f"{len(leaves)} pieces, none with a real root" if leaves else "every piece was empty"
-        return failed(RootStatus.NO_REAL_ROOT, f"no real root ({how}; {route} route)", dimension=dimension)
+        return failed(
+            RootStatus.NO_REAL_ROOT, f"no real root ({how}; {route} route)", dimension=dimension
+        )
     if _has_repeats(roots, unknowns):
-        return failed(RootStatus.UNDECIDED, "two pieces gave the same root (the cut is not disjoint)")
+        return failed(
+            RootStatus.UNDECIDED, "two pieces gave the same root (the cut is not disjoint)"
+        )
     order = sorted(range(len(roots)), key=lambda i: [roots[i][1][u] for u in reversed(unknowns)])
     return RootSet(
         RootStatus.SOLVED,
@@ -168,9 +176,19 @@ def _solve_leaf(leaf: Piece, binary: str | None, seconds: float) -> tuple[RootSe
         polys.append(sp.expand(inverse * sp.Mul(*leaf.nonzero) - 1))
         variables.append(inverse)
     if seconds <= 0:
-        return RootSet(RootStatus.BUDGET_EXCEEDED, (), variables, size=SystemSize.of(polys, variables)), leaf
+        return RootSet(
+            RootStatus.BUDGET_EXCEEDED, (), variables, size=SystemSize.of(polys, variables)
+        ), leaf
     if not leaf.unknowns:  # everything was put in: one root, the checks done by the cut
-        found = RootSet(RootStatus.SOLVED, [{}], [], exact=[{}], approximations=[{}], certificates=["exact"], dimension=0)
+        found = RootSet(
+            RootStatus.SOLVED,
+            [{}],
+            [],
+            exact=[{}],
+            approximations=[{}],
+            certificates=["exact"],
+            dimension=0,
+        )
         return found, leaf
     if not leaf.polys:
         found = RootSet(
@@ -187,7 +205,9 @@ def _solve_leaf(leaf: Piece, binary: str | None, seconds: float) -> tuple[RootSe
     try:
         return solve_bounded(polys, variables, seconds, exact_real_roots), leaf
     except TimeoutError:
-        return RootSet(RootStatus.BUDGET_EXCEEDED, (), variables, size=SystemSize.of(polys, variables)), leaf
+        return RootSet(
+            RootStatus.BUDGET_EXCEEDED, (), variables, size=SystemSize.of(polys, variables)
+        ), leaf
 
 
 def _lift(leaf: Piece, found: RootSet, index: int, unknowns: list) -> tuple[dict, dict]:
@@ -195,7 +215,9 @@ def _lift(leaf: Piece, found: RootSet, index: int, unknowns: list) -> tuple[dict
     exact = dict(found.exact[index]) if found.exact else {}
     approx = dict(found.approximations[index]) if found.approximations else {}
     for u, value in exact.items():
-        approx.setdefault(u, value if value.is_Rational else sp.Float(sp.N(value, LIFT_DIGITS), LIFT_DIGITS))
+        approx.setdefault(
+            u, value if value.is_Rational else sp.Float(sp.N(value, LIFT_DIGITS), LIFT_DIGITS)
+        )
     for u, value in found.roots[index].items():
         approx.setdefault(u, sp.Float(value))
     for var, expr in reversed(leaf.eliminated):
@@ -203,7 +225,9 @@ def _lift(leaf: Piece, found: RootSet, index: int, unknowns: list) -> tuple[dict
             exact[var] = sp.expand(expr.xreplace(exact))
         approx[var] = sp.expand(expr.xreplace(approx))
     keep = set(unknowns)
-    return {u: v for u, v in exact.items() if u in keep}, {u: v for u, v in approx.items() if u in keep}
+    return {u: v for u, v in exact.items() if u in keep}, {
+        u: v for u, v in approx.items() if u in keep
+    }
 
 
 def _has_repeats(roots: list, unknowns: list) -> bool:

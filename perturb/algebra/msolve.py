@@ -68,7 +68,9 @@ def _write(polys: list, unknowns: list) -> str:
     for poly in polys:
         terms = []
         for monomial, c in sp.Poly(poly, *unknowns).terms():
-            factors = [f"{n}^{e}" if e > 1 else n for n, e in zip(names, monomial, strict=True) if e]
+            factors = [
+                f"{n}^{e}" if e > 1 else n for n, e in zip(names, monomial, strict=True) if e
+            ]
             terms.append("*".join([_coefficient(c), *factors]))
         lines.append("+".join(terms).replace("+-", "-"))
     return ",".join(names) + "\n0\n" + ",\n".join(lines) + "\n"
@@ -101,7 +103,10 @@ def _exact_root(polys: list, unknowns: list, box: list) -> dict:
     system exactly (then it is the box's one root), else ``{}``."""
     candidate = {
         u: sp.Rational(q.numerator, q.denominator)
-        for u, q in ((u, _simplest_between(Fraction(lo), Fraction(hi))) for u, (lo, hi) in zip(unknowns, box, strict=True))
+        for u, q in (
+            (u, _simplest_between(Fraction(lo), Fraction(hi)))
+            for u, (lo, hi) in zip(unknowns, box, strict=True)
+        )
     }
     return candidate if all(p.xreplace(candidate) == 0 for p in polys) else {}
 
@@ -207,12 +212,19 @@ def msolve_real_roots(eqs, unknowns, seconds: float, binary: str | None = None) 
         )
     boxes = answer[1][1]
     if not boxes:
-        return result(RootStatus.NO_REAL_ROOT, "every root is complex (msolve isolated none)", dimension=0)
+        return result(
+            RootStatus.NO_REAL_ROOT, "every root is complex (msolve isolated none)", dimension=0
+        )
     midpoints = [
-        {u: sp.Rational((Fraction(lo) + Fraction(hi)) / 2) for u, (lo, hi) in zip(unknowns, box, strict=True)}
+        {
+            u: sp.Rational((Fraction(lo) + Fraction(hi)) / 2)
+            for u, (lo, hi) in zip(unknowns, box, strict=True)
+        }
         for box in boxes
     ]
-    refined = [_refined(polys, unknowns, box, mid) for box, mid in zip(boxes, midpoints, strict=True)]
+    refined = [
+        _refined(polys, unknowns, box, mid) for box, mid in zip(boxes, midpoints, strict=True)
+    ]
     order = sorted(range(len(boxes)), key=lambda i: [midpoints[i][u] for u in reversed(unknowns)])
     return RootSet(
         RootStatus.SOLVED,

@@ -263,12 +263,18 @@ def _real_alternatives(poly, piece: Piece):
             continue
         if any(_same_up_to_constant(factor, nz) for nz in piece.nonzero):
             continue
-        forms = psd_linear_forms(factor, piece.unknowns) if sp.Poly(factor, *piece.unknowns).total_degree() == 2 else None
+        forms = (
+            psd_linear_forms(factor, piece.unknowns)
+            if sp.Poly(factor, *piece.unknowns).total_degree() == 2
+            else None
+        )
         if forms == [sp.S.One]:
             continue  # a sum of squares plus a positive constant: no real zero
         alternatives.append((factor, forms))
-    if len(alternatives) == 1 and alternatives[0][1] is None and _same_up_to_constant(
-        alternatives[0][0], poly
+    if (
+        len(alternatives) == 1
+        and alternatives[0][1] is None
+        and _same_up_to_constant(alternatives[0][0], poly)
     ):
         return None
     return alternatives

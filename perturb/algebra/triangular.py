@@ -240,7 +240,9 @@ def exact_real_roots(eqs, unknowns) -> RootSet:
     if remaining and polys:
         basis = sp.groebner(polys, *remaining, order="grevlex")
         if list(basis.exprs) == [1]:
-            return result(RootStatus.NO_REAL_ROOT, "no complex root at all: the basis is {1}", dimension=-1)
+            return result(
+                RootStatus.NO_REAL_ROOT, "no complex root at all: the basis is {1}", dimension=-1
+            )
         if not basis.is_zero_dimensional:
             dimension, free = ideal_dimension(list(basis.exprs), remaining)
             return result(
@@ -266,12 +268,16 @@ def exact_real_roots(eqs, unknowns) -> RootSet:
             root[var] = sp.expand(value.xreplace(root))
         exact.append({u: root[u] for u in unknowns})
         certificates.append("; ".join(certificate) or "rational root")
-    order = sorted(range(len(exact)), key=lambda i: [float(exact[i][u]) for u in reversed(unknowns)])
+    order = sorted(
+        range(len(exact)), key=lambda i: [float(exact[i][u]) for u in reversed(unknowns)]
+    )
     exact = [exact[i] for i in order]
     certificates = [certificates[i] for i in order]
     floats = [{u: float(sp.N(v, FLOAT_DIGITS)) for u, v in root.items()} for root in exact]
     if not exact:
-        return result(RootStatus.NO_REAL_ROOT, "every root is complex (isolation found none)", dimension=0)
+        return result(
+            RootStatus.NO_REAL_ROOT, "every root is complex (isolation found none)", dimension=0
+        )
     return RootSet(
         RootStatus.SOLVED,
         floats,

@@ -63,6 +63,7 @@ from __future__ import annotations
 
 import math
 from collections import Counter
+from itertools import pairwise
 
 import sympy as sp
 
@@ -115,11 +116,11 @@ def _mode_shape(coords: list, value) -> str | None:
     if not all(a.is_number for a in amplitudes):
         return None
     signs = [0 if is_zero(a) else _sign(a) for a in amplitudes]
-    if signs[0] < 0 or next(s for s in signs if s) < 0:
+    if next((s for s in signs if s), 1) < 0:
         signs = [-s for s in signs]  # the phase coordinate's amplitude counts as positive
     if 0 not in signs and len(set(signs)) == 1:
         name = "in-phase"
-    elif 0 not in signs and all(a != b for a, b in zip(signs, signs[1:])):
+    elif 0 not in signs and all(a != b for a, b in pairwise(signs)):
         name = "anti-phase"
     else:
         name = "shape-" + "".join({1: "p", -1: "n", 0: "0"}[s] for s in signs)

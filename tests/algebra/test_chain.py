@@ -57,7 +57,9 @@ def _newton_roots(eqs, unknowns, starts=2000, seed=2024):
     found = []
     for _ in range(starts):
         start = rng.choice([-1, 1], len(unknowns)) * 10 ** rng.uniform(-2, 3, len(unknowns))
-        sol = root(lambda v: np.asarray(f(v), float), start, jac=lambda v: np.asarray(jac(v), float))
+        sol = root(
+            lambda v: np.asarray(f(v), float), start, jac=lambda v: np.asarray(jac(v), float)
+        )
         if not sol.success or np.max(np.abs(f(sol.x))) > 1e-8 * max(1, np.max(np.abs(sol.x))):
             continue
         if not any(np.allclose(sol.x, r, rtol=1e-5, atol=1e-3) for r in found):
@@ -95,7 +97,9 @@ def test_the_cuts_refute_every_piece_with_a_sine_amplitude(n):
     leaves = cut(eqs, unknowns, members=frequency_eliminants(eqs, unknowns, _pairs(n)))
     assert len(leaves) == 1
     assert not set(leaves[0].unknowns) & set(_sine(unknowns))
-    assert leaves[0].path == (f"sign symmetry in ({', '.join(map(str, _sine(unknowns)))}): all zero",)
+    assert leaves[0].path == (
+        f"sign symmetry in ({', '.join(map(str, _sine(unknowns)))}): all zero",
+    )
 
 
 @needs_msolve
@@ -120,7 +124,11 @@ def test_perturb_families_lists_every_branch_of_the_chain_of_three():
     families = get_problem("resonant-chain-3").create(eps=0.01).families(1)
     assert len(families) == 5 and all(f.status.ok for f in families)
     assert sorted(f.name for f in families) == [
-        "anti-phase-1", "anti-phase-2", "anti-phase-3", "in-phase", "shape-p0n"
+        "anti-phase-1",
+        "anti-phase-2",
+        "anti-phase-3",
+        "in-phase",
+        "shape-p0n",
     ]
 
 
@@ -137,7 +145,9 @@ def test_the_chain_of_four_every_branch_counted_twice():
     numeric = _newton_roots(eqs, unknowns)
     assert 0 < len(numeric) <= len(families)
     cosines = [i for i, u in enumerate(unknowns) if str(u).startswith("a_")]
-    branches = [[float(sp.N(f.amplitudes[str(unknowns[i])[:-1]])) for i in cosines] for f in families]
+    branches = [
+        [float(sp.N(f.amplitudes[str(unknowns[i])[:-1]])) for i in cosines] for f in families
+    ]
     for r in numeric:
         # the standing waves are multiple roots of the whole system in the sine amplitudes (msolve:
         # 128 roots with multiplicity, 120 without): Newton creeps there, b ~ 1e-3 when it stops
