@@ -21,6 +21,9 @@ BACKENDS = ("auto", "msolve", "sympy")
 #: Digits of an irrational exact root's approximation, carried through the back-substitution
 #: (the construction is handed 30, :data:`~perturb.algebra.rootset.NUMBER_DIGITS`).
 LIFT_DIGITS = 40
+#: Digits to which a root with inexact values must satisfy a continuum's equations to count as a
+#: point of it (its values carry at least 30, NUMBER_DIGITS; cubic equations: scale**3).
+ON_DIGITS = 20
 
 
 def _check(eqs, unknowns) -> None:
@@ -107,7 +110,7 @@ def certified_real_roots(
         return failed(
             RootStatus.BUDGET_EXCEEDED, f"cutting the system ran past {seconds:g} s ({size})"
         )
-    roots, certificates, dimensions = [], [], []
+    roots, certificates, dimensions, continua, closures = [], [], [], [], []
     for leaf in leaves:
         found, leaf = _solve_leaf(leaf, binary, deadline - time.monotonic())
         if found.status is RootStatus.BUDGET_EXCEEDED:
@@ -115,13 +118,18 @@ def certified_real_roots(
                 RootStatus.BUDGET_EXCEEDED,
                 f"the {route} route ran past {seconds:g} s on {size} (a piece: {found.size})",
             )
-        if found.status in (RootStatus.UNDECIDED, RootStatus.POSITIVE_DIMENSIONAL):
+        if found.status is RootStatus.UNDECIDED:
             return failed(
                 found.status,
                 f"{found.message} (on the piece {'; '.join(leaf.path) or 'the whole system'})",
-                dimension=found.dimension,
-                free=found.free,
             )
+        if found.status is RootStatus.POSITIVE_DIMENSIONAL:
+            if found.dimension is None:  # msolve says only that it is not finite
+                found = _dimension(leaf, deadline - time.monotonic()) or found
+            free = [u for u in found.free if u in unknowns]
+            continua.append((found.dimension, tuple(free), "; ".join(leaf.path)))
+            closures.append(leaf)
+            continue
         dimensions.append(found.dimension)
         for index in range(len(found.roots)):
             roots.append(_lift(leaf, found, index, unknowns))
@@ -129,6 +137,25 @@ def certified_real_roots(
             certificates.append(
                 f"{path}: {found.certificates[index]}" if path else found.certificates[index]
             )
+    if continua:  # a root of another piece on a continuum's closure is a point of it
+        kept = [i for i, r in enumerate(roots) if not any(_on(leaf, r) for leaf in closures)]
+        roots, certificates = [roots[i] for i in kept], [certificates[i] for i in kept]
+        found = RootSet(RootStatus.POSITIVE_DIMENSIONAL, (), unknowns, continua=continua)
+        return RootSet(
+            RootStatus.POSITIVE_DIMENSIONAL,
+            [{u: float(r[1][u]) for u in unknowns} for r in roots],
+            unknowns,
+            f"{len(continua)} continua ({found.describe_continua()}) and {len(roots)} isolated "
+            f"real roots ({route} route)",
+            exact=[r[0] for r in roots],
+            approximations=[r[1] for r in roots],
+            certificates=certificates,
+            backend=route,
+            dimension=max((d for d, _, _ in continua if d is not None), default=None),
+            free=continua[0][1],
+            size=size,
+            continua=continua,
+        )
     if not roots:
         dimension = -1 if all(d == -1 for d in dimensions) else 0
         how = f"{len(leaves)} pieces, none with a real root" if leaves else "every piece was empty"
@@ -208,6 +235,32 @@ def _solve_leaf(leaf: Piece, binary: str | None, seconds: float) -> tuple[RootSe
         return RootSet(
             RootStatus.BUDGET_EXCEEDED, (), variables, size=SystemSize.of(polys, variables)
         ), leaf
+
+
+def _dimension(leaf: Piece, seconds: float) -> RootSet | None:
+    """The dimension and free unknowns of a positive-dimensional piece, by the exact route's
+    Groebner basis within ``seconds`` (None when it does not finish)."""
+    if seconds <= 0:
+        return None
+    try:
+        return solve_bounded(list(leaf.polys), list(leaf.unknowns), seconds, exact_real_roots)
+    except (TimeoutError, NotImplementedError, ValueError):
+        return None
+
+
+def _on(leaf: Piece, root: tuple) -> bool:
+    """Whether a root (exact, approximation) satisfies a piece's equations and cuts (its
+    non-zero conditions aside): exactly when its values are exact, else to ON_DIGITS digits."""
+    exact, approx = root
+    values = exact if all(u in exact for u in approx) else approx
+    residuals = [sp.expand(p.xreplace(values)) for p in leaf.polys]
+    residuals += [
+        sp.expand(var - expr.xreplace(values)).xreplace(values) for var, expr in leaf.eliminated
+    ]
+    if values is exact:
+        return all(sp.simplify(r) == 0 for r in residuals)
+    scale = max(1, *(abs(float(v)) for v in approx.values()))
+    return all(abs(float(r)) <= 10.0**-ON_DIGITS * scale**3 for r in residuals)
 
 
 def _lift(leaf: Piece, found: RootSet, index: int, unknowns: list) -> tuple[dict, dict]:

@@ -62,6 +62,9 @@ class RootSet:
         The dimension of the complex solution set (0: finitely many roots; -1: none) when known.
     free : tuple of sympy.Symbol
         For a positive-dimensional set: unknowns that stay free on its largest part.
+    continua : tuple of (int or None, tuple, str)
+        Per positive-dimensional piece: its dimension, the unknowns free on it and the cuts that
+        lead to it (``roots`` then holds the isolated roots of the other pieces).
     size : object
         The :class:`~perturb.algebra.size.SystemSize` of the system that was solved.
     """
@@ -77,6 +80,15 @@ class RootSet:
     dimension: int | None = None
     free: tuple = field(default=(), converter=tuple)
     size: object = None
+    continua: tuple = field(default=(), converter=tuple)
+
+    def describe_continua(self) -> str:
+        """The continua in words, e.g. ``"dimension 1, free [b] (on a**2 + b**2 - 1 = 0)"``."""
+        return "; ".join(
+            f"dimension {'?' if d is None else d}, free {list(map(str, free))}"
+            + (f" (on {path})" if path else "")
+            for d, free, path in self.continua
+        )
 
     def numbers(self, digits: int = NUMBER_DIGITS) -> list[dict]:
         """Per root, ``{unknown: sympy number}``: exact where it is a rational or a radical, else

@@ -27,7 +27,7 @@ from perturb.algebra.certified import certified_real_roots
 from perturb.algebra.rootset import RootStatus
 from perturb.method.exact import probe_values, rational_form, vanishes
 
-__all__ = ["Component", "solution_components"]
+__all__ = ["Component", "ContinuumUnwritten", "components_or_failed", "solution_components"]
 
 
 @frozen
@@ -135,9 +135,52 @@ def solution_components(
     unknowns = list(unknowns)
     # Numeric coefficients: the certified solver first (every real root, or a proof there is
     # none); a continuum or a system with parameters goes on to the Groebner parts below.
-    isolated = _certified(eqs, unknowns, seconds, pairs)
+    try:
+        isolated = _certified(eqs, unknowns, seconds, pairs)
+    except _Continuum as continuum:
+        try:
+            return _grouped(eqs, unknowns, preference, seconds)
+        except TimeoutError:
+            raise ContinuumUnwritten(continuum.found.describe_continua()) from None
     if isolated is not None:
         return [Component(values=root, free=()) for root in isolated]
+    return _grouped(eqs, unknowns, preference, seconds)
+
+
+def components_or_failed(k, eqs, unknowns, preference, seconds, pairs=()) -> list[Component]:
+    """:func:`solution_components` for the order-by-order template: what stops it becomes an
+    :class:`~perturb.method.conditions.OrderFailed` whose status says what happened."""
+    from perturb.algebra.size import SystemSize
+    from perturb.method.conditions import OrderFailed
+    from perturb.solution import Status
+
+    try:
+        return solution_components(eqs, unknowns, preference, seconds, pairs)
+    except ContinuumUnwritten as exc:
+        raise OrderFailed(
+            Status.UNDETERMINED,
+            f"order {k}: the amplitude equations have a continuum of roots (proved: {exc}) "
+            f"that was not written within {seconds:g} s: raise solve_seconds=... or fix its "
+            "free amplitudes with `amplitudes=`",
+        ) from None
+    except TimeoutError:
+        size = SystemSize.of([rational_form(e) for e in eqs], unknowns)
+        raise OrderFailed(
+            Status.SOLVER_BUDGET,
+            f"order {k}: the amplitude equations ({size}) could not be solved within "
+            f"{seconds:g} s: raise it with solve_seconds=... or install the extra "
+            "(pip install 'perturb[roots]')",
+        ) from None
+    except (sp.PolynomialError, NotImplementedError, ValueError) as exc:
+        raise OrderFailed(
+            Status.NO_ROOT,
+            f"order {k}: the amplitude equations {eqs} could not be split into their "
+            f"components ({type(exc).__name__}: {exc})",
+        ) from None
+
+
+def _grouped(eqs, unknowns, preference, seconds) -> list[Component]:
+    """The components by Groebner parts, each solved with its free amplitudes as parameters."""
     polys, back = _polynomial_form(eqs, set(unknowns))
     components = [
         Component(
@@ -146,6 +189,17 @@ def solution_components(
         for c in _components(polys, unknowns, preference, seconds)
     ]
     return [c for c in components if all(vanishes(sp.expand(e.xreplace(c.values))) for e in eqs)]
+
+
+class _Continuum(Exception):  # noqa: N818 - a signal between two functions, not an error
+    def __init__(self, found):
+        super().__init__(found.message)
+        self.found = found
+
+
+class ContinuumUnwritten(TimeoutError):
+    """The certified solver proved a continuum (its dimension and free amplitudes are the
+    message) but the Groebner parts did not write it within the budget."""
 
 
 def _polynomial_form(eqs: list, unknowns: set) -> tuple[list, dict]:
@@ -181,6 +235,8 @@ def _certified(part: list, targets: list, seconds: float, pairs=()) -> list[dict
         return []
     if found.status is RootStatus.BUDGET_EXCEEDED:
         raise TimeoutError(found.message)
+    if found.status is RootStatus.POSITIVE_DIMENSIONAL:
+        raise _Continuum(found)
     if found.status is not RootStatus.SOLVED:
         return None
     return found.numbers()

@@ -161,6 +161,14 @@ class ConditionSolver:
             rescued = self._solve_with_branch_values(eqs, unknowns, k)
             if rescued is not None:
                 return rescued, ()
+            if found is not None and found.status is RootStatus.POSITIVE_DIMENSIONAL:
+                raise OrderFailed(
+                    Status.UNDETERMINED,
+                    f"order {k}: the amplitude equations have a continuum of roots (proved by "
+                    f"the certified solver: {found.describe_continua()}); sympy did not write it "
+                    f"within {self.solve_seconds:g} s: list it with `perturb families` "
+                    "(find_families) or fix its free amplitudes with `amplitudes=`",
+                ) from None
             size = SystemSize.of([rational_form(e) for e in eqs], unknowns)
             tried = f"; the certified solver: {found.status.name}" if found is not None else ""
             raise OrderFailed(

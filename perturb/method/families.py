@@ -43,11 +43,10 @@ import sympy as sp
 from attrs import field, frozen
 
 from perturb._defaults import SOLVE_SECONDS
-from perturb.algebra.size import SystemSize
 from perturb.errors import InvalidSystemError, UnknownNameError, bad_value
-from perturb.method.components import Component, solution_components
+from perturb.method.components import Component, components_or_failed, solution_components
 from perturb.method.conditions import ConditionSolver, OrderFailed, amplitude_pairs
-from perturb.method.exact import is_zero, rational_form
+from perturb.method.exact import is_zero
 from perturb.method.family_names import name_families
 from perturb.method.options import check_system
 from perturb.method.poincare import PoincareMethod, _OrderByOrder
@@ -235,24 +234,9 @@ class _FamilySolver:
             return {**extra, **solution}, branches
         unknowns = sorted(involved, key=str)
         preference = _preference(generating, involved)
-        try:
-            found = solution_components(
-                eqs, unknowns, preference, self.seconds, amplitude_pairs(generating)
-            )
-        except TimeoutError:
-            size = SystemSize.of([rational_form(e) for e in eqs], unknowns)
-            raise OrderFailed(
-                Status.SOLVER_BUDGET,
-                f"order {k}: the amplitude equations ({size}) could not be solved within "
-                f"{self.seconds:g} s: raise it with solve_seconds=... or install the extra "
-                "(pip install 'perturb[roots]')",
-            ) from None
-        except (sp.PolynomialError, NotImplementedError, ValueError) as exc:
-            raise OrderFailed(
-                Status.NO_ROOT,
-                f"order {k}: the amplitude equations {eqs} could not be split into their "
-                f"components ({type(exc).__name__}: {exc})",
-            ) from None
+        found = components_or_failed(
+            k, eqs, unknowns, preference, self.seconds, amplitude_pairs(generating)
+        )
         components = [c for c in found if self._admissible(c, generating, {**solved, **extra})]
         if not components:
             raise OrderFailed(

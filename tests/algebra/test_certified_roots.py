@@ -113,3 +113,57 @@ def test_no_root_status_of_the_construction_is_a_proof():
     solution = PoincareMethod(order=1, cache=False).solve(system)
     assert solution.status is Status.NO_ROOT
     assert "proved" in solution.message
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_continuum_beside_an_isolated_root_is_reported_with_both(backend):
+    """a (a² + b² - 1) = b (a² + b² - 1) = 0, w = 3: the circle (dimension 1) and the isolated
+    point a = b = 0. The pieces a = 0 and b = 0 also hold (0, ±1), (±1, 0): points of the circle,
+    not isolated roots, so exactly one isolated root is reported."""
+    a, b, w = sp.symbols("a b w")
+    circle = a**2 + b**2 - 1
+    found = certified_real_roots(
+        [a * circle, b * circle, w - 3], [w, a, b], seconds=60, backend=backend
+    )
+    assert found.status is RootStatus.POSITIVE_DIMENSIONAL and not found.status.success
+    assert [(d, len(free)) for d, free, _ in found.continua] == [(1, 1)]
+    assert set(found.continua[0][1]) <= {a, b}
+    assert [(r[a], r[b], r[w]) for r in found.roots] == [(0.0, 0.0, 3.0)]
+    assert "dimension 1" in found.describe_continua()
+
+
+def _two_duffings():
+    """x'' + x = -eps x³, y'' + y = -eps y³ with x's amplitude 1: y = 0, or y on the circle
+    a_y² + b_y² = 1 (every phase of an equal-amplitude y: a continuum)."""
+    xx, yy, xd, yd = sp.symbols("x y xdot ydot")
+    return QuasilinearSystem([xx, yy], [xd, yd], [1, 1], [-EPS * xx**3, -EPS * yy**3])
+
+
+def test_a_continuum_sympy_cannot_write_in_time_is_undetermined_not_a_budget(monkeypatch):
+    """Issue 22: a continuum is never reported as a timeout. sympy's solve is made to time out
+    (as it does on large systems); the certified solver has proved the continuum, so the status
+    is UNDETERMINED with its dimension and free amplitude, not SOLVER_BUDGET."""
+    from perturb.method import conditions
+
+    def times_out(*args, **kwargs):
+        raise TimeoutError
+
+    monkeypatch.setattr(conditions, "solve_bounded", times_out)
+    solution = PoincareMethod(order=1, cache=False, amplitudes={"x": 1}).solve(_two_duffings())
+    assert solution.status is Status.UNDETERMINED
+    assert "continuum" in solution.message and "dimension 1" in solution.message
+
+
+def test_the_family_machinery_says_continuum_when_it_runs_out_of_time(monkeypatch):
+    from perturb.method import components
+    from perturb.method.conditions import OrderFailed
+
+    def times_out(*args, **kwargs):
+        raise TimeoutError
+
+    monkeypatch.setattr(components, "_grouped", times_out)
+    a, b, w = sp.symbols("a b w")
+    circle = a**2 + b**2 - 1
+    with pytest.raises(OrderFailed) as failed:
+        components.components_or_failed(1, [a * circle, b * circle, w - 3], [w, a, b], [a, b], 30)
+    assert failed.value.status is Status.UNDETERMINED and "dimension 1" in str(failed.value)
