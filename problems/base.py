@@ -453,13 +453,16 @@ class Problem(Model, ABC):
         pure-ε knob (a parameter that changes ε as a power law and nothing the solution depends on,
         e.g. the disk's ``r0``), else None."""
         if "eps" in self.values:
-            return type(self).create(**{**self.values, "eps": eps})
-        knob = self._epsilon_knob()
-        if knob is None:
-            return None
-        name, exponent = knob
-        factor = (eps / float(self.epsilon())) ** (1.0 / exponent)
-        return type(self).create(**{**self.values, name: self.values[name] * factor})
+            problem = type(self).create(**{**self.values, "eps": eps})
+        else:
+            knob = self._epsilon_knob()
+            if knob is None:
+                return None
+            name, exponent = knob
+            factor = (eps / float(self.epsilon())) ** (1.0 / exponent)
+            problem = type(self).create(**{**self.values, name: self.values[name] * factor})
+        # the same family: validate's slope scan re-creates the problem at other eps
+        return problem if self.family is None else problem.with_family(self.family)
 
     def evaluates_solution_directly(self) -> bool:
         """True unless the class maps the solution to its own state or period (``state``,

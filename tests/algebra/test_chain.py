@@ -7,6 +7,7 @@ import pytest
 import sympy as sp
 from scipy.optimize import root
 
+from perturb._defaults import SLOPE_TOLERANCE
 from perturb.algebra import RootStatus, certified_real_roots, msolve_binary
 from perturb.algebra.msolve import msolve_real_roots
 from perturb.algebra.split import cut, frequency_eliminants
@@ -156,10 +157,23 @@ def test_the_chain_of_four_every_branch_counted_twice():
 
 
 @pytest.mark.slow
-def test_a_chain_branch_is_confirmed_against_the_true_motion():
+@pytest.mark.parametrize(
+    ("n", "family"),
+    [
+        (3, "in-phase"),
+        (3, "shape-p0n"),
+        (3, "anti-phase-1"),
+        (4, "shape-ppnn"),
+        (4, "anti-phase-localised-x2-1"),
+    ],
+)
+def test_a_sample_of_chain_branches_is_confirmed_against_the_true_motion(n, family):
+    """perturb validate on a sample of branches: a true periodic orbit near each, and the error
+    of the order-1 solution falls like eps^2 along the branch itself (the slope scan re-creates
+    the problem at other eps with the same family)."""
     from perturb import validate
 
-    problem = get_problem("resonant-chain-3").create(eps=0.01)
-    names = [f.name for f in problem.families(1)]
-    report = validate(problem.with_family(names[0]), order=1)
-    assert report.outcome.name == "VALID", report
+    problem = get_problem(f"resonant-chain-{n}").create(eps=0.01).with_family(family)
+    report = validate(problem, order=1)
+    assert report.outcome.name == "VALID", report.verdict
+    assert abs(report.slope.slope - 2) <= SLOPE_TOLERANCE  # order + 1, within the band

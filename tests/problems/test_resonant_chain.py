@@ -22,3 +22,11 @@ def test_every_size_is_registered_and_any_size_can_be_made():
     for n in (2, 3, 4, 6):
         assert get_problem(f"resonant-chain-{n}").n == n
     assert len(chain_of(5).build_system().coordinates) == 5
+
+
+def test_a_problem_at_another_eps_keeps_its_family():
+    """validate's slope scan re-creates the problem at other eps: it must follow the same family
+    (it followed the default one, so every family of a chain showed the same slope)."""
+    problem = get_problem("resonant-chain-2").create(eps=0.05).with_family("anti-phase")
+    moved = problem.with_epsilon(0.01)
+    assert moved.family == "anti-phase" and moved.values["eps"] == 0.01
