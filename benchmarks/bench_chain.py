@@ -7,10 +7,10 @@ the amplitude equations of order 1 are taken from the construction and solved by
   cut by :mod:`perturb.algebra.split`, each piece isolated by msolve) — the count is proved;
 * ``exact``: the same cuts, each piece by the exact sympy route (Groebner, FGLM, isolation);
 * ``sympy.solve``: plain ``sympy.solve`` on the whole system, in a child process, under the budget;
-* ``newton``: an independent numeric count on the whole system, which knows nothing of the cuts
-  (multi-start Newton from seeded random starts spread over five decades, roots deduplicated on
-  their cosine amplitudes) — a lower bound, never a proof; ``in certified`` counts how many of
-  its roots are one of msolve's.
+* ``newton``: an independent numeric count on the whole system, which knows nothing of the cuts:
+  multi-start Newton on the homogeneous equations (x1's amplitude put back as an unknown) with
+  the amplitudes on the unit sphere, roots told apart as directions — a lower bound, never a
+  proof; ``in certified`` counts how many of its roots are one of msolve's.
 
 ``construction`` is ``find_families`` at the order given (every branch carried to that order),
 cache bypassed. Run from the repository root:
@@ -36,9 +36,17 @@ from perturb.method import conditions  # noqa: E402
 from problems.resonant_chain import chain_system  # noqa: E402
 
 #: Newton starts per size and the seed (the count must not change from run to run).
-STARTS, SEED = 2000, 2024
-#: Cosine amplitudes closer than this (relative, and absolute for small ones) are one root.
+STARTS, SEED = 3000, 2024
+#: Directions on the unit sphere closer than this are one root; the standing waves are multiple
+#: roots of the whole system in the sine amplitudes, where Newton converges only linearly.
 SAME_ROOT = 1e-5
+#: Largest residual of a Newton point on the sphere that counts as a root.
+RESIDUAL = 1e-10
+#: Sine parts of two Newton points closer than this are one root: at the standing waves the
+#: residual grows like b**3, so Newton stops with |b| up to (1e-10)**(1/3) ~ 5e-4.
+SINE_CREEP = 1e-2
+#: A direction with x1's amplitude below this is on x1 = 0 (or a branch too large for doubles).
+X1_ZERO = 1e-8
 
 
 def amplitude_equations(n: int):
@@ -68,28 +76,72 @@ def pairs_of(n: int):
     ]
 
 
+def homogeneous(eqs, unknowns):
+    """The amplitude equations with x1's amplitude ``a1`` put back: each monomial of the
+    frequency correction times amplitudes of degree 1, every other monomial of degree 3."""
+    omega, amplitudes = unknowns[0], list(unknowns[1:])
+    a1 = sp.Symbol("a1")
+    out = []
+    for e in eqs:
+        total = sp.S.Zero
+        for (k, *powers), c in sp.Poly(sp.expand(e), omega, *amplitudes).terms():
+            missing = (1 if k else 3) - sum(powers)
+            total += (
+                c
+                * omega**k
+                * a1**missing
+                * sp.Mul(*(v**p for v, p in zip(amplitudes, powers, strict=True)))
+            )
+        out.append(total)
+    return out, [omega, a1, *amplitudes]
+
+
+def sphere(values) -> np.ndarray:
+    """A direction of amplitudes on the unit sphere, its sign fixed (first clear entry > 0)."""
+    v = np.asarray(values, float) / np.linalg.norm(values)
+    first = next(x for x in v if abs(x) > SAME_ROOT)
+    return v if first > 0 else -v
+
+
 def newton_roots(eqs, unknowns) -> list[np.ndarray]:
-    """Distinct real roots found by Newton from seeded random starts (a lower bound)."""
+    """Distinct real roots, as directions on the unit sphere of amplitudes, found by Newton from
+    seeded random starts on the homogeneous equations with |amplitudes| = 1 (a lower bound).
+
+    Every branch is a direction, whatever its size in the chart x1 = 1 (the chain of 6 has roots
+    with amplitudes up to 1e29 there, which starts in a box would never reach)."""
     from scipy.optimize import root
 
-    f = sp.lambdify([unknowns], eqs, "numpy")
-    jac = sp.lambdify([unknowns], sp.Matrix(eqs).jacobian(unknowns), "numpy")
-    cosines = [i for i, u in enumerate(unknowns) if str(u).startswith("a_")]
+    system, variables = homogeneous(eqs, unknowns)
+    system.append(sum(v**2 for v in variables[1:]) - 1)
+    f = sp.lambdify([variables], system, "numpy")
+    jac = sp.lambdify([variables], sp.Matrix(system).jacobian(variables), "numpy")
     rng = np.random.default_rng(SEED)
     found: list[np.ndarray] = []
     for _ in range(STARTS):
-        start = rng.choice([-1, 1], len(unknowns)) * 10 ** rng.uniform(-2, 3, len(unknowns))
+        z = rng.normal(size=len(variables) - 1)
+        start = np.concatenate([[rng.uniform(0, 3)], z / np.linalg.norm(z)])
         sol = root(
             lambda v: np.asarray(f(v), float), start, jac=lambda v: np.asarray(jac(v), float)
         )
-        if not sol.success or np.max(np.abs(f(sol.x))) > 1e-8 * max(1, np.max(np.abs(sol.x))):
+        if not sol.success or np.max(np.abs(f(sol.x))) > RESIDUAL:
             continue
-        # the standing waves are multiple roots in the sine amplitudes: Newton creeps there,
-        # so roots are told apart by their cosine amplitudes only
-        a = sol.x[cosines]
-        if not any(np.allclose(a, r, rtol=SAME_ROOT, atol=SAME_ROOT) for r in found):
-            found.append(a)
+        direction = sphere(sol.x[1:])
+        if not any(same_direction(direction, r, variables[1:]) for r in found):
+            found.append(direction)
     return found
+
+
+def same_direction(p, q, amplitudes) -> bool:
+    """One root: cosine parts within SAME_ROOT, sine parts within SINE_CREEP."""
+    sine = np.array([str(u).startswith("b_") for u in amplitudes])
+    return bool(
+        np.all(np.abs(p - q)[~sine] <= SAME_ROOT) and np.all(np.abs(p - q)[sine] <= SINE_CREEP)
+    )
+
+
+def certified_directions(found, unknowns) -> list[np.ndarray]:
+    """The certified roots (chart x1 = 1) as directions on the sphere, like :func:`newton_roots`."""
+    return [sphere([1.0, *(root[u] for u in unknowns[1:])]) for root in found.roots]
 
 
 def timed(fn):
@@ -112,7 +164,7 @@ def main(argv=None) -> None:
         + " | ".join(
             f"certified {'msolve' if r == 'msolve' else 'exact'}: status, roots, s" for r in routes
         )
-        + " | sympy.solve: real roots, s | newton: roots (in certified), s"
+        + " | sympy.solve: real roots, s | newton on the sphere: roots (in certified; x1 = 0), s"
         " | construction: SUCCESS/families, s |"
     )
     print("|---|---|---|" + "---|" * len(routes) + "---|---|---|")
@@ -134,20 +186,12 @@ def main(argv=None) -> None:
             if plain != "timeout":
                 plain = sum(all(sp.im(sp.N(v)) == 0 for v in r.values()) for r in plain)
             numeric, t_newton = timed(lambda e=eqs, u=unknowns: newton_roots(e, u))
-            cosines = [u for u in unknowns if str(u).startswith("a_")]
-            inside = (
-                sum(
-                    any(
-                        np.allclose(r, [c[u] for u in cosines], rtol=SAME_ROOT, atol=SAME_ROOT)
-                        for c in reference.roots
-                    )
-                    for r in numeric
-                )
-                if reference is not None
-                else "-"
-            )
+            proved = certified_directions(reference, unknowns) if reference is not None else []
+            amplitudes = homogeneous(eqs, unknowns)[1][1:]
+            inside = sum(any(same_direction(r, c, amplitudes) for c in proved) for r in numeric)
+            on_x1_zero = sum(abs(r[0]) < X1_ZERO for r in numeric)
             plain_cell = f"{plain}, {t_plain:.1f}"
-            newton_cell = f"{len(numeric)} ({inside}), {t_newton:.1f}"
+            newton_cell = f"{len(numeric)} ({inside}; x1 = 0: {on_x1_zero}), {t_newton:.1f}"
         else:
             plain_cell = newton_cell = "same system as order 1"
         with cache.bypassed():
