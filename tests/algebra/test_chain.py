@@ -138,8 +138,8 @@ def test_perturb_families_lists_every_branch_of_the_chain_of_three():
 def test_the_chain_of_four_every_branch_counted_twice():
     """n = 4: the families (certified solver, every branch carried to order 1) against Newton
     from 2000 seeded starts on the whole amplitude system, which knows nothing of the cuts: a
-    lower bound (it misses the branch with Omega1 = 1.3e6, amplitudes up to 662, outside its
-    starts), and every root it finds is one of the families'."""
+    lower bound (starts in a box of five decades miss the branches of large amplitude), and every
+    root it finds is one of the families'."""
     eqs, unknowns = _equations(4)
     families = get_problem("resonant-chain-4").create(eps=0.01).families(1)
     assert len(families) == 8 and all(f.status.ok for f in families)
