@@ -31,7 +31,12 @@ def _check(eqs, unknowns) -> None:
 
     for e in eqs:
         stray = sp.sympify(e).free_symbols - set(unknowns)
-        if stray or sp.sympify(e).has(sp.Float) or not sp.sympify(e).is_polynomial(*unknowns):
+        rational = (
+            not stray
+            and sp.sympify(e).is_polynomial(*unknowns)
+            and all(c.is_Rational for c in sp.Poly(e, *unknowns).coeffs())
+        )
+        if not rational:
             raise bad_value(
                 "eqs",
                 e,

@@ -25,6 +25,7 @@ from perturb._defaults import NUMERIC_ZERO, PROBE_DIGITS
 from perturb.algebra.budget import solve_bounded
 from perturb.algebra.certified import certified_real_roots
 from perturb.algebra.rootset import RootStatus
+from perturb.errors import InvalidSystemError
 from perturb.method.exact import probe_values, rational_form, vanishes
 
 __all__ = ["Component", "ContinuumUnwritten", "components_or_failed", "solution_components"]
@@ -230,7 +231,10 @@ def _certified(part: list, targets: list, seconds: float, pairs=()) -> list[dict
     part = [rational_form(g) for g in part]
     if any(sp.sympify(g).free_symbols - set(targets) for g in part):
         return None
-    found = certified_real_roots(part, targets, seconds=seconds, pairs=pairs)
+    try:
+        found = certified_real_roots(part, targets, seconds=seconds, pairs=pairs)
+    except InvalidSystemError:  # irrational coefficients: the Groebner parts take it
+        return None
     if found.status is RootStatus.NO_REAL_ROOT:
         return []
     if found.status is RootStatus.BUDGET_EXCEEDED:

@@ -167,3 +167,10 @@ def test_the_family_machinery_says_continuum_when_it_runs_out_of_time(monkeypatc
     with pytest.raises(OrderFailed) as failed:
         components.components_or_failed(1, [a * circle, b * circle, w - 3], [w, a, b], [a, b], 30)
     assert failed.value.status is Status.UNDETERMINED and "dimension 1" in str(failed.value)
+
+
+def test_irrational_coefficients_are_refused():
+    """The disk's amplitude equations carry sqrt(999999999951): not for the rational routes (the
+    construction then goes on with sympy, as before)."""
+    with pytest.raises(InvalidSystemError, match="rational coefficients"):
+        certified_real_roots([x**2 - sp.sqrt(2) * x], [x], seconds=10)
