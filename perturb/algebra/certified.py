@@ -21,6 +21,10 @@ BACKENDS = ("auto", "msolve", "sympy")
 #: Digits of an irrational exact root's approximation, carried through the back-substitution
 #: (the construction is handed 30, :data:`~perturb.algebra.rootset.NUMBER_DIGITS`).
 LIFT_DIGITS = 40
+#: With ``backend="auto"`` each piece is first given this long on the exact route (exact
+#: radicals, the same values as without the extra), then msolve: the chain of 3's piece takes
+#: 0.5 s exactly, the chain of 4's runs past 60 s, which msolve isolates in 0.4 s.
+EXACT_FIRST_SECONDS = 2.0
 #: Digits to which a root with inexact values must satisfy a continuum's equations to count as a
 #: point of it (its values carry at least 30, NUMBER_DIGITS; cubic equations: scale**3).
 ON_DIGITS = 20
@@ -66,7 +70,8 @@ def certified_real_roots(
         system's size.
     backend : {"auto", "msolve", "sympy"}
         ``msolve`` needs the extra ``roots``; ``sympy`` is the exact route of
-        :mod:`perturb.algebra.triangular` (exact algebraic values).
+        :mod:`perturb.algebra.triangular` (exact algebraic values); ``auto`` gives each piece
+        :data:`EXACT_FIRST_SECONDS` on the exact route, then msolve when it is installed.
     pairs : sequence of (sympy.Symbol, sympy.Symbol), optional
         Amplitude equations: each coordinate's (cosine, sine) amplitudes, in the coordinates'
         order; the frequency-free combinations they give (:func:`~perturb.algebra.split.
@@ -116,8 +121,11 @@ def certified_real_roots(
             RootStatus.BUDGET_EXCEEDED, f"cutting the system ran past {seconds:g} s ({size})"
         )
     roots, certificates, dimensions, continua, closures = [], [], [], [], []
+    answered: set = set()
     for leaf in leaves:
-        found, leaf = _solve_leaf(leaf, binary, deadline - time.monotonic())
+        found, leaf = _solve_leaf(
+            leaf, binary, deadline - time.monotonic(), exact_first=backend == "auto"
+        )
         if found.status is RootStatus.BUDGET_EXCEEDED:
             return failed(
                 RootStatus.BUDGET_EXCEEDED,
@@ -136,6 +144,7 @@ def certified_real_roots(
             closures.append(leaf)
             continue
         dimensions.append(found.dimension)
+        answered.add(found.backend)
         for index in range(len(found.roots)):
             roots.append(_lift(leaf, found, index, unknowns))
             path = "; ".join(leaf.path)
@@ -171,6 +180,7 @@ def certified_real_roots(
         return failed(
             RootStatus.UNDECIDED, "two pieces gave the same root (the cut is not disjoint)"
         )
+    route = "msolve" if "msolve" in answered else "sympy"  # the route that answered
     order = sorted(range(len(roots)), key=lambda i: [roots[i][1][u] for u in reversed(unknowns)])
     return RootSet(
         RootStatus.SOLVED,
@@ -186,7 +196,9 @@ def certified_real_roots(
     )
 
 
-def _solve_leaf(leaf: Piece, binary: str | None, seconds: float) -> tuple[RootSet, Piece]:
+def _solve_leaf(
+    leaf: Piece, binary: str | None, seconds: float, exact_first: bool = False
+) -> tuple[RootSet, Piece]:
     """The real roots of one piece (its remaining linear pivots put in first, its non-zero
     conditions imposed by one more unknown), and the piece as solved."""
     polys, eliminated = eliminate_linear(list(leaf.polys), list(leaf.unknowns))
@@ -233,6 +245,12 @@ def _solve_leaf(leaf: Piece, binary: str | None, seconds: float) -> tuple[RootSe
         )
         return found, leaf
     if binary is not None:
+        if exact_first:  # exact values (radicals) where the exact route is quick
+            try:
+                slice_ = min(EXACT_FIRST_SECONDS, seconds / 4)
+                return solve_bounded(polys, variables, slice_, exact_real_roots), leaf
+            except (TimeoutError, NotImplementedError, ValueError):
+                pass
         return msolve_real_roots(polys, variables, seconds, binary), leaf
     try:
         return solve_bounded(polys, variables, seconds, exact_real_roots), leaf
