@@ -270,7 +270,10 @@ def _components(eqs, unknowns, preference, seconds) -> list[Component]:
             if candidate in unknowns and _independent(part, unknowns, [*free, candidate]):
                 free.append(candidate)
         targets = [u for u in unknowns if u not in free]
-        roots = _certified(part, targets, seconds) if targets and not free else None
+        try:
+            roots = _certified(part, targets, seconds) if targets and not free else None
+        except _Continuum:  # the part's free unknowns were not all found: sympy below
+            roots = None
         if roots is None:
             roots = solve_bounded(part, targets, seconds) if targets else [{}]
         for root in roots:
