@@ -202,7 +202,7 @@ class Cluster:
             except (OSError, TimeoutError, ValueError, TypeError) as exc:
                 reason = " ".join(str(exc).split()) or type(exc).__name__
                 raise InvalidParameterError(
-                    f"--scheduler {self.address!r}: no Dask scheduler answered within "
+                    f"--scheduler (scheduler=) {self.address!r}: no Dask scheduler answered within "
                     f"{self.timeout:g} s ({reason}); start one with `dask scheduler` "
                     "and check the address (tcp://HOST:PORT)"
                 ) from None
@@ -212,7 +212,9 @@ class Cluster:
 
         n = self.workers if self.workers is not None else (os.cpu_count() or 1)
         if isinstance(n, bool) or not isinstance(n, int) or n < 1:
-            raise InvalidParameterError(f"--workers {n!r} is invalid: give a whole number >= 1")
+            raise InvalidParameterError(
+                f"--workers (workers=) {n!r} is invalid: give a whole number >= 1"
+            )
         with dask.config.set({PRE_SPAWN: _pre_spawn_environment()}):
             self._cluster = LocalCluster(
                 n_workers=n,
