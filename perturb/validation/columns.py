@@ -16,9 +16,9 @@ import numpy as np
 from attrs import field, frozen
 
 if TYPE_CHECKING:
-    from perturb.validation.model import Model
+    from perturb.validation.model import Model, SystemModel
 
-__all__ = ["ParameterColumns"]
+__all__ = ["ParameterColumns", "system_columns"]
 
 
 def _float_array(value) -> np.ndarray:
@@ -61,3 +61,44 @@ class ParameterColumns:
     def valid(self) -> np.ndarray:
         """Boolean mask of the points whose values are valid."""
         return np.array([not e for e in self.errors], dtype=bool)
+
+
+def system_columns(model: SystemModel, columns) -> ParameterColumns | None:
+    """:meth:`SystemModel.parameter_columns`: the options do not depend on the values, so one
+    solution serves every point (not offered for a driven system, whose solution does)."""
+    from perturb.errors import InvalidParameterError
+    from perturb.system import Regime
+    from perturb.validation.model import _check_values
+
+    system = model.quasilinear
+    columns = {str(n): np.asarray(c, dtype=float).ravel() for n, c in columns.items()}
+    sizes = {c.size for c in columns.values()}
+    if system.excitation is not None or len(sizes) != 1 or not set(columns) <= set(model.values):
+        return None
+    size = sizes.pop()
+    finite = np.all([np.isfinite(c) for c in columns.values()], axis=0)
+    errors = [""] * size
+    for i in np.flatnonzero(~finite):  # the point's own message
+        try:
+            _check_values(system, {**model.values, **{n: c[i] for n, c in columns.items()}})
+        except InvalidParameterError as exc:
+            errors[i] = str(exc)
+
+    def column(name: str) -> np.ndarray:
+        value = columns.get(name, np.full(size, model.values[name]))
+        return np.where(finite, value, np.nan)
+
+    parameter_value = column(system.parameter.name)
+    if system.regime is Regime.LARGE:
+        if np.any(parameter_value[finite] == 0):
+            return None  # 1/0: the per-point route reports its own error
+        with np.errstate(divide="ignore", invalid="ignore"):
+            eps = 1.0 / parameter_value
+    else:
+        eps = parameter_value
+    symbols = {p.name: column(p.name) for p in system.parameters}
+    first = None
+    if finite.any():
+        i = int(np.flatnonzero(finite)[0])
+        first = model.with_parameters(**{n: float(c[i]) for n, c in columns.items()})
+    return ParameterColumns(first, parameter_value, eps, symbols, errors, [""] * size)
