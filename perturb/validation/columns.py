@@ -18,7 +18,7 @@ from attrs import field, frozen
 if TYPE_CHECKING:
     from perturb.validation.model import Model, SystemModel
 
-__all__ = ["ParameterColumns", "system_columns"]
+__all__ = ["ParameterColumns", "reciprocal", "system_columns"]
 
 
 def _float_array(value) -> np.ndarray:
@@ -63,6 +63,15 @@ class ParameterColumns:
         return np.array([not e for e in self.errors], dtype=bool)
 
 
+def reciprocal(values: np.ndarray, valid: np.ndarray) -> np.ndarray | None:
+    """``1 / values`` (ε from μ, or μ from ε) where ``valid``; None if a valid value is 0 (the
+    per-point route then reports the point's own error)."""
+    if np.any(values[valid] == 0):
+        return None
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return 1.0 / values
+
+
 def system_columns(model: SystemModel, columns) -> ParameterColumns | None:
     """:meth:`SystemModel.parameter_columns`: the options do not depend on the values, so one
     solution serves every point (not offered for a driven system, whose solution does)."""
@@ -89,13 +98,10 @@ def system_columns(model: SystemModel, columns) -> ParameterColumns | None:
         return np.where(finite, value, np.nan)
 
     parameter_value = column(system.parameter.name)
-    if system.regime is Regime.LARGE:
-        if np.any(parameter_value[finite] == 0):
-            return None  # 1/0: the per-point route reports its own error
-        with np.errstate(divide="ignore", invalid="ignore"):
-            eps = 1.0 / parameter_value
-    else:
-        eps = parameter_value
+    large = system.regime is Regime.LARGE
+    eps = reciprocal(parameter_value, finite) if large else parameter_value
+    if eps is None:
+        return None
     symbols = {p.name: column(p.name) for p in system.parameters}
     first = None
     if finite.any():
