@@ -44,6 +44,23 @@ class ParameterColumns:
         Per point, the message ``with_parameters`` raises at its values; "" where valid.
     notes : tuple of str
         Per point, the warnings its model gave while it was made ("; "-joined; "" for none).
+
+    Examples
+    --------
+    Duffing's oscillator at three amplitudes, one of which it refuses:
+
+    >>> import numpy as np
+    >>> from problems import get_problem
+    >>> duffing = get_problem("duffing").create(eps=0.1)
+    >>> points = duffing.parameter_columns({"amplitude": np.array([0.5, -1.0, 2.0])})
+    >>> points.valid().tolist()
+    [True, False, True]
+    >>> points.symbol_values["amplitude"].tolist(), points.epsilon.tolist()
+    ([0.5, nan, 2.0], [0.1, nan, 0.1])
+    >>> points.errors[1]
+    '`amplitude` = -1 is invalid: give a value > 0'
+    >>> points.model.solve(2) is duffing.with_parameters(amplitude=2.0).solve(2)
+    True
     """
 
     model: Model | None
