@@ -205,14 +205,28 @@ SWEEP_AMPLITUDE_SAMPLES = 256
 #: hundreds of chunks to share among the workers.
 SWEEP_TASK_SECONDS = 2.0
 
+#: What a task costs besides its points (Dask's scheduling, the result's trip back, the driver's
+#: write): 9-35 ms measured on 2 cores (``benchmarks/bench_sweep.md``, overhead section).
+SWEEP_TASK_OVERHEAD_SECONDS = 0.025
+
+#: The share of a task's work its overhead may take: a chunk holds at least
+#: SWEEP_TASK_OVERHEAD_SECONDS / SWEEP_OVERHEAD_SHARE (0.5 s) of work when the grid has it, even
+#: if that leaves fewer than SWEEP_CHUNKS_PER_WORKER chunks per worker (a grid of cheap points).
+SWEEP_OVERHEAD_SHARE = 0.05
+
 #: Fewest chunks per worker when the grid allows it: with four, the last chunks to finish keep
 #: every worker busy, and an interrupted sweep loses at most a quarter of a worker's share.
 SWEEP_CHUNKS_PER_WORKER = 4
 
 #: Points evaluated on the driver to time one point before the chunks are sized (evaluation; a
 #: validated sweep times SWEEP_PILOT_VALIDATIONS points one by one and takes the median, after a
-#: first one that pays the one-time costs): enough to average the per-call overheads.
+#: first one that pays the one-time costs). When they take less than SWEEP_PILOT_SECONDS, a
+#: batch up to SWEEP_PILOT_GROWTH times larger is timed too, and a point's cost is the difference
+#: over the extra points: a chunk's fixed cost (2 ms) is then not counted as the points' (it made
+#: a point of van der Pol look 10 times dearer than it is).
 SWEEP_PILOT_POINTS = 64
+SWEEP_PILOT_SECONDS = 0.05
+SWEEP_PILOT_GROWTH = 16
 SWEEP_PILOT_VALIDATIONS = 3
 
 #: A sweep whose swept parameters enter the problem's derivation makes each distinct derivation

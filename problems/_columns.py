@@ -20,6 +20,7 @@ import numpy as np
 
 from perturb import PerturbError, Regime
 from perturb.validation import ParameterColumns
+from perturb.validation.columns import reciprocal
 
 __all__ = ["problem_columns"]
 
@@ -191,13 +192,9 @@ def problem_columns(problem, columns: Mapping[str, np.ndarray]) -> ParameterColu
         return np.where(valid, value, np.nan)
 
     eps = column("eps")
-    if system.regime is Regime.LARGE:
-        if np.any(eps[valid] == 0):
-            return None  # 1/0: the per-point route reports its own error
-        with np.errstate(divide="ignore", invalid="ignore"):
-            parameter_value = 1.0 / eps
-    else:
-        parameter_value = eps
+    parameter_value = reciprocal(eps, valid) if system.regime is Regime.LARGE else eps
+    if parameter_value is None:
+        return None
     symbols = {p.name: column(p.name) for p in system.parameters if p.name in problem.values}
     model = None
     if valid.any():

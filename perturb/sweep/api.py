@@ -209,7 +209,11 @@ def sweep(
         error = SweepError(
             f"{len(stats.lost)} chunk(s) of the sweep could not be computed (e.g. chunk {number}: "
             f"{reason}); every other point is written"
-            + ("; run again with --resume to retry them" if output is not None else "")
+            + (
+                "; run again with --resume (resume=True in Python) to retry them"
+                if output is not None
+                else ""
+            )
         )
         error.dataset = dataset
         raise error

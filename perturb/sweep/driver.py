@@ -31,8 +31,12 @@ from perturb._defaults import (
     SWEEP_CHUNKS_PER_WORKER,
     SWEEP_CONNECT_SECONDS,
     SWEEP_MAX_CHUNK_POINTS,
+    SWEEP_OVERHEAD_SHARE,
+    SWEEP_PILOT_GROWTH,
     SWEEP_PILOT_POINTS,
+    SWEEP_PILOT_SECONDS,
     SWEEP_PILOT_VALIDATIONS,
+    SWEEP_TASK_OVERHEAD_SECONDS,
     SWEEP_TASK_SECONDS,
 )
 from perturb.errors import InvalidParameterError
@@ -105,9 +109,10 @@ def run_packed(blob: bytes, key: str, shape, chunk, number: int, session: int) -
 # ---------------------------------------------------------------------------------- sizing
 def pilot_seconds(job: SweepJob) -> float:
     """Seconds one point takes, timed here on the points of the grid's first chunk (which share a
-    derivation) after a run that pays the one-time costs (compiling, caches): a batch of
-    :data:`SWEEP_PILOT_POINTS` for an evaluation, the median of :data:`SWEEP_PILOT_VALIDATIONS`
-    single points for a validation."""
+    derivation) after a run that pays the one-time costs (compiling, caches): for an evaluation
+    a batch of :data:`SWEEP_PILOT_POINTS` — and, if that is quick, the cost of the extra points of
+    a batch :data:`SWEEP_PILOT_GROWTH` times larger (the chunk's fixed cost left out); the median
+    of :data:`SWEEP_PILOT_VALIDATIONS` single points for a validation."""
     if job.spec.validate:
         times = []
         for index in _pilot_indices(job, 1 + SWEEP_PILOT_VALIDATIONS):
@@ -120,9 +125,21 @@ def pilot_seconds(job: SweepJob) -> float:
     first = indices[:n]
     second = indices[n:] or first
     run_chunk(job, first)
+    seconds = _timed(job, second)
+    if seconds >= SWEEP_PILOT_SECONDS:
+        return seconds / len(second)
+    more = _pilot_indices(job, len(second) * SWEEP_PILOT_GROWTH)
+    if len(more) <= len(second):
+        return seconds / len(second)
+    larger = _timed(job, more)
+    marginal = (larger - seconds) / (len(more) - len(second))
+    return marginal if marginal > 0 else larger / len(more)
+
+
+def _timed(job: SweepJob, indices) -> float:
     clock = time.perf_counter()
-    run_chunk(job, second)
-    return (time.perf_counter() - clock) / len(second)
+    run_chunk(job, indices)
+    return time.perf_counter() - clock
 
 
 def _pilot_indices(job: SweepJob, count: int) -> list[int]:
@@ -135,14 +152,16 @@ def _pilot_indices(job: SweepJob, count: int) -> list[int]:
 
 
 def chunk_points(seconds_per_point: float, size: int, workers: int) -> int:
-    """Points per chunk: about :data:`SWEEP_TASK_SECONDS` of work, at most
-    :data:`SWEEP_MAX_CHUNK_POINTS`, and at least :data:`SWEEP_CHUNKS_PER_WORKER` chunks per worker
-    when the grid has enough points."""
+    """Points per chunk: about :data:`SWEEP_TASK_SECONDS` of work, and at least
+    :data:`SWEEP_CHUNKS_PER_WORKER` chunks per worker when the grid has enough points — but never
+    less work than keeps a task's overhead within :data:`SWEEP_OVERHEAD_SHARE` of it; at most
+    :data:`SWEEP_MAX_CHUNK_POINTS`."""
     per = max(seconds_per_point, 1e-9)
     points = math.ceil(SWEEP_TASK_SECONDS / per)
-    points = min(points, SWEEP_MAX_CHUNK_POINTS)
     share = math.ceil(size / (SWEEP_CHUNKS_PER_WORKER * max(workers, 1)))
-    return max(1, min(points, share))
+    least = math.ceil(SWEEP_TASK_OVERHEAD_SECONDS / SWEEP_OVERHEAD_SHARE / per)
+    points = max(min(points, share), least)
+    return max(1, min(points, SWEEP_MAX_CHUNK_POINTS, size))
 
 
 # ---------------------------------------------------------------------------------- the cluster
@@ -183,7 +202,7 @@ class Cluster:
             except (OSError, TimeoutError, ValueError, TypeError) as exc:
                 reason = " ".join(str(exc).split()) or type(exc).__name__
                 raise InvalidParameterError(
-                    f"--scheduler {self.address!r}: no Dask scheduler answered within "
+                    f"--scheduler (scheduler=) {self.address!r}: no Dask scheduler answered within "
                     f"{self.timeout:g} s ({reason}); start one with `dask scheduler` "
                     "and check the address (tcp://HOST:PORT)"
                 ) from None
@@ -193,7 +212,9 @@ class Cluster:
 
         n = self.workers if self.workers is not None else (os.cpu_count() or 1)
         if isinstance(n, bool) or not isinstance(n, int) or n < 1:
-            raise InvalidParameterError(f"--workers {n!r} is invalid: give a whole number >= 1")
+            raise InvalidParameterError(
+                f"--workers (workers=) {n!r} is invalid: give a whole number >= 1"
+            )
         with dask.config.set({PRE_SPAWN: _pre_spawn_environment()}):
             self._cluster = LocalCluster(
                 n_workers=n,

@@ -100,7 +100,7 @@ class SweepStore:
                 raise _refuse(
                     path,
                     f"already holds a sweep of {attrs.get('problem')!r}",
-                    "pass --resume to continue it, or choose a new path",
+                    "pass --resume (resume=True in Python) to continue it, or choose a new path",
                 )
             if attrs.get("fingerprint") != spec.fingerprint(version):
                 raise _refuse(path, _difference(attrs, spec, version), "choose a new path")

@@ -507,6 +507,13 @@ class SystemModel(Model):
     def evaluates_solution_directly(self) -> bool:
         return self.quasilinear.excitation is None  # a driven state adds the phase
 
+    def parameter_columns(self, columns) -> ParameterColumns | None:
+        """Many points at once: the options do not depend on the values, so one solution serves
+        every point (:func:`perturb.validation.columns.system_columns`)."""
+        from perturb.validation.columns import system_columns
+
+        return system_columns(self, columns)
+
     def with_epsilon(self, eps: float) -> SystemModel:
         value = 1.0 / eps if self.quasilinear.regime is Regime.LARGE else eps
         return evolve(self, values={**self.values, self.quasilinear.parameter.name: value})

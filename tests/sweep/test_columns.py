@@ -178,3 +178,32 @@ def test_any_duffing_grid_the_same_through_both_routes(eps, amplitude, order):
     assume(eps[0] != eps[1] and amplitude[0] != amplitude[1])  # a grid has distinct values
     job = job_of(get_problem("duffing").create(), axes, order=order, times=[0.3])
     assert_same(*both_routes(job))
+
+
+def test_a_bare_system_and_its_singular_point_the_same_through_both_routes():
+    from perturb.validation import SystemModel
+
+    system = QuasilinearSystem([x], [xdot], [1], [EPS * x**3 / (c - 1)], parameters=[c])
+    model = SystemModel(system, {"c": 3.0, "epsilon": 0.1}, {"amplitudes": {"x": 1}})
+    statuses = []
+    for axes in (["c=0,1,3", "epsilon=0.05,0.1"], ["c=0,2,3"]):
+        job = job_of(model, axes, order=2, times=[0, 1])
+        assert offered(job)
+        fast, slow = both_routes(job)
+        assert_same(fast, slow)
+        statuses.append(set(fast["status"].tolist()))
+    assert statuses == [
+        {code_of(s) for s in (PointStatus.OK, PointStatus.NOT_FINITE)},
+        {code_of(PointStatus.OK)},
+    ]
+
+
+def test_a_bare_system_in_the_large_parameter():
+    from perturb.validation import SystemModel
+
+    system = QuasilinearSystem(
+        [x], [xdot], [1], [(1 - x**2) * xdot / mu], parameter=mu, regime=Regime.LARGE
+    )
+    job = job_of(SystemModel(system, {"mu": 10.0}), ["mu=2:40:9"], order=2, times=[0.5])
+    assert offered(job)
+    assert_same(*both_routes(job))

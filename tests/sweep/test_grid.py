@@ -149,3 +149,25 @@ def test_chunks_keep_the_entering_axes_fixed_when_asked():
     chunking = Chunking.of((100, 100), 30, first=(0,))  # fill along axis 0 first
     assert chunking.chunk == (30, 1)
     assert Chunking.of((100, 100), 30).chunk == (1, 30)
+
+
+@given(
+    per=st.floats(1e-8, 100.0),
+    size=st.integers(1, 10**8),
+    workers=st.integers(1, 64),
+)
+def test_chunks_hold_enough_work_for_their_overhead(per, size, workers):
+    from perturb._defaults import (
+        SWEEP_MAX_CHUNK_POINTS,
+        SWEEP_OVERHEAD_SHARE,
+        SWEEP_TASK_OVERHEAD_SECONDS,
+        SWEEP_TASK_SECONDS,
+    )
+    from perturb.sweep.driver import chunk_points
+
+    points = chunk_points(per, size, workers)
+    assert 1 <= points <= min(size, SWEEP_MAX_CHUNK_POINTS)
+    if points < min(size, SWEEP_MAX_CHUNK_POINTS):  # not cut by the grid or the ceiling
+        assert points * per >= SWEEP_TASK_OVERHEAD_SECONDS / SWEEP_OVERHEAD_SHARE * (1 - 1e-9)
+    if per * min(size, SWEEP_MAX_CHUNK_POINTS) > 2 * SWEEP_TASK_SECONDS:  # enough work to cut
+        assert points * per <= SWEEP_TASK_SECONDS + per  # about the target, one point over
