@@ -87,7 +87,13 @@ class ResonantChain(Problem):
 
 @register
 class ResonantChain2(ResonantChain):
-    """The resonant chain of 2 (see :class:`ResonantChain`)."""
+    """The resonant chain of 2 (see :class:`ResonantChain`).
+
+    Examples
+    --------
+    >>> sorted(f.name for f in ResonantChain2.create(eps=0.05).families(1))
+    ['anti-phase', 'in-phase']
+    """
 
     name = "resonant-chain-2"
     n = 2
@@ -95,7 +101,13 @@ class ResonantChain2(ResonantChain):
 
 @register
 class ResonantChain3(ResonantChain):
-    """The resonant chain of 3 (see :class:`ResonantChain`)."""
+    """The resonant chain of 3 (see :class:`ResonantChain`).
+
+    Examples
+    --------
+    >>> sorted(f.name for f in ResonantChain3.create(eps=0.01).families(1))
+    ['anti-phase-1', 'anti-phase-2', 'anti-phase-3', 'in-phase', 'shape-p0n']
+    """
 
     name = "resonant-chain-3"
     n = 3
@@ -103,7 +115,13 @@ class ResonantChain3(ResonantChain):
 
 @register
 class ResonantChain4(ResonantChain):
-    """The resonant chain of 4 (see :class:`ResonantChain`)."""
+    """The resonant chain of 4 (see :class:`ResonantChain`).
+
+    Examples
+    --------
+    >>> ResonantChain4.build_system().rhs[1]  # x2, between two springs
+    -epsilon*((-x1 + x2)**3 - (-x2 + x3)**3)
+    """
 
     name = "resonant-chain-4"
     n = 4
@@ -111,7 +129,13 @@ class ResonantChain4(ResonantChain):
 
 @register
 class ResonantChain6(ResonantChain):
-    """The resonant chain of 6 (see :class:`ResonantChain`)."""
+    """The resonant chain of 6 (see :class:`ResonantChain`).
+
+    Examples
+    --------
+    >>> ResonantChain6.build_system().coordinates[-1]
+    x6
+    """
 
     name = "resonant-chain-6"
     n = 6

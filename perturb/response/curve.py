@@ -245,8 +245,48 @@ def _folds(first, unknowns, swept, low, high, equations) -> list[Fold]:
         }
         if all(n == 0 for n in norms.values()):
             continue  # the trivial branch's own crossing is a pitchfork, reported by stability
+        if _branch_point(jac, root, unknowns, norms):
+            continue  # likewise where a mode at rest starts to move (the absorber's saturation)
+        if any(_same_orbit(fold, value, norms) for fold in out):
+            continue  # the fold of a response shifted by one forcing period: the same orbit
         out.append(Fold(value, amplitudes, norms, value))
     return sorted(out, key=lambda f: f.value)
+
+
+#: Relative distance below which two folds are one: the same value and the same amplitude of
+#: every coordinate (a shift by a forcing period rotates the phases, never the norms); the roots
+#: come from one certified isolation, far finer than this.
+SAME_FOLD = 1e-9
+
+
+def _same_orbit(fold: Fold, value: float, norms: dict) -> bool:
+    pairs = [(fold.value, value), *((fold.norms[c], n) for c, n in norms.items())]
+    return all(abs(p - q) <= SAME_FOLD * max(1.0, abs(p)) for p, q in pairs)
+
+
+#: Share of the Jacobian's null vector on the amplitudes of the modes at rest above which a root of
+#: {P1 = 0, det J = 0} is a branch point, not a fold: the null vector leaves the invariant subspace
+#: (at a fold within it the share is zero, at a branch point one: any value between is far from both).
+BRANCH_SHARE = 0.5
+
+
+def _branch_point(jac, root, unknowns, norms) -> bool:
+    """Whether a singular root lies where a coordinate at rest starts to move (a pitchfork off the
+    invariant subspace where it is zero), which stability reports, rather than on a turn of a branch
+    inside that subspace."""
+    import numpy as np
+
+    resting = [c for c, n in norms.items() if n == 0]
+    if not resting:
+        return False
+    matrix = np.array(jac.xreplace(dict(root)).evalf(), dtype=float)
+    null = np.linalg.svd(matrix)[2][-1]
+    share = sum(
+        null[i] ** 2
+        for i, u in enumerate(unknowns)
+        if any(u.name in (f"a_{c}", f"b_{c}") for c in resting)
+    )
+    return share > BRANCH_SHARE
 
 
 #: Newton iterations of a fold's continuation to order N.
