@@ -87,7 +87,7 @@ class ResonantChain(Problem):
 
 @register
 class ResonantChain2(ResonantChain):
-    """The resonant chain of 2 (see :class:`ResonantChain`).
+    """The resonant chain of 2 (see :class:`~problems.resonant_chain.ResonantChain`).
 
     Examples
     --------
@@ -101,7 +101,7 @@ class ResonantChain2(ResonantChain):
 
 @register
 class ResonantChain3(ResonantChain):
-    """The resonant chain of 3 (see :class:`ResonantChain`).
+    """The resonant chain of 3 (see :class:`~problems.resonant_chain.ResonantChain`).
 
     Examples
     --------
@@ -115,7 +115,7 @@ class ResonantChain3(ResonantChain):
 
 @register
 class ResonantChain4(ResonantChain):
-    """The resonant chain of 4 (see :class:`ResonantChain`).
+    """The resonant chain of 4 (see :class:`~problems.resonant_chain.ResonantChain`).
 
     Examples
     --------
@@ -129,7 +129,7 @@ class ResonantChain4(ResonantChain):
 
 @register
 class ResonantChain6(ResonantChain):
-    """The resonant chain of 6 (see :class:`ResonantChain`).
+    """The resonant chain of 6 (see :class:`~problems.resonant_chain.ResonantChain`).
 
     Examples
     --------
