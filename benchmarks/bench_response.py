@@ -62,11 +62,15 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as folder:
         if args.before:
             trees.append((args.before, export(args.before, folder)))
-        print("| problem | sweep | tree | CPU s | points with a branch | branches | folds | failed |")
+        print(
+            "| problem | sweep | tree | CPU s | points with a branch | branches | folds | failed |"
+        )
         print("|---|---|---|---|---|---|---|---|")
         for problem, sweep in SWEEPS:
             for label, tree in trees:
-                print(f"| {problem} | {sweep} | {label} | {run(tree, problem, sweep, args.timeout)} |")
+                print(
+                    f"| {problem} | {sweep} | {label} | {run(tree, problem, sweep, args.timeout)} |"
+                )
 
 
 if __name__ == "__main__":
