@@ -31,10 +31,10 @@ import sympy as sp
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from perturb import cache, find_families, solve  # noqa: E402
+from perturb import cache, find_families  # noqa: E402
 from perturb.algebra import certified_real_roots, msolve_binary, solve_bounded  # noqa: E402
-from perturb.method import conditions  # noqa: E402
 from problems.resonant_chain import chain_system  # noqa: E402
+from tests.algebra.chain_equations import amplitude_equations, pairs_of  # noqa: E402, F401
 
 #: Newton starts per size and the seed (the count must not change from run to run).
 STARTS, SEED = 3000, 2024
@@ -51,33 +51,6 @@ SINE_CREEP = 1e-2
 #: Newton lands within 1e-6 of it with residuals below RESIDUAL). No branch is missed there that
 #: the chart x1 = 1 could hold: its directions have |x1| = 1/|amplitudes|.
 X1_ZERO = 1e-4
-
-
-def amplitude_equations(n: int):
-    """The order-1 amplitude equations of the chain of ``n``, as the construction poses them."""
-    captured = {}
-    original = conditions.ConditionSolver._solve_nonlinear
-
-    def capture(self, eqs, unknowns, *args):
-        captured["eqs"] = [sp.expand(e / sp.pi) for e in eqs]
-        captured["unknowns"] = list(unknowns)
-        raise KeyboardInterrupt  # stop the construction here
-
-    conditions.ConditionSolver._solve_nonlinear = capture
-    try:
-        solve(chain_system(n), order=1, amplitudes={"x1": 1}, cache=False)
-    except KeyboardInterrupt:
-        pass
-    finally:
-        conditions.ConditionSolver._solve_nonlinear = original
-    return captured["eqs"], captured["unknowns"]
-
-
-def pairs_of(n: int):
-    """Each coordinate's (cosine, sine) generating amplitudes (x1's put in: 1 and 0)."""
-    return [(sp.Integer(1), sp.Integer(0))] + [
-        (sp.Symbol(f"a_x{j}0"), sp.Symbol(f"b_x{j}0")) for j in range(2, n + 1)
-    ]
 
 
 def homogeneous(eqs, unknowns):

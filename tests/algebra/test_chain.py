@@ -12,38 +12,9 @@ from perturb.algebra import RootStatus, certified_real_roots, msolve_binary
 from perturb.algebra.msolve import msolve_real_roots
 from perturb.algebra.split import cut, frequency_eliminants
 from problems import get_problem
-from problems.resonant_chain import chain_system
+from tests.algebra.chain_equations import amplitude_equations, pairs_of
 
 needs_msolve = pytest.mark.skipif(msolve_binary() is None, reason="needs the extra roots (msolve)")
-
-
-def _equations(n):
-    """The order-1 amplitude equations of the chain, by the engine (x1's amplitude 1)."""
-    from perturb import solve
-    from perturb.method import conditions
-
-    captured = {}
-    original = conditions.ConditionSolver._solve_nonlinear
-
-    def capture(self, eqs, unknowns, *args):
-        captured.update(eqs=[sp.expand(e / sp.pi) for e in eqs], unknowns=list(unknowns))
-        raise KeyboardInterrupt
-
-    conditions.ConditionSolver._solve_nonlinear = capture
-    try:
-        solve(chain_system(n), order=1, amplitudes={"x1": 1}, cache=False)
-    except KeyboardInterrupt:
-        pass
-    finally:
-        conditions.ConditionSolver._solve_nonlinear = original
-    return captured["eqs"], captured["unknowns"]
-
-
-def _pairs(n):
-    """Each coordinate's (cosine, sine) generating amplitudes (x1: 1 and 0, put in)."""
-    return [(sp.Integer(1), sp.Integer(0))] + [
-        (sp.Symbol(f"a_x{j}0"), sp.Symbol(f"b_x{j}0")) for j in range(2, n + 1)
-    ]
 
 
 def _sine(unknowns):
@@ -70,7 +41,7 @@ def _newton_roots(eqs, unknowns, starts=2000, seed=2024):
 
 def test_the_chain_of_two_has_the_in_phase_and_anti_phase_modes():
     """n = 2 by hand: a_x2 = ±1 (symmetric and antisymmetric); Ω1 = 3/8 and 3/8 + 3 = 27/8."""
-    eqs, unknowns = _equations(2)
+    eqs, unknowns = amplitude_equations(2)
     found = certified_real_roots(eqs, unknowns, seconds=60, backend="sympy")
     omega = sp.Symbol("Omega1")
     assert found.status is RootStatus.SOLVED
@@ -79,7 +50,7 @@ def test_the_chain_of_two_has_the_in_phase_and_anti_phase_modes():
 
 @pytest.mark.slow
 def test_the_chain_of_three_count_agrees_with_newton():
-    eqs, unknowns = _equations(3)
+    eqs, unknowns = amplitude_equations(3)
     found = certified_real_roots(eqs, unknowns, seconds=120, backend="sympy")
     assert found.status is RootStatus.SOLVED
     numeric = _newton_roots(eqs, unknowns)
@@ -94,8 +65,8 @@ def test_the_chain_of_three_count_agrees_with_newton():
 def test_the_cuts_refute_every_piece_with_a_sine_amplitude(n):
     """With the spring-power members, every piece where some sine amplitude is non-zero is
     proved empty (no leaf is left to solve); the one leaf is the standing waves b = 0."""
-    eqs, unknowns = _equations(n)
-    leaves = cut(eqs, unknowns, members=frequency_eliminants(eqs, unknowns, _pairs(n)))
+    eqs, unknowns = amplitude_equations(n)
+    leaves = cut(eqs, unknowns, members=frequency_eliminants(eqs, unknowns, pairs_of(n)))
     assert len(leaves) == 1
     assert not set(leaves[0].unknowns) & set(_sine(unknowns))
     assert leaves[0].path == (
@@ -107,8 +78,8 @@ def test_the_cuts_refute_every_piece_with_a_sine_amplitude(n):
 def test_the_cut_system_and_the_whole_system_have_the_same_roots():
     """Two routes for the chain of 4: cut then solved, and msolve on the whole system at once
     (which knows nothing of the cuts): the same 8 roots."""
-    eqs, unknowns = _equations(4)
-    cut_route = certified_real_roots(eqs, unknowns, seconds=120, pairs=_pairs(4))
+    eqs, unknowns = amplitude_equations(4)
+    cut_route = certified_real_roots(eqs, unknowns, seconds=120, pairs=pairs_of(4))
     whole = msolve_real_roots(eqs, unknowns, 120)
     assert cut_route.status is whole.status is RootStatus.SOLVED
     assert len(cut_route.roots) == len(whole.roots) == 8
@@ -140,7 +111,7 @@ def test_the_chain_of_four_every_branch_counted_twice():
     from 2000 seeded starts on the whole amplitude system, which knows nothing of the cuts: a
     lower bound (starts in a box of five decades miss the branches of large amplitude), and every
     root it finds is one of the families'."""
-    eqs, unknowns = _equations(4)
+    eqs, unknowns = amplitude_equations(4)
     families = get_problem("resonant-chain-4").create(eps=0.01).families(1)
     assert len(families) == 8 and all(f.status.ok for f in families)
     numeric = _newton_roots(eqs, unknowns)
