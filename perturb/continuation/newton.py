@@ -49,7 +49,12 @@ class Correction:
 
 def _finite(*arrays) -> bool:
     # a sum is not finite when any term is not (inf - inf is nan): one reduction an array
-    return all(math.isfinite(float(np.sum(a))) for a in arrays)
+    return all(math.isfinite(a.sum()) for a in arrays)
+
+
+def _size(v: np.ndarray) -> float:
+    """max |v_i| (ndarray methods: a fraction of numpy's function-call cost on tiny arrays)."""
+    return float(abs(v).max()) if v.size else 0.0
 
 
 def bordered(jacobian: np.ndarray, t: np.ndarray) -> np.ndarray:
@@ -94,14 +99,14 @@ def correct(equations, predictor: np.ndarray, normal: np.ndarray) -> Correction:
             step = np.linalg.solve(bordered(jac, normal), rhs)
         except np.linalg.LinAlgError:
             return Correction(x, jac, iteration, False)
-        size = float(np.max(np.abs(step)))
+        size = _size(step)
         if not math.isfinite(size):
             return Correction(x, jac, iteration, False)
         if iteration > 2 and size > 0.5 * previous:
             return Correction(x, jac, iteration, False)  # not contracting: outside the basin
         x = x + step
         previous = size
-        if size <= CORRECTOR_TOL * max(1.0, float(np.max(np.abs(x)))):
+        if size <= CORRECTOR_TOL * max(1.0, _size(x)):
             jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))
             if not _finite(x, jac):
                 return Correction(x, None, iteration, False, False)
@@ -122,12 +127,12 @@ def newton_fixed(equations, x0: np.ndarray, max_iter: int = CORRECTOR_MAX_ITER) 
             step = np.linalg.solve(jac[:, :-1], -g)
         except np.linalg.LinAlgError:
             return Correction(x, jac, iteration, False)
-        size = float(np.max(np.abs(step), initial=0.0))
+        size = _size(step)
         if not math.isfinite(size) or (iteration > 2 and size > 0.5 * previous):
             return Correction(x, jac, iteration, False)
         x[:-1] = x[:-1] + step
         previous = size
-        if size <= CORRECTOR_TOL * max(1.0, float(np.max(np.abs(x)))):
+        if size <= CORRECTOR_TOL * max(1.0, _size(x)):
             jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))
             if not _finite(x, jac):
                 return Correction(x, None, iteration, False, False)
@@ -146,12 +151,12 @@ def newton_nearest(equations, x0: np.ndarray, max_iter: int = CORRECTOR_MAX_ITER
         if not _finite(g, jac):
             return Correction(x, None, iteration, False, False)
         step = np.linalg.lstsq(jac, -g, rcond=None)[0]
-        size = float(np.max(np.abs(step), initial=0.0))
+        size = _size(step)
         if not math.isfinite(size) or (iteration > 2 and size > 0.5 * previous):
             return Correction(x, jac, iteration, False)
         x = x + step
         previous = size
-        if size <= CORRECTOR_TOL * max(1.0, float(np.max(np.abs(x)))):
+        if size <= CORRECTOR_TOL * max(1.0, _size(x)):
             jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))
             if not _finite(x, jac):
                 return Correction(x, None, iteration, False, False)
