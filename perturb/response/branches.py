@@ -126,12 +126,13 @@ def branches_at(
         The branches sorted by amplitude (max |x|), and "" or why the roots could not be
         enumerated (then the list is empty: never a silent drop).
     """
-    from perturb.response.continued import _Evaluator
-    from perturb.response.line import line_of_values
+    from perturb.response.evaluate import PointEvaluator
+    from perturb.response.line import excitation_frequency, line_of_values
     from perturb.response.traced import trace
 
     fixed = _fixed(equations, values)
     floats = {k.name: float(v) for k, v in fixed.items()}
+    excitation_frequency(equations.system, floats, float(epsilon))
     names = [p.name for p in equations.system.parameters]
     detuning = equations.system.excitation.detuning
     swept = detuning.name if isinstance(detuning, sp.Symbol) and detuning.name in floats else None
@@ -150,7 +151,7 @@ def branches_at(
     found = traced.at([centre])[0]
     if not found:
         return [], ""
-    evaluator = _Evaluator(equations, line)
+    evaluator = PointEvaluator(equations, line)
     at = evaluator.evaluate([u for u, _ in found], [centre] * len(found))
     trouble = "; ".join(traced.failures)
     out = []
@@ -170,8 +171,9 @@ def branches_at(
                 amplitudes=dict(zip(amplitude_names, map(float, u), strict=True)),
                 norms={c: float(v[k]) for c, v in at["initial"].items()},
                 stable=stability.stable[k],
-                eigenvalues=tuple(cmath.log(z) / float(epsilon) if z else complex(-math.inf)
-                                  for z in multipliers),  # fmt: skip
+                eigenvalues=tuple(
+                    cmath.log(z) / float(epsilon) if z else complex(-math.inf) for z in multipliers
+                ),  # fmt: skip
                 multipliers=multipliers,
                 note=note,
                 peak={c: float(v[k]) for c, v in at["peak"].items()},

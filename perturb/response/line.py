@@ -21,7 +21,7 @@ from attrs import field, frozen
 
 from perturb.errors import InvalidParameterError
 
-__all__ = ["ParameterLine", "line_of_problem", "line_of_values"]
+__all__ = ["ParameterLine", "excitation_frequency", "line_of_problem", "line_of_values"]
 
 #: Relative agreement of the problem's values at a third and fourth point with the straight line
 #: through two others, below which the map is affine: the map's own rounding is ~1e-16 relative.
@@ -139,3 +139,28 @@ def line_of_values(names, values: dict, eps: float, parameter: str) -> Parameter
     return ParameterLine(
         parameter, names, float(values[parameter]), base, slope, float(eps), 0.0, 1.0, True
     )
+
+
+def excitation_frequency(system, values: dict, eps: float) -> float:
+    """Ω = (p/q) ω_ref + ε σ of the driven ``system`` at ``values`` (by name).
+
+    Raises
+    ------
+    InvalidParameterError
+        When Ω <= 0: a forcing frequency must be positive (one line, with the detuning that
+        gives it).
+    """
+    import sympy as sp
+
+    drive = system.excitation
+    subs = {p: values[p.name] for p in system.parameters if p.name in values}
+    w_ref = sp.sympify(system.frequencies[system.reference_index]).xreplace(subs)
+    sigma = sp.sympify(drive.detuning).xreplace(subs)
+    omega = float(drive.ratio * w_ref + eps * sigma)
+    if not omega > 0:
+        raise InvalidParameterError(
+            f"`{drive.detuning}` = {float(sigma):g} is invalid: it makes the excitation frequency "
+            f"Omega = {float(drive.ratio * w_ref):g} + {eps:g}*{drive.detuning} = {omega:g} <= 0; "
+            f"give {drive.detuning} > {-float(drive.ratio * w_ref) / eps:g} (Omega > 0)"
+        )
+    return omega

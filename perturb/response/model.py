@@ -246,8 +246,11 @@ def problem_response(
     check_measure(measure)
     check_validate(validate)
     tol = DEFAULT_TOL if tol is None else check_tol(tol)
+    from perturb.response.line import excitation_frequency
+
     for value in grid:  # the problem's own checks at every grid value (one line, exit 2)
-        problem.with_parameters(**{parameter: float(value)})
+        variant = problem.with_parameters(**{parameter: float(value)})
+        excitation_frequency(system, variant.symbol_values(), float(variant.epsilon()))
     equations = amplitude_equations(system, order)
     names = [p.name for p in system.parameters]
     line = line_of_problem(problem, parameter, names, float(grid[0]), float(grid[-1]))
