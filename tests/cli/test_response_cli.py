@@ -38,7 +38,7 @@ def test_response_json_contract(capsys):
         "problem", "parameter", "order", "epsilon", "parameters", "points", "folds", "backbone",
         "true", "failures", "measure", "special", "curves",
     }  # fmt: skip
-    assert data["parameter"] == "Omega" and data["order"] == 1
+    assert data["parameter"] == "Omega" and data["order"] == 3  # the response's default order
     assert data["measure"]["name"] == "peak"  # the plotted default, and the JSON says which
     assert all(set(p) == POINT_KEYS | POINT_EXTENSIONS for p in data["points"])
     at_105 = [p for p in data["points"] if p["value"] == pytest.approx(1.05)]
