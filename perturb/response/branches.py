@@ -193,7 +193,7 @@ SINGLE_POINT_WINDOW = 2.0
 SINGLE_POINT_SHARE = 0.5
 
 
-def _count_name(name: str) -> bool:
+def count_name(name: str) -> bool:
     """Whether ``name`` is one of the names :func:`branch_names` gives by count."""
     if name in ("trivial", "response", "lower", "middle", "upper"):
         return True
@@ -305,7 +305,7 @@ class SteadyState:
             index = nontrivial[-1] if nontrivial else len(self.points) - 1
         elif name in self.names:
             index = self.names.index(name)
-        elif _count_name(name):  # a branch that exists elsewhere, not here: a failed run
+        elif count_name(name):  # a branch that exists elsewhere, not here: a failed run
             return attrs.evolve(
                 self.equations.solution,
                 status=Status.NO_ROOT,
