@@ -3,8 +3,6 @@ amplitude measure the response is drawn by (max |x|, first harmonic or initial-v
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import sympy as sp
 
@@ -43,17 +41,18 @@ def backbone_of(problem, parameter: str, points, order: int, measure: str = "ini
     eps = problem.epsilon()
     generating = np.linspace(0.0, 1.05 * top, BACKBONE_SAMPLES)
     index = [c.name for c in free_system.coordinates].index(coordinate)
-    measured, frequencies = [], []
-    for a in generating:
-        omega, cos, sin = solution.coefficients(eps, {**values, amplitude.name: float(a)})
-        c, s = np.asarray(cos[index], float), np.asarray(sin[index], float)
-        frequencies.append(float(omega))
-        if measure == "peak":
-            measured.append(float(peak_abs(c, s)))
-        elif measure == "first-harmonic":
-            measured.append(float(math.hypot(c[1], s[1])) if len(c) > 1 else 0.0)
-        else:
-            j = np.arange(len(c))
-            x0, v0 = float(c.sum()), float(omega) * float((s * j).sum())
-            measured.append(math.hypot(x0, v0 / float(omega)) if omega else abs(x0))
+    omega, cos, sin = solution.coefficients(eps, {**values, amplitude.name: generating})
+    omega = np.broadcast_to(np.asarray(omega, dtype=float), generating.shape)
+    c, s = np.moveaxis(np.asarray(cos[index]), 0, -1), np.moveaxis(np.asarray(sin[index]), 0, -1)
+    frequencies = [float(w) for w in omega]
+    if measure == "peak":
+        measured = [float(v) for v in peak_abs(c, s)]
+    elif measure == "first-harmonic":
+        measured = (
+            [float(v) for v in np.hypot(c[:, 1], s[:, 1])] if c.shape[1] > 1 else [0.0] * len(c)
+        )
+    else:
+        j = np.arange(c.shape[1])
+        x0, v0 = c.sum(axis=1), omega * (s * j).sum(axis=1)
+        measured = [float(v) for v in np.hypot(x0, v0 / np.where(omega != 0, omega, 1.0))]
     return Backbone(coordinate, tuple(measured), tuple(to_parameter(w) for w in frequencies))

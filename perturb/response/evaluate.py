@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from perturb._defaults import MAGNUS_DRAW_STEPS, MAGNUS_STEPS
 from perturb.continuation import ContinuationStatus, continue_curve
 from perturb.continuation.newton import newton_fixed
 from perturb.response.compiled import compiled_displacement, compiled_motion, compiled_series
@@ -31,6 +32,10 @@ __all__ = ["PointEvaluator"]
 LOWER_LEAP = 0.5
 #: The homotopy back to order N − 1 stays within this many times the point's amplitude.
 LOWER_CAP = 4.0
+#: Along a continued curve the order-(N−1) counterpart is tried at every this-many points, and at
+#: every point between two that disagree: consecutive points are a step apart (at most 2 % of
+#: the window), far closer than the features of a lower order's curve.
+ALONG_STRIDE = 4
 
 
 class PointEvaluator:
@@ -96,10 +101,23 @@ class PointEvaluator:
         root ends)."""
         if self.lower is None:
             return [""] * len(lam)
-        out: list[str | None] = []
-        for v, w in zip(u, lam, strict=True):
-            x = np.append(np.asarray(v, dtype=float), float(self.line.mu(w)))
-            out.append("" if self._newton_lower(x) is not None else None)
+
+        def newton(i):
+            x = np.append(np.asarray(u[i], dtype=float), float(self.line.mu(lam[i])))
+            return "" if self._newton_lower(x) is not None else None
+
+        # Newton at every ALONG_STRIDE-th point; between two that agree the others do too (the
+        # answer changes only where the lower order's root ends: there every point is tried)
+        out: list[str | None] = [
+            newton(i) if i % ALONG_STRIDE == 0 else "?" for i in range(len(lam))
+        ]
+        if out[-1] == "?":
+            out[-1] = newton(len(lam) - 1)
+        checked = [i for i, v in enumerate(out) if v != "?"]
+        for a, b in zip(checked, checked[1:], strict=False):
+            same = out[a] == out[b]
+            for i in range(a + 1, b):
+                out[i] = out[a] if same else newton(i)
         k = 0
         while k < len(out):
             if out[k] is not None:
@@ -128,11 +146,10 @@ class PointEvaluator:
         x, _, _ = self.rows(np.array([lowers[i] for i in have]), lam[have])
         terms = self.terms.coefficients(x)[:, :, : self.order]  # orders 0..N-1
         lower_cos, lower_sin = terms[:, :, :, 0, :].sum(axis=2), terms[:, :, :, 1, :].sum(axis=2)
-        for row, i in enumerate(have):
-            for name, j in zip(coords, self.resonant, strict=True):
-                out[i][name] = float(
-                    peak_abs(cos[i, j] - lower_cos[row, j], sin[i, j] - lower_sin[row, j])
-                )
+        for name, j in zip(coords, self.resonant, strict=True):
+            sizes = peak_abs(cos[have, j] - lower_cos[:, j], sin[have, j] - lower_sin[:, j])
+            for row, i in enumerate(have):
+                out[i][name] = float(sizes[row])
         return out
 
     def evaluate(self, u, lam, check_lower: bool | str = True) -> dict:
@@ -166,7 +183,8 @@ class PointEvaluator:
                 [*r, *filter(None, [why])] for r, (why, _) in zip(reasons, found, strict=True)
             ]
             error = self._estimate(cos, sin, [v for _, v in found], lam)
-        stability = stability_along(self.motion, self.series, x, params, eps)
+        steps = MAGNUS_DRAW_STEPS if check_lower == "along" else MAGNUS_STEPS
+        stability = stability_along(self.motion, self.series, x, params, eps, steps)
         return {
             **measures,
             "stability": stability,

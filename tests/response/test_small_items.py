@@ -18,7 +18,7 @@ import pytest
 
 from perturb.cli import main
 
-PARAMETRIC_AT_RATIO_1 = '''
+PARAMETRIC_AT_RATIO_1 = """
 import sympy as sp
 from perturb import EPS, Excitation, QuasilinearSystem
 from problems.base import ParameterSpec, Problem
@@ -44,7 +44,7 @@ class Parametric(Problem):
             [X], [V], [1], [EPS * (-2 * Z * V - 2 * H * X * sp.cos(2 * TH) - G * X**3)],
             parameters=[Z, H, G, S], excitation=Excitation(TH, 1, S),
         )
-'''
+"""
 
 
 def run(capsys, *argv):

@@ -1,4 +1,5 @@
 """A forced van der Pol-Duffing oscillator typed by a user: x'' - eps mu (1 - x^2) x' + x + eps gamma x^3 = eps F cos(Omega t)."""
+
 import sympy as sp
 
 from perturb import EPS, Excitation, QuasilinearSystem
@@ -23,7 +24,9 @@ class VdPDuffing(DrivenProblem):
     @classmethod
     def build_system(cls):
         return QuasilinearSystem(
-            [X], [V], [1],
+            [X],
+            [V],
+            [1],
             [EPS * (MU * (1 - X**2) * V - GAMMA * X**3 + F * sp.cos(TH))],
             parameters=[MU, GAMMA, F, SIGMA],
             excitation=Excitation(TH, ratio=1, detuning=SIGMA),
