@@ -125,7 +125,7 @@ def test_a_case_is_checked_as_the_problem_is():
 
 
 # ------------------------------------------------------------------------------ a user's file
-USER_FILE = '''
+USER_FILE = """
 import sympy as sp
 
 from perturb import EPS, Excitation, QuasilinearSystem
@@ -154,7 +154,7 @@ class MyForcedDuffing(Problem):
             parameters=[ZETA, GAMMA, FORCE, SIGMA],
             excitation=Excitation(phase=THETA, ratio=1, detuning=SIGMA),
         )
-'''
+"""
 
 
 def _response(capsys, *argv) -> dict:
@@ -222,7 +222,9 @@ def test_the_response_does_not_depend_on_the_eps_bookkeeping(order):
         other = by_stiffness.families(order)
         assert [f.name for f in one] == [f.name for f in other]
         for f, g in zip(one, other, strict=True):
-            x = f.solution.evaluate([0.0, 1.0], by_force.parameter_value(), by_force.symbol_values())
+            x = f.solution.evaluate(
+                [0.0, 1.0], by_force.parameter_value(), by_force.symbol_values()
+            )
             y = g.solution.evaluate(
                 [0.0, 1.0], by_stiffness.parameter_value(), by_stiffness.symbol_values()
             )
