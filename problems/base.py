@@ -218,11 +218,18 @@ class Problem(Model, ABC):
     #: parameters}`` and, under ``"epsilon"``, ε's (strings or sympy expressions). A symbol not
     #: declared is the parameter of the same name; ε is the parameter ``eps`` unless declared.
     parameter_map: ClassVar[Mapping[str, object]] = {}
+    #: Whether :meth:`solve` can derive the solution symbolic in the parameters when it would
+    #: otherwise put them in first (the rigid bodies above order 1): a sweep then derives once.
+    offers_symbolic_derivation: ClassVar[bool] = False
 
     values: dict = field(converter=dict)
     #: The family of periodic solutions :meth:`solve` follows, by its name in :meth:`families`
     #: (None: the one :meth:`method_options` selects). Set it with :meth:`with_family`.
     family: str | None = field(default=None, kw_only=True)
+    #: Whether :meth:`solve` derives the solution symbolic in the parameters (one derivation for
+    #: every parameter set) instead of for these values; None: the problem's default. Offered by
+    #: problems that set :attr:`offers_symbolic_derivation`.
+    symbolic: bool | None = field(default=None, kw_only=True)
     #: This point's :class:`~perturb.case.Case`, made on first use (the map is evaluated once).
     _case: Case | None = field(default=None, init=False, eq=False, repr=False)
 
@@ -312,6 +319,17 @@ class Problem(Model, ABC):
         """This problem following the family ``name`` (see :meth:`families`); checked when solved."""
         return attrs.evolve(self, family=name)
 
+    def symbolic_derivation(self) -> Problem | None:
+        """This problem with its solution derived symbolic in its parameters (the Model hook a
+        sweep derives once with), or None when the class does not offer it."""
+        return attrs.evolve(self, symbolic=True) if self.offers_symbolic_derivation else None
+
+    def _carry(self, problem: Problem) -> Problem:
+        """``problem`` (made at other values) on this one's family and derivation."""
+        if self.family is None and self.symbolic is None:
+            return problem
+        return attrs.evolve(problem, family=self.family, symbolic=self.symbolic)
+
     def family_options(self, order: int) -> tuple[QuasilinearSystem, dict]:
         """The system and the options that define the frame of :meth:`families` at ``order``.
 
@@ -391,8 +409,7 @@ class Problem(Model, ABC):
     def with_parameters(self, **values) -> Problem:
         """The same problem with some parameters changed (validated as by :meth:`create`), on the
         same family (the Model hook a sweep makes its points with)."""
-        problem = type(self).create(**{**self.values, **values})
-        return problem if self.family is None else problem.with_family(self.family)
+        return self._carry(type(self).create(**{**self.values, **values}))
 
     # ------------------------------------------------------------------ driven problems
     def steady_state(self, order: int = 1):
@@ -492,9 +509,8 @@ class Problem(Model, ABC):
             moved = None
         if moved is None:
             return None
-        problem = type(self).create(**moved.values)
         # the same family: validate's slope scan re-creates the problem at other eps
-        return problem if self.family is None else problem.with_family(self.family)
+        return self._carry(type(self).create(**moved.values))
 
     def evaluates_solution_directly(self) -> bool:
         """True unless the class maps the solution to its own state or period (``state``,

@@ -326,6 +326,12 @@ class Model(ABC):
         """
         return None
 
+    def symbolic_derivation(self) -> Model | None:
+        """This model with its solution derived once, symbolic in its parameters, so that one
+        derivation serves every parameter set of a sweep (default: None, not offered: its own
+        solution serves, or each point is derived for its values)."""
+        return None
+
     def evaluates_solution_directly(self) -> bool:
         """Whether :meth:`state` and :meth:`period` are the solution's own ``evaluate`` and
         ``period_at`` at :meth:`parameter_value` and :meth:`symbol_values` (default: False), so

@@ -199,6 +199,8 @@ class FastSpinBody(Problem):
     #: serves every body, and exports LaTeX); above it the parameters are put in first, as exact
     #: rationals, which keeps the construction to seconds instead of minutes.
     SYMBOLIC_MAX_ORDER: int = 1
+    #: A sweep may derive once, symbolic in the body's parameters (``solve(symbolic=True)``).
+    offers_symbolic_derivation = True
 
     def exact_values(self) -> dict[sp.Symbol, sp.Rational]:
         """The body's dimensionless parameters as exact rationals (the decimal values given)."""
@@ -253,6 +255,7 @@ class FastSpinBody(Problem):
             )
         if self.family is not None:
             return self.family_solution(order, self.family)
+        symbolic = self.symbolic if symbolic is None else symbolic
         reduction, system, options, values = self._frame(order, symbolic)
         key = (
             type(self).__module__,
