@@ -167,6 +167,16 @@ class Case:
         parameter ``parameter`` moves."""
         return self.map.moved_by(parameter)
 
+    def rate(self, parameter: str) -> tuple[dict[str, float], float]:
+        """How the user ``parameter`` moves the point: ``(d symbol/d parameter by name,
+        d ε/d parameter)``, exact derivatives at this case's values."""
+        symbols, eps = self.map.rate(parameter, self.values)
+        return symbols, (0.0 if eps is None else eps)
+
+    def is_affine_in(self, parameter: str) -> bool:
+        """Whether the symbols and ε move affinely with ``parameter`` (Ω for σ = (Ω − 1)/ε)."""
+        return self.map.is_affine_in(parameter)
+
     def to_user(self, parameter: str, name: str, value: float) -> float:
         """The value of the user ``parameter`` at which the system symbol ``name`` equals
         ``value``, the other parameters at this case's values (NaN if none)."""

@@ -10,7 +10,8 @@ reads it instead of rediscovering it from samples:
 * :meth:`ParameterMap.evaluate` — one point's symbol values and ε;
 * :meth:`ParameterMap.columns` — many points at once, as numpy columns;
 * :meth:`ParameterMap.solve_user` — a user parameter from a system value (a fold's σ back to Ω);
-* :meth:`ParameterMap.with_epsilon` — the user values at another ε with every symbol kept.
+* :meth:`ParameterMap.with_epsilon` — the user values at another ε with every symbol kept;
+* :meth:`ParameterMap.rate`, :meth:`ParameterMap.is_affine_in` — how a swept parameter moves them.
 """
 
 from __future__ import annotations
@@ -231,6 +232,24 @@ class ParameterMap:
         numbers = [np.broadcast_to(np.asarray(v, dtype=float), shape) for v in out]
         symbols = {name: numbers[i] for i, (name, _) in enumerate(self.symbols)}
         return symbols, (numbers[-1] if self.epsilon is not None else None)
+
+    def is_affine_in(self, user_name: str) -> bool:
+        """Whether every symbol and ε is affine in the user parameter ``user_name`` (the other
+        parameters fixed): σ = (Ω − 1)/ε is affine in Ω, not in ε."""
+        u = self.user_symbols[user_name]
+        rows = [e for _, e in self.symbols] + ([self.epsilon] if self.epsilon is not None else [])
+        return all(sp.simplify(sp.diff(e, u, 2)) == 0 for e in rows)
+
+    def rate(self, user_name: str, values: Mapping[str, float]) -> tuple[dict, float | None]:
+        """``(d symbol / d user_name by name, d ε / d user_name)`` at ``values``, exactly
+        differentiated and evaluated as :meth:`evaluate` evaluates."""
+        key = f"rate:{user_name}"
+        if key not in self._compiled:
+            u = self.user_symbols[user_name]
+            symbols = tuple((n, sp.diff(e, u)) for n, e in self.symbols)
+            eps = None if self.epsilon is None else sp.diff(self.epsilon, u)
+            self._compiled[key] = ParameterMap(self.user, symbols, eps)
+        return self._compiled[key].evaluate(values)
 
     # ------------------------------------------------------------------ inverting
     def solve_user(

@@ -229,3 +229,14 @@ def test_the_response_does_not_depend_on_the_eps_bookkeeping(order):
                 [0.0, 1.0], by_stiffness.parameter_value(), by_stiffness.symbol_values()
             )
             np.testing.assert_allclose(x, y, rtol=1e-9, atol=1e-12)
+
+
+def test_how_a_swept_parameter_moves_the_point(mapping):
+    """Exact derivatives: d sigma/d Omega = 1/eps, d sigma/d eps = -(Omega - 1)/eps^2."""
+    case = Case(SYSTEM, mapping, POINT)
+    symbols, eps_rate = case.rate("Omega")
+    assert symbols["sigma"] == pytest.approx(1 / POINT["eps"], rel=1e-15) and eps_rate == 0
+    symbols, eps_rate = case.rate("eps")
+    expected = -(POINT["Omega"] - 1) / POINT["eps"] ** 2
+    assert symbols["sigma"] == pytest.approx(expected, rel=1e-14) and eps_rate == 1
+    assert case.is_affine_in("Omega") and not case.is_affine_in("eps")
