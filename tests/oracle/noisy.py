@@ -46,11 +46,14 @@ class NoisyIntegrator(IntegratorBase):
         run = self.inner._integrate_impl(rhs, t0, t1, y0, grid, jac)
         if len(run.states) == 0:
             return run
-        states = [np.asarray(state, dtype=float) for state in run.states]
+        # copies in the inner integrator's own type: the template's test noise (PERTURB_TEST_NOISE)
+        # then moves them by ulps of that type, as it would the inner integrator's
+        states = [np.array(state) for state in run.states]
         size = states[-1].size
         n = math.isqrt(4 * size + 1) // 2  # size = n + n**2 for the shooting's augmented state
         n = n if n + n * n == size else size
         # the same start gives the same noise: a machine is deterministic, only different
         start = np.asarray(y0, dtype=float)
-        states[-1][:n] = perturbed(states[-1][:n], self.ulps, start, level=self.level)
+        moved = perturbed(states[-1][:n].astype(float), self.ulps, start, level=self.level)
+        states[-1][:n] = moved.astype(states[-1].dtype)
         return Run(run.t, states, run.t_reached, run.nfev, run.status, run.message)
