@@ -100,16 +100,17 @@ def perturbed(values, ulps: float, *inputs, level: float = 0.0) -> np.ndarray:
     return values + size * draw
 
 
-def integration_noise(y: np.ndarray, t, t0: float, y0: np.ndarray) -> np.ndarray:
-    """The states ``y`` (n, len(t)) of an integration from ``y0`` at ``t0``, with the noise on
-    every column after the start (the start itself a machine copies exactly)."""
+def integration_noise(y: np.ndarray, t, t0: float, y0: np.ndarray, integrator: str) -> np.ndarray:
+    """The states ``y`` (n, len(t)) of an integration from ``y0`` at ``t0`` by ``integrator`` (its
+    name: two integrators' errors are independent), with the noise on every column after the
+    start (the start itself a machine copies exactly)."""
     if not ULPS:
         return y
     later = np.asarray(t, dtype=float) > t0
     if not np.any(later):
         return y
     y = np.array(y)
-    y[:, later] = perturbed(y[:, later], ULPS, y0, np.asarray(t, dtype=float))
+    y[:, later] = perturbed(y[:, later], ULPS, integrator.encode(), y0, np.asarray(t, float))
     return y
 
 
