@@ -264,6 +264,8 @@ def test_f2_first_harmonic_is_the_papers_l21_and_phi2_differs_as_the_reference_s
 
 
 # ---------------------------------------------------------------------------- formulations
+@pytest.mark.slow  # ~40 s (the disk's derivation in mu); the default suite checks the same
+# equivalence on Duffing (tests/engine/test_poincare.py, tests/property: test_regime_equivalence)
 def test_large_parameter_formulation_gives_the_same_solution(solution):
     problem = fast_geometry(0.02)
     large = PoincareMethod(order=1, **problem.method_options()).solve(
