@@ -424,3 +424,8 @@ LIFT_TRIES = 6
 #: folds, branch points and Neimark-Sacker points just outside the sweep are found and reported
 #: (marked outside), and a branch that turns just beyond an end is followed back into it.
 WINDOW_MARGIN = 0.1
+
+#: A root of a parameter map's inverse (a fold's σ mapped back to Ω, the user values at another ε)
+#: counts as real when its imaginary part is below this, relative to its size: sympy evaluates the
+#: closed-form root in floating point, which can leave a round-off imaginary part of ~1e-16.
+REAL_ROOT_TOL = 1e-12

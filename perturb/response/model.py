@@ -6,11 +6,11 @@ once for the problem's symbolic system, and every order-N branch is continued al
 from the certified first-order census (:mod:`perturb.response.continued`: its folds, branch
 points and Neimark-Sacker points located on the order-N curves, its stability from the Floquet
 multipliers along the order-N series). The backbone is the free engine's frequency of the
-unforced, undamped system, if the problem gives one (``backbone_system``). With ``validate`` > 0
+system's conservative, unforced part (:mod:`perturb.response.backbone`). With ``validate`` > 0
 the true orbit is shot at points of every branch chosen by arclength
 (:mod:`perturb.response.truth`).
 
-The problem is duck-typed: ``system()``, ``symbol_values()``, ``epsilon()``, ``name`` and
+The problem gives ``case()`` (a :class:`perturb.case.Case`), ``name`` and
 ``with_parameters(**values)`` (a :class:`problems.base.Problem` has them all).
 """
 
@@ -25,6 +25,7 @@ from attrs import field, frozen
 
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import amplitude_equations
+from perturb.response.backbone import Backbone, backbone
 from perturb.response.branches import exact_number
 from perturb.response.curve import (
     Fold,
@@ -34,24 +35,6 @@ from perturb.response.curve import (
 )
 
 __all__ = ["Backbone", "ProblemResponse", "TrueResponse", "problem_response"]
-
-
-@frozen
-class Backbone:
-    """The free, undamped system's frequency against its amplitude (the response's spine).
-
-    Attributes
-    ----------
-    coordinate : str
-    amplitudes : tuple of float
-    values : tuple of float
-        The swept parameter's value at which the forced system resonates with the free motion of
-        that amplitude.
-    """
-
-    coordinate: str
-    amplitudes: tuple = field(converter=tuple)
-    values: tuple = field(converter=tuple)
 
 
 @frozen
@@ -174,13 +157,11 @@ def check_request(problem, parameter: str):
         A problem that is not driven, or an unknown parameter (the closest is suggested).
     """
     system = problem.system()
-    if system.excitation is None:
-        raise bad_value(
-            "problem", problem.name,
-            "it is not driven (its system has no excitation): the frequency response is for "
-            "forced, damped or parametrically excited systems; use `perturb solve`",
-            InvalidParameterError,
-        )  # fmt: skip
+    system.frame.require_driven(
+        "problem", problem.name,
+        "it is not driven (its system has no excitation): the frequency response is for "
+        "forced, damped or parametrically excited systems; use `perturb solve`",
+    )  # fmt: skip
     if parameter not in problem.values:
         from difflib import get_close_matches
 
@@ -236,7 +217,6 @@ def problem_response(
         validation budget beyond ``MAX_VALIDATE``.
     """
     from perturb._defaults import DEFAULT_TOL
-    from perturb.response.backbone import backbone_of
     from perturb.response.continued import continued_response
     from perturb.response.line import line_of_problem
     from perturb.response.sampled import response_of
@@ -261,9 +241,11 @@ def problem_response(
         values={k: float(v) for k, v in problem.values.items() if k != parameter},
         grid=grid, coordinates=equations.coordinates, measure=measure,
     )  # fmt: skip
-    backbone = backbone_of(problem, parameter, response.points, order, measure)
+    reference = system.coordinates[system.reference_index].name
+    top = max((p.amplitude(reference, measure) for p in response.points), default=math.nan)
+    spine = backbone(problem.case(), parameter, top, order, measure) if response.points else None
     true = _true_points(result, response, validate, measure, tol) if validate else ()
-    return ProblemResponse(problem.name, parameter, response, branch_names_, backbone, true)
+    return ProblemResponse(problem.name, parameter, response, branch_names_, spine, true)
 
 
 #: Most points ``--validate`` shoots on each branch besides the ones it always shoots (largest
@@ -340,37 +322,34 @@ def _true_points(result, response, count, measure, tol) -> tuple[TrueResponse, .
     return tuple(out)
 
 
-def _problem_folds(equations, problem, parameter, variants, grid) -> list[Fold]:
-    """Folds in the system's parameter that ``parameter`` moves (linearly), mapped back."""
-    first, last = variants[0].symbol_values(), variants[-1].symbol_values()
-    moved = [k for k in first if first[k] != last[k]]
+def _problem_folds(equations, case, parameter, grid) -> list[Fold]:
+    """Folds in the one system symbol that ``parameter`` moves, mapped back exactly by the case's
+    parameter map (none when it moves ε or several symbols)."""
+    moved = case.moves(parameter)
     if len(moved) != 1:
         return []
-    name = moved[0]
+    (name,) = moved
     (symbol,) = [p for p in equations.system.parameters if p.name == name]
-    a, b = float(grid[0]), float(grid[-1])
-    s0, s1 = first[name], last[name]
-    slope = (s1 - s0) / (b - a)
-    middle = variants[len(variants) // 2].symbol_values()[name]
-    mid_value = float(grid[len(grid) // 2])
-    if not math.isclose(middle, s0 + slope * (mid_value - a), rel_tol=1e-9, abs_tol=1e-12):
-        return []  # not a linear map: no exact folds in the swept parameter
+    first, last = case.at(**{parameter: float(grid[0])}), case.at(**{parameter: float(grid[-1])})
+    s0, s1 = first.symbol_values[name], last.symbol_values[name]
     fixed = {
-        p: exact_number(first[p.name])
+        p: exact_number(first.symbol_values[p.name])
         for p in equations.system.parameters
-        if p.name in first and p.name != name
+        if p.name in first.symbol_values and p.name != name
     }
     rows = [sp.expand(e.xreplace(fixed)) for e in equations.displacement(0)]
     low, high = sorted((s0, s1))
     out = []
-    eps = float(problem.epsilon())
+    eps = float(case.epsilon)
     for fold in _folds(rows, list(equations.amplitudes), symbol, low, high, equations):
         fold = continue_fold(fold, equations, equations.order, fixed, symbol, eps)
-
-        def back(value):
-            return a + (value - s0) / slope if slope else a
-
         out.append(
-            Fold(back(fold.value), fold.amplitudes, fold.norms, back(fold.first_order), fold.note)
+            Fold(
+                case.to_user(parameter, name, fold.value),
+                fold.amplitudes,
+                fold.norms,
+                case.to_user(parameter, name, fold.first_order),
+                fold.note,
+            )
         )
     return sorted(out, key=lambda f: f.value)
