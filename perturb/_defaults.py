@@ -360,3 +360,12 @@ REAL_ROOT_TOL = 1e-12
 #: Newton matrix (its columns are O(1) near the identity; 1e-9 keeps directions resolved to
 #: ~1e-7 of the state, well above what an integration at 1e-12 can blur).
 SHOOTING_RANK_RTOL = 1e-9
+
+#: Relative size (to the largest) below which a slow-flow eigenvalue's real part counts as zero.
+SLOW_FLOW_ZERO = 1e-9
+
+#: Amplitudes at which the backbone is drawn (the backbone is drawn through the region the
+#: response occupies: from 0 to BACKBONE_REACH times the largest response amplitude).
+BACKBONE_SAMPLES = 41
+#: The backbone is drawn up to this multiple of the largest response amplitude.
+BACKBONE_REACH = 1.05
