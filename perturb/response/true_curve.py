@@ -45,8 +45,8 @@ from perturb._defaults import (
     TRUE_CURVE_MARGIN,
     TRUE_CURVE_MULTIPLIER_TOL,
     TRUE_CURVE_POINTS,
-    TRUE_CURVE_SAMPLES,
     TRUE_CURVE_SAME_ORBIT,
+    TRUE_CURVE_SAMPLES,
     TRUE_CURVE_TOL,
 )
 from perturb.errors import InvalidParameterError, PerturbError, bad_value
