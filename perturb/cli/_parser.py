@@ -216,6 +216,18 @@ def _add_response(sub) -> None:
         help="shoot the true orbit at K points of every branch (default 0)",
     )  # fmt: skip
     response.add_argument(
+        "--true", nargs="?", const="default", default=None, metavar="POINTS", dest="true_curve",
+        help="also continue the TRUE periodic orbits from the branches (shooting with the period "
+        "fixed, pseudo-arclength, Floquet multipliers) and report their folds, period doublings, "
+        "Neimark-Sacker and branch points and where the analytic curve parts from them; at most "
+        "POINTS points per curve (default 400, at most 5000)",
+    )  # fmt: skip
+    response.add_argument(
+        "--tol", default=None, metavar="TOL",
+        help="relative amplitude difference at which the analytic and true curves part "
+        "(with --true; default 0.01)",
+    )  # fmt: skip
+    response.add_argument(
         "--plot", default=None, metavar="FILE",
         help="also save the frequency-response plot (needs matplotlib)",
     )  # fmt: skip

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from perturb.report.latex import latex_comment
+from perturb.report.true_curve import true_curve_as_dict, true_curve_latex, true_curve_lines
 
 __all__ = ["response_as_csv", "response_as_dict", "response_as_table", "response_latex"]
 
@@ -27,7 +28,9 @@ def response_as_dict(result) -> dict:
     "amplitudes", "norms", "stable", "eigenvalues", "multipliers", "note"}], "folds": [{"value",
     "norms"}], "backbone": {"coordinate", "amplitudes", "values"} | null, "true": [{"value",
     "branch", "success", "amplitude", "amplitude_error", "floquet_max", "stable_true",
-    "stable_analytic", "message"}], "failures": [str]}``; complex numbers are ``[re, im]``.
+    "stable_analytic", "message"}], "failures": [str], "true_curve": {...} | null}``; complex
+    numbers are ``[re, im]``; ``true_curve`` (``--true``) is
+    :func:`~perturb.report.true_curve.true_curve_as_dict`.
     """
     response = result.response
     points = [
@@ -75,6 +78,7 @@ def response_as_dict(result) -> dict:
         "backbone": backbone,
         "true": true,
         "failures": list(response.failures),
+        "true_curve": true_curve_as_dict(result.true_curve),
     }
 
 
@@ -137,6 +141,7 @@ def response_as_table(result) -> str:
             )
     for failure in response.failures:
         lines.append(f"not solved: {failure}")
+    lines.extend(true_curve_lines(result.true_curve, result.parameter))
     return "\n".join(lines)
 
 
@@ -153,6 +158,7 @@ def response_latex(result) -> str:
         for p, name in zip(response.points, result.branches, strict=True)
     ]
     folds = "".join(f"% fold at {result.parameter} = {f.value:.8g}\n" for f in response.folds)
+    folds += true_curve_latex(result.true_curve, result.parameter)
     return (
         f"% {latex_comment(result.problem)}: frequency response, order {response.order}\n"
         + folds

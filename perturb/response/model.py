@@ -90,6 +90,8 @@ class ProblemResponse:
     backbone : Backbone or None
     true : tuple of TrueResponse
         The shot points (empty unless asked).
+    true_curve : perturb.response.true_curve.TrueCurves or None
+        The true periodic orbits continued from the branches (``--true``; None unless asked).
     """
 
     problem: str
@@ -98,6 +100,7 @@ class ProblemResponse:
     branches: tuple = field(converter=tuple)
     backbone: Backbone | None = None
     true: tuple = field(converter=tuple, factory=tuple)
+    true_curve: object = None
 
 
 def parse_sweep(text: str, argument: str = "--sweep") -> tuple[str, np.ndarray]:
@@ -186,7 +189,13 @@ def check_request(problem, parameter: str):
 
 
 def problem_response(
-    problem, parameter: str, grid: Sequence[float], order: int = 1, validate: int = 0
+    problem,
+    parameter: str,
+    grid: Sequence[float],
+    order: int = 1,
+    validate: int = 0,
+    true: int = 0,
+    tol: float | None = None,
 ) -> ProblemResponse:
     """The frequency response of a driven ``problem`` over ``grid`` values of ``parameter``.
 
@@ -202,6 +211,12 @@ def problem_response(
         The state's order (>= 1).
     validate : int
         Shoot the true orbit at this many points of each branch (0: none).
+    true : int
+        Continue the true periodic orbits from the branches, at most this many points per curve
+        (0: not; :func:`perturb.response.true_curve.true_curves`).
+    tol : float, optional
+        The relative amplitude difference at which the analytic and true curves part (default
+        ``TRUE_CURVE_TOL``).
 
     Returns
     -------
@@ -239,8 +254,15 @@ def problem_response(
         coordinates=equations.coordinates,
     )
     backbone = _backbone(problem, parameter, variants, grid, points, order)
-    true = _shoot(problem, parameter, response, names, order, validate) if validate else ()
-    return ProblemResponse(problem.name, parameter, response, names, backbone, true)
+    shot = _shoot(problem, parameter, response, names, order, validate) if validate else ()
+    curves = None
+    if true:
+        from perturb._defaults import TRUE_CURVE_TOL
+        from perturb.response.true_curve import true_curves
+
+        tol = TRUE_CURVE_TOL if tol is None else tol
+        curves = true_curves(problem, parameter, response, names, order, budget=true, tol=tol)
+    return ProblemResponse(problem.name, parameter, response, names, backbone, shot, curves)
 
 
 def _problem_folds(equations, problem, parameter, variants, grid) -> list[Fold]:

@@ -245,12 +245,14 @@ class _OutsideDomain(PerturbError):
 class _Setup:
     """The problem's driven family along ``parameter``: symbols, parameter map, measures."""
 
-    def __init__(self, problem, parameter: str, grid: np.ndarray, integrator=None):
+    def __init__(self, problem, parameter: str, grid: np.ndarray, order: int, integrator=None):
+        from perturb._lambdify import numpy_lambdify
+        from perturb.method.driven import amplitude_equations
         from perturb.oracle.driven_family import DrivenFamily
         from perturb.validation._quasilinear import excitation_frequency, first_order_expressions
 
         system = problem.system()
-        self.problem, self.parameter, self.system = problem, parameter, system
+        self.problem, self.parameter, self.system, self.order = problem, parameter, system, order
         if system.initial_values:
             raise _OutsideDomain("the system's equations contain initial values")
         drive = system.excitation
@@ -262,19 +264,18 @@ class _Setup:
             system.state_symbols, drive.phase, exprs, self.frequency, self.params, drive.p,
             integrator,
         )  # fmt: skip
-        import sympy as sp
-
-        from perturb._lambdify import numpy_lambdify
-
         self._omega = numpy_lambdify(self.params, self.frequency)
         self.names = [c.name for c in system.coordinates]
         self.n = system.n
-        self.harmonics = {}
-        ref = system.frequencies[system.reference_index]
-        for i, c in enumerate(system.coordinates):
-            ratio = sp.nsimplify(sp.sympify(drive.q * system.frequencies[i] / ref))
-            if ratio.is_Integer and ratio > 0:
-                self.harmonics[c.name] = (i, int(ratio))
+        self.amplitude_equations = amplitude_equations(system, order)
+        index = {c.name: i for i, c in enumerate(system.coordinates)}
+        self.harmonics = {
+            c: (index[c], int(m))
+            for c, m in zip(
+                self.amplitude_equations.coordinates, self.amplitude_equations.harmonics,
+                strict=True,
+            )
+        }  # fmt: skip
         self._values: dict[float, np.ndarray] = {}
         lo, hi = float(grid[0]), float(grid[-1])
         self.affine = self._affine(lo, hi)
@@ -522,7 +523,7 @@ def true_curves(
         raise bad_value("tol", tol, "give a positive relative tolerance, e.g. 0.01")
     grid = np.asarray(response.grid, dtype=float)
     try:
-        setup = _Setup(problem, parameter, grid, integrator)
+        setup = _Setup(problem, parameter, grid, order, integrator)
     except _OutsideDomain as exc:
         return TrueCurves(parameter, (), (), budget, tol, "", (f"not continued: {exc}",))
     width = float(grid[-1] - grid[0])
@@ -531,8 +532,7 @@ def true_curves(
     equations = _Equations(setup, scale, width)
     curves, failures, covered = [], [], []
     for name, candidates, _ in seeds:
-        seeded = _follow(setup, equations, problem, parameter, order, name, candidates, curves,
-                         covered, budget)  # fmt: skip
+        seeded = _follow(setup, equations, name, candidates, curves, covered, budget)
         if isinstance(seeded, str):
             failures.append(seeded)
     built = tuple(_true_curve(setup, equations, *entry, grid) for entry in covered)
@@ -564,7 +564,7 @@ def _seeds(response, names):
 SEED_TRIES = 3
 
 
-def _follow(setup, equations, problem, parameter, order, name, candidates, curves, covered, budget):
+def _follow(setup, equations, name, candidates, curves, covered, budget):
     """Continue the true curve through the first seed of branch ``name`` that corrects onto a
     true orbit, unless that orbit lies on a curve already found (then record the branch there)."""
     from perturb.continuation import continue_both
@@ -574,16 +574,16 @@ def _follow(setup, equations, problem, parameter, order, name, candidates, curve
     for point in candidates[:SEED_TRIES]:
         lam = float(point.value)
         try:
-            y0 = _analytic_state(problem, parameter, lam, order, name, point)
+            y0 = _analytic_state(setup, lam, name, point)
         except PerturbError as exc:
-            reasons.append(f"{parameter} = {lam:g}: {exc}")
+            reasons.append(f"{setup.parameter} = {lam:g}: {exc}")
             continue
         x0 = equations.scaled(y0, lam)
         first = newton_fixed(equations, x0)
         if not first.converged:
             reasons.append(
-                f"{parameter} = {lam:g}: Newton at fixed {parameter} did not converge from the "
-                f"order-{order} state"
+                f"{setup.parameter} = {lam:g}: Newton at fixed {setup.parameter} did not converge "
+                f"from the order-{setup.order} state"
                 + (f" ({equations.last_failure})" if not first.finite else "")
             )
             continue
@@ -605,17 +605,20 @@ def _follow(setup, equations, problem, parameter, order, name, candidates, curve
     return f"branch {name}: no seed corrected onto a true orbit: " + "; ".join(reasons)
 
 
-def _analytic_state(problem, parameter, lam, order, name, point) -> np.ndarray:
-    """The order-N state at t = 0 of branch ``name`` at λ (the seed)."""
+def _analytic_state(setup, lam: float, name: str, point) -> np.ndarray:
+    """The order-N state at t = 0 of the analytic branch point ``point`` at λ (the seed): its
+    series with the point's amplitudes put in (:func:`~perturb.response.branches.branch_solution`)."""
+    from perturb.response.branches import BranchPoint, branch_solution
     from perturb.validation import state_along
 
-    variant = problem.with_parameters(**{parameter: lam})
-    solution = variant.solve(order, family=name)
-    if not solution.success:
-        raise PerturbError(solution.message)
+    branch = BranchPoint(
+        point.amplitudes, point.norms, point.stable, point.eigenvalues, point.multipliers,
+        point.first_order, point.note,
+    )  # fmt: skip
+    solution = branch_solution(setup.amplitude_equations, branch, name)
+    variant = setup.problem.with_parameters(**{setup.parameter: lam})
     state = state_along(solution, [0.0], variant.parameter_value(), variant.symbol_values())
-    names = [s.name for s in variant.system().state_symbols]
-    return np.array([float(state[n][0]) for n in names])
+    return np.array([float(state[s.name][0]) for s in setup.system.state_symbols])
 
 
 def _on_curve(curve, x) -> bool:
@@ -629,9 +632,7 @@ def _on_curve(curve, x) -> bool:
 
 def _true_curve(setup, equations, curve, branches, shots, failure, grid) -> TrueCurve:
     """The continued curve as true points (one sampled shot each) and special points."""
-    from perturb.oracle.bifurcation import critical_multiplier
-
-    lo, hi = float(grid[0]), float(grid[-1])
+    lo, hi = setup.range
     points = []
     for x in curve.points:
         y0, lam = equations.unscale(x)
@@ -640,30 +641,21 @@ def _true_curve(setup, equations, curve, branches, shots, failure, grid) -> True
         except _OutsideDomain:
             continue
     special = []
-    for sp_ in curve.special:
-        y0, lam = equations.unscale(sp_.x)
+    for found, note in _special_points(curve):
+        y0, lam = equations.unscale(found.x)
         try:
-            here = setup.point(lam, y0)
+            shot = setup.family.shoot(
+                y0, setup.values(lam), setup.direction(lam), TRUE_CURVE_SAMPLES
+            )
         except _OutsideDomain:
             continue
-        target = -1.0 if sp_.kind == PERIOD_DOUBLING else 1.0
-        mono = None
-        if sp_.kind == NEIMARK_SACKER:
-            from perturb.oracle.bifurcation import is_neimark_sacker
-
-            shot = setup.family.shoot(y0, setup.values(lam), setup.direction(lam))
-            mono = shot.monodromy
-            _, critical = is_neimark_sacker(mono, math.sqrt(TRUE_CURVE_MULTIPLIER_TOL))
-        else:
-            mu = np.asarray(here.multipliers)
-            critical = complex(mu[int(np.argmin(np.abs(mu - target)))]) if mu.size else math.nan
-            if mono is not None:
-                critical = critical_multiplier(mono, target)
+        here = setup.point_of(lam, shot)
         special.append(
             TrueBifurcation(
-                kind=sp_.kind, value=lam, norms=here.norms, peaks=here.peaks,
-                multiplier=critical, multipliers=here.multipliers,
-                inside=bool(lo <= lam <= hi), located=sp_.located, note=sp_.note,
+                kind=found.kind, value=lam, norms=here.norms, peaks=here.peaks,
+                multiplier=_critical(found.kind, shot.monodromy), multipliers=here.multipliers,
+                inside=bool(lo <= lam <= hi), located=found.located,
+                note="; ".join(n for n in (found.note, note) if n),
             )
         )  # fmt: skip
     message = curve.message
@@ -673,6 +665,34 @@ def _true_curve(setup, equations, curve, branches, shots, failure, grid) -> True
         branches, points, special, curve.status.name, curve.success,
         _in_parameter(message, setup, equations), shots,
     )  # fmt: skip
+
+
+def _special_points(curve):
+    """The continuation's special points, a fold at a branch point dropped (a pitchfork: the
+    curve turns in λ where it crosses the other, which the branch point's note says)."""
+    out = []
+    for p in curve.special:
+        twins = [
+            q for q in curve.special
+            if q is not p and float(np.max(np.abs(q.x - p.x))) <= TRUE_CURVE_SAME_ORBIT
+            * max(1.0, float(np.max(np.abs(p.x))))
+        ]  # fmt: skip
+        if p.kind == FOLD and any(q.kind == BRANCH_POINT for q in twins):
+            continue
+        turns = p.kind == BRANCH_POINT and any(q.kind == FOLD for q in twins)
+        out.append((p, "the curve also turns there (a pitchfork)" if turns else ""))
+    return out
+
+
+def _critical(kind: str, monodromy) -> complex:
+    """The multiplier that crosses the circle at a special point of ``kind``."""
+    from perturb.oracle.bifurcation import critical_multiplier, is_neimark_sacker
+
+    if not np.all(np.isfinite(monodromy)):
+        return complex(math.nan, math.nan)
+    if kind == NEIMARK_SACKER:
+        return is_neimark_sacker(monodromy, math.sqrt(TRUE_CURVE_MULTIPLIER_TOL))[1]
+    return critical_multiplier(monodromy, -1.0 if kind == PERIOD_DOUBLING else 1.0)
 
 
 def _in_parameter(message: str, setup, equations) -> str:

@@ -1,5 +1,5 @@
 """Frequency-response plots: every branch (stable solid, unstable dashed), folds, backbone, the
-true motion's points; and the Floquet multipliers along the branches."""
+true motion's points and curves; and the Floquet multipliers along the branches."""
 
 from __future__ import annotations
 
@@ -7,6 +7,7 @@ import math
 
 from perturb.errors import bad_value
 from perturb.report.plots.style import new_figure, publication_style
+from perturb.report.plots.true_curve import draw_true_curves
 
 __all__ = ["plot_floquet_along_branches", "plot_frequency_response"]
 
@@ -33,7 +34,9 @@ def plot_frequency_response(result, *, coordinate: str | None = None, ax=None, t
     -------
     matplotlib.figure.Figure
         Stable segments solid, unstable dashed, folds as open circles, the backbone dotted, the
-        true orbits (``perturb response --validate K``) as crosses.
+        true orbits (``perturb response --validate K``) as crosses; with ``--true``, the true
+        curves in black beside them with their special points and where the two part
+        (:func:`~perturb.report.plots.true_curve.draw_true_curves`).
 
     Raises
     ------
@@ -82,6 +85,7 @@ def plot_frequency_response(result, *, coordinate: str | None = None, ax=None, t
         if shot:
             ax.plot([t.value for t in shot], [t.amplitude for t in shot], "x", color="k",
                     label="true motion")  # fmt: skip
+        draw_true_curves(ax, result.true_curve, coordinate, result.parameter)
         ax.set_xlabel(result.parameter)
         ax.set_ylabel(f"amplitude |{coordinate}|")
         ax.set_xlim(min(response.grid), max(response.grid))
