@@ -41,6 +41,7 @@ from attrs import field, frozen
 
 from perturb._defaults import (
     FD_REL_STEP,
+    MAX_STEP_FRACTION,
     TRUE_CURVE_AFFINE_TOL,
     TRUE_CURVE_MARGIN,
     TRUE_CURVE_MULTIPLIER_TOL,
@@ -280,6 +281,25 @@ class _Setup:
         lo, hi = float(grid[0]), float(grid[-1])
         self.affine = self._affine(lo, hi)
         self.range = (lo, hi)
+
+    def continuation_range(self) -> tuple[float, float, float]:
+        """The sweep widened by ``TRUE_CURVE_MARGIN`` of its width at each end, and the largest
+        step (``MAX_STEP_FRACTION`` of the widened width). An end is widened only where the
+        problem accepts the values one largest step beyond it (a predictor may overshoot the
+        range by a step); where it does not (a parameter's own bound, e.g. F > 0), the curve ends
+        at the sweep."""
+        lo, hi = self.range
+        margin = TRUE_CURVE_MARGIN * (hi - lo)
+        step = MAX_STEP_FRACTION * (hi - lo + 2 * margin)
+        ends = []
+        for end, sign in ((lo, -1.0), (hi, 1.0)):
+            try:
+                self.values(end + sign * (margin + step))
+            except _OutsideDomain:
+                ends.append(end)
+            else:
+                ends.append(end + sign * margin)
+        return ends[0], ends[1], step
 
     def values(self, lam: float) -> np.ndarray:
         """The system's parameter values (and ε last) at λ; _OutsideDomain if refused."""
@@ -591,12 +611,11 @@ def _follow(setup, equations, name, candidates, curves, covered, budget):
             if _on_curve(curve, first.x):
                 names_.append(name)
                 return None
-        margin = TRUE_CURVE_MARGIN * equations.width
-        lo, hi = setup.range
         before = equations.shots
         equations.last_failure = ""
+        lo, hi, step = setup.continuation_range()
         curve = continue_both(
-            equations, first.x, lam_range=(lo - margin, hi + margin), tests=_tests(),
+            equations, first.x, lam_range=(lo, hi), tests=_tests(), max_step=step,
             domain=equations.domain, max_points=max(2, (budget + 1) // 2),
         )  # fmt: skip
         covered.append((curve, [name], equations.shots - before, equations.last_failure))

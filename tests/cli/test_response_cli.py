@@ -34,8 +34,9 @@ def test_response_json_contract(capsys):
     data = json.loads(out)
     assert set(data) == {
         "problem", "parameter", "order", "epsilon", "parameters", "points", "folds", "backbone",
-        "true", "failures",
+        "true", "failures", "true_curve",
     }  # fmt: skip
+    assert data["true_curve"] is None  # only with --true
     assert data["parameter"] == "Omega" and data["order"] == 1
     assert all(set(p) == POINT_KEYS for p in data["points"])
     at_105 = [p for p in data["points"] if p["value"] == pytest.approx(1.05)]

@@ -75,7 +75,9 @@ def test_the_monodromy_satisfies_liouville_and_agrees_with_forced_shooting():
     x, v, th = sp.symbols("x v theta")
     zeta, eps, gamma, force, omega = 0.1, 0.05, 1.0, 1.0, 1.1
     f = eps * (-2 * zeta * v - gamma * x**3 + force * sp.cos(th)) - x
-    orbit = find_forced_orbit(SymbolicRHS((x, v, th), (v, f, omega)), [2.0, 1.5], 2 * math.pi / omega)
+    orbit = find_forced_orbit(
+        SymbolicRHS((x, v, th), (v, f, omega)), [2.0, 1.5], 2 * math.pi / omega
+    )
     assert orbit.success, orbit.message
     p = sp.symbols("omega_")
     family = DrivenFamily.build((x, v), th, (v, f), p, (p,))
@@ -89,9 +91,7 @@ def test_the_monodromy_satisfies_liouville_and_agrees_with_forced_shooting():
 def _second_compound(m: np.ndarray) -> np.ndarray:
     """The matrix of 2x2 minors (the map's bialternate product M (.) M): eigenvalues mu_i mu_j."""
     pairs = list(combinations(range(m.shape[0]), 2))
-    return np.array(
-        [[m[p, r] * m[q, s] - m[p, s] * m[q, r] for r, s in pairs] for p, q in pairs]
-    )
+    return np.array([[m[p, r] * m[q, s] - m[p, s] * m[q, r] for r, s in pairs] for p, q in pairs])
 
 
 @pytest.mark.parametrize("size", [2, 3, 4, 6])
@@ -132,9 +132,7 @@ def _mathieu_edges(h_eps: float) -> list[float]:
 
     out = []
     for f in (mathieu_a, mathieu_b):
-        out.append(
-            brentq(lambda w, f=f: 4 / w**2 - f(1, 4 * h_eps / w**2), 1.5, 2.5, xtol=1e-15)
-        )
+        out.append(brentq(lambda w, f=f: 4 / w**2 - f(1, 4 * h_eps / w**2), 1.5, 2.5, xtol=1e-15))
     return sorted(out)
 
 
