@@ -23,7 +23,7 @@ The unit circle u² + λ² = 1 from (1, 0), both ways: a loop with two folds at 
 """
 
 from perturb.continuation.arclength import CurveEquations, continue_both, continue_curve
-from perturb.continuation.events import BRANCH_POINT, FOLD, TestFunction
+from perturb.continuation.events import BRANCH_POINT, FOLD, TestFunction, locate_on_curve
 from perturb.continuation.reading import values_at
 from perturb.continuation.result import ContinuationStatus, Curve, SpecialPoint
 
@@ -37,5 +37,6 @@ __all__ = [
     "TestFunction",
     "continue_both",
     "continue_curve",
+    "locate_on_curve",
     "values_at",
 ]

@@ -35,7 +35,13 @@ from perturb._defaults import (
     STEP_SHRINK,
 )
 from perturb.continuation.events import BRANCH_POINT, FOLD, TestFunction, locate
-from perturb.continuation.newton import correct, newton_fixed, null_tangent, tangent
+from perturb.continuation.newton import (
+    correct,
+    newton_fixed,
+    newton_nearest,
+    null_tangent,
+    tangent,
+)
 from perturb.continuation.result import ContinuationStatus, Curve, SpecialPoint
 from perturb.errors import InvalidParameterError, bad_value
 
@@ -149,7 +155,8 @@ def continue_curve(
     ----------
     equations : CurveEquations
     start : sequence of float
-        ``(u, λ)`` near the curve: corrected first by Newton at fixed λ.
+        ``(u, λ)`` near the curve: corrected first by Newton at fixed λ (by least-norm Newton,
+        λ free, where that fails: a start on a fold).
     lam_range : (float, float)
         The continuation stops on leaving it (the point on the boundary is kept).
     direction : float or array_like
@@ -213,6 +220,8 @@ def continue_curve(
     settings = {"step": h, "max_step": h_max, "min_step": h_min, "lam_range": (lo, hi)}
 
     first = newton_fixed(equations, x0)
+    if not first.converged and first.finite:  # a start on a fold: G_u is singular there
+        first = newton_nearest(equations, x0)
     if not first.converged:
         empty = _Trace.__new__(_Trace)
         empty.tests, empty.points, empty.tangents = tests, [x0], [np.zeros_like(x0)]
@@ -344,7 +353,17 @@ def _advance(equations, trace, x, t, jac, x_new, t_new, jac_new, h, boundary):
 
 
 def _locate_boundary(equations, x, t, h, bound):
-    """The point of the segment where λ = bound, and its pseudo-arclength from x."""
+    """The point of the segment where λ = bound, and its pseudo-arclength from x: Newton at
+    λ = bound from the tangent's crossing, else the secant along the segment."""
+    if t[-1] != 0:
+        sigma = (bound - x[-1]) / t[-1]
+        guess = x + sigma * t
+        guess[-1] = bound
+        direct = newton_fixed(equations, guess)
+        if direct.converged and float(np.linalg.norm(direct.x - guess)) <= 0.5 * h:
+            here = tangent(direct.jacobian, t)
+            if here is not None:
+                return float(t @ (direct.x - x)), (direct.x, here, direct.jacobian)
     f = TestFunction("boundary", lambda y, tt, jj: y[-1] - bound)
     sigma, here, _, _ = locate(f, equations, x, t, h, x[-1] - bound, x[-1] + h * t[-1] - bound)
     if here is None:

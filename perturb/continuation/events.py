@@ -19,7 +19,14 @@ from attrs import field, frozen
 from perturb._defaults import EVENT_MAX_ITER, EVENT_TOL
 from perturb.continuation.newton import bordered, correct, tangent
 
-__all__ = ["BRANCH_POINT", "FOLD", "TestFunction", "locate", "point_on_segment"]
+__all__ = [
+    "BRANCH_POINT",
+    "FOLD",
+    "TestFunction",
+    "locate",
+    "locate_on_curve",
+    "point_on_segment",
+]
 
 #: Where the corrector fails at the secant's point (exactly on a branch point, where the bordered
 #: matrix is singular), the point is moved this fraction of the way to the bracket's far end, then
@@ -121,3 +128,42 @@ def locate(function, equations, start, direction, length, f0, f1):
                 fb *= 0.5
             side = 1
     return best[0], best[1], best[2], False
+
+
+def locate_on_curve(curve, test: TestFunction, k: int, f0: float, f1: float):
+    """The zero of ``test`` between points ``k`` and ``k + 1`` of ``curve``, where its values
+    ``f0`` and ``f1`` differ in sign: a :class:`~perturb.continuation.SpecialPoint` (index
+    ``k + 1``, the position it would take in the curve), or None when ``classify`` drops it or the
+    corrector fails on the segment.
+
+    For test functions too costly to evaluate inside the continuation: evaluate them at the
+    curve's points afterwards (in one batch), then locate each sign change here.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from perturb.continuation import CurveEquations, TestFunction, continue_curve
+    >>> cubic = CurveEquations(lambda x: [x[0] ** 3 - x[0] - x[1]],
+    ...                        lambda x: [[3 * x[0] ** 2 - 1, -1.0]])
+    >>> curve = continue_curve(cubic, [-1.5, -1.875], lam_range=(-2.0, 2.0))
+    >>> test = TestFunction("u=-1.2", lambda x, t, j: x[0] + 1.2)
+    >>> values = curve.points[:, 0] + 1.2
+    >>> k = int(np.flatnonzero(np.diff(np.sign(values)))[0])
+    >>> point = locate_on_curve(curve, test, k, values[k], values[k + 1])
+    >>> round(float(point.x[0]), 12), round(point.value, 12)
+    (-1.2, -0.528)
+    """
+    from perturb.continuation.result import SpecialPoint
+
+    x0, t0 = curve.points[k], curve.tangents[k]
+    length = float(t0 @ (curve.points[k + 1] - x0))
+    sigma, here, value, located = locate(test, curve.equations, x0, t0, length, f0, f1)
+    if here is None:
+        return None
+    kind = test.name
+    if test.classify is not None:
+        kind = test.classify(*here)
+        if kind is None:
+            return None
+    note = "" if located else "the secant did not shrink its bracket to EVENT_TOL"
+    return SpecialPoint(kind, here[0], here[1], k + 1, value, located, note)

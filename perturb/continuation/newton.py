@@ -20,7 +20,15 @@ from attrs import frozen
 
 from perturb._defaults import CORRECTOR_MAX_ITER, CORRECTOR_TOL
 
-__all__ = ["Correction", "bordered", "correct", "newton_fixed", "null_tangent", "tangent"]
+__all__ = [
+    "Correction",
+    "bordered",
+    "correct",
+    "newton_fixed",
+    "newton_nearest",
+    "null_tangent",
+    "tangent",
+]
 
 
 @frozen
@@ -40,7 +48,8 @@ class Correction:
 
 
 def _finite(*arrays) -> bool:
-    return all(np.all(np.isfinite(a)) for a in arrays)
+    # a sum is not finite when any term is not (inf - inf is nan): one reduction an array
+    return all(math.isfinite(float(np.sum(a))) for a in arrays)
 
 
 def bordered(jacobian: np.ndarray, t: np.ndarray) -> np.ndarray:
@@ -117,6 +126,30 @@ def newton_fixed(equations, x0: np.ndarray, max_iter: int = CORRECTOR_MAX_ITER) 
         if not math.isfinite(size) or (iteration > 2 and size > 0.5 * previous):
             return Correction(x, jac, iteration, False)
         x[:-1] = x[:-1] + step
+        previous = size
+        if size <= CORRECTOR_TOL * max(1.0, float(np.max(np.abs(x)))):
+            jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))
+            if not _finite(x, jac):
+                return Correction(x, None, iteration, False, False)
+            return Correction(x, jac, iteration, True)
+    return Correction(x, None, max_iter, False)
+
+
+def newton_nearest(equations, x0: np.ndarray, max_iter: int = CORRECTOR_MAX_ITER) -> Correction:
+    """Newton's method with the least-norm step (Gauss-Newton on the n x (n+1) Jacobian): to a
+    point of the curve near x0, λ free; regular at folds, where Newton at fixed λ is not."""
+    x = np.array(x0, dtype=float)
+    previous = math.inf
+    for iteration in range(1, max_iter + 1):
+        g = np.asarray(equations.residual(x), dtype=float)
+        jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))
+        if not _finite(g, jac):
+            return Correction(x, None, iteration, False, False)
+        step = np.linalg.lstsq(jac, -g, rcond=None)[0]
+        size = float(np.max(np.abs(step), initial=0.0))
+        if not math.isfinite(size) or (iteration > 2 and size > 0.5 * previous):
+            return Correction(x, jac, iteration, False)
+        x = x + step
         previous = size
         if size <= CORRECTOR_TOL * max(1.0, float(np.max(np.abs(x)))):
             jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))

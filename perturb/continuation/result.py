@@ -37,7 +37,7 @@ class ContinuationStatus(enum.Enum):
         "singular point the curve cannot pass, or a curve that ends)"
     )
     NOT_FINITE = "the residual or its Jacobian is not finite there"
-    START_FAILED = "the starting point could not be corrected onto the curve (Newton at fixed λ)"
+    START_FAILED = "the starting point could not be corrected onto the curve (Newton's method)"
     SINGULAR_START = (
         "the curve's tangent is not defined at the starting point (the Jacobian [G_u | G_λ] has "
         "rank below n: a branch point): start beside it"
