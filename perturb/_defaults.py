@@ -427,12 +427,13 @@ WINDOW_MARGIN = 0.1
 #: Duffing, 1.1 s to compile and 0.7 ms a shot against 2.8 s and 0.37 ms unrolled; a true curve
 #: takes a few hundred to a few thousand shots, so compact mode is the faster at every size met.
 FAMILY_COMPACT_MODE = True
-#: The most points of one true curve by default (``perturb response --true``), and the most a user
-#: may ask for: a curve across a sweep takes 100-300 points (steps of 0.5-2 % of the range's width
-#: in scaled units, shorter at bends), each a Newton correction of 2-4 shots of ~1 ms; 5000 points
-#: is a few minutes of the oracle, the budget's ceiling.
-TRUE_CURVE_POINTS = 400
-TRUE_CURVE_MAX_POINTS = 5000
+#: The most points of one true curve by default (``perturb response --true``; half each way from its
+#: seed), and the most a user may ask for: a curve across a sweep takes 150-650 points on the
+#: shipped problems (steps of 0.5-2 % of the range's width in scaled units, shorter at bends and
+#: folds; benchmarks/bench_true_curve.md), each a Newton correction of 3-5 shots of ~1 ms of CPU;
+#: 10^4 points is a few minutes of the oracle, the budget's ceiling.
+TRUE_CURVE_POINTS = 1000
+TRUE_CURVE_MAX_POINTS = 10_000
 #: The relative amplitude difference beyond which the analytic and the true curves part (``--tol``
 #: of ``perturb response``): 1 % is what a reader sees on a response plot.
 TRUE_CURVE_TOL = 1e-2

@@ -220,7 +220,7 @@ def _add_response(sub) -> None:
         help="also continue the TRUE periodic orbits from the branches (shooting with the period "
         "fixed, pseudo-arclength, Floquet multipliers) and report their folds, period doublings, "
         "Neimark-Sacker and branch points and where the analytic curve parts from them; at most "
-        "POINTS points per curve (default 400, at most 5000)",
+        "POINTS points per curve (default 1000, at most 10000)",
     )  # fmt: skip
     response.add_argument(
         "--tol", default=None, metavar="TOL",

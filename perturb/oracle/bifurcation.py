@@ -35,7 +35,15 @@ __all__ = [
 
 
 def fold_test(monodromy) -> float:
-    """:math:`\\det(M - I)`.
+    """:math:`\\det(M - I)`: zero where a multiplier is +1 (a fold or a branch point).
+
+    Parameters
+    ----------
+    monodromy : array_like, shape (m, m)
+
+    Returns
+    -------
+    float
 
     Examples
     --------
@@ -47,7 +55,15 @@ def fold_test(monodromy) -> float:
 
 
 def period_doubling_test(monodromy) -> float:
-    """:math:`\\det(M + I)`.
+    """:math:`\\det(M + I)`: zero where a multiplier is −1 (a period doubling).
+
+    Parameters
+    ----------
+    monodromy : array_like, shape (m, m)
+
+    Returns
+    -------
+    float
 
     Examples
     --------
@@ -59,7 +75,18 @@ def period_doubling_test(monodromy) -> float:
 
 
 def neimark_sacker_test(monodromy) -> float:
-    """:math:`\\prod_{i<j}(\\mu_i\\mu_j - 1)` over the multipliers (1 for a one-dimensional map).
+    """:math:`\\prod_{i<j}(\\mu_i\\mu_j - 1)` over the multipliers (1 for a one-dimensional map):
+    zero where two multipliers have the product 1 (a complex pair on the circle, or a neutral
+    saddle).
+
+    Parameters
+    ----------
+    monodromy : array_like, shape (m, m)
+
+    Returns
+    -------
+    float
+        Real (the pairs' products come in conjugate pairs).
 
     Examples
     --------
@@ -82,6 +109,15 @@ def neimark_sacker_test(monodromy) -> float:
 def critical_multiplier(monodromy, target: complex) -> complex:
     """The Floquet multiplier nearest ``target`` (+1 at a fold, −1 at a period doubling).
 
+    Parameters
+    ----------
+    monodromy : array_like, shape (m, m)
+    target : complex
+
+    Returns
+    -------
+    complex
+
     Examples
     --------
     >>> critical_multiplier([[-0.99, 0.0], [0.0, 0.3]], -1.0)
@@ -93,6 +129,12 @@ def critical_multiplier(monodromy, target: complex) -> complex:
 
 def is_neimark_sacker(monodromy, tolerance: float) -> tuple[bool, complex]:
     """Whether a zero of :func:`neimark_sacker_test` is a complex pair on the unit circle.
+
+    Parameters
+    ----------
+    monodromy : array_like, shape (m, m)
+    tolerance : float
+        How close to the circle, and how far from the real axis, the pair must be.
 
     Returns
     -------

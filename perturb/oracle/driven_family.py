@@ -81,6 +81,20 @@ class Shot:
         Empty on success, else why the integration failed.
     orbit : ndarray, shape (m, samples)
         The state at the equally spaced phases asked for (empty when none were).
+
+    Examples
+    --------
+    A shot of x'' + x = 0 over one period returns where it started, its monodromy the identity:
+
+    >>> import numpy as np, sympy as sp
+    >>> from perturb.oracle import DrivenFamily
+    >>> x, v, th, w = sp.symbols("x v theta w")
+    >>> shot = DrivenFamily.build((x, v), th, (v, -x), w, (w,)).shoot([1.0, 0.0], [1.0], [0.0])
+    >>> np.round(shot.defect, 12) + 0.0, np.round(shot.monodromy, 12) + 0.0
+    (array([0., 0.]), array([[1., 0.],
+           [0., 1.]]))
+    >>> shot.jacobian.shape
+    (2, 3)
     """
 
     initial_state: np.ndarray = field(converter=_readonly, eq=_array_eq)

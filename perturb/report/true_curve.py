@@ -29,7 +29,7 @@ def true_curve_as_dict(curves) -> dict | None:
     "message", "shots", "points": [{"value", "state", "norms", "peaks", "harmonics",
     "multipliers", "stable"}]}], "bifurcations": [{"kind", "value", "curve", "norms", "peaks",
     "multiplier", "multipliers", "inside", "located", "note"}], "partings": [{"branch", "value",
-    "analytic", "true", "difference", "tolerance", "before", "after"}], "failures": [str]}``;
+    "analytic", "true", "difference", "tolerance", "before", "after", "note"}], "failures": [str]}``;
     complex numbers are ``[re, im]``, non-finite numbers null (``difference`` is null where no
     true orbit is left).
     """
@@ -89,6 +89,7 @@ def true_curve_as_dict(curves) -> dict | None:
                 "tolerance": p.tolerance,
                 "before": _number(p.before),
                 "after": _number(p.after),
+                "note": p.note,
             }
             for p in curves.partings
         ],
@@ -136,6 +137,9 @@ def true_curve_lines(curves, parameter: str) -> list[str]:
         for p in curves.partings:
             true = "no true orbit" if not math.isfinite(p.true) else f"true {p.true:.6g}"
             diff = "none left" if not math.isfinite(p.difference) else f"{p.difference:.3g}"
+            if p.note:
+                lines.append(f"    {p.branch:>9s}: {p.note}")
+                continue
             lines.append(
                 f"    {p.branch:>9s}: {parameter} = {p.value:.6g} (amplitude analytic "
                 f"{p.analytic:.6g}, {true}); agree at {p.before:.6g}, differ by {diff} at "

@@ -186,9 +186,12 @@ class Parting:
         At the first grid value past the crossing (inf: no true orbit there).
     tolerance : float
     before : float
-        The last grid value where they agree.
+        The last grid value where they agree (NaN: they agree nowhere on the branch).
     after : float
         The first grid value where they do not.
+    note : str
+        Empty, or that the branch is off the truth at every grid value (the parting is then the
+        branch's first value, with the smallest difference met along it).
     """
 
     branch: str
@@ -199,6 +202,7 @@ class Parting:
     tolerance: float = field(converter=float)
     before: float = field(converter=float)
     after: float = field(converter=float)
+    note: str = ""
 
 
 @frozen
@@ -229,9 +233,20 @@ class TrueCurves:
 
     @property
     def bifurcations(self) -> tuple:
-        """Every special point of every curve, sorted by value."""
-        found = [b for c in self.curves for b in c.bifurcations]
-        return tuple(sorted(found, key=lambda b: b.value))
+        """Every special point of every curve, sorted by value; one found on two curves (where
+        they overlap, e.g. a curve stopped by its budget and another from a second seed) once."""
+        out: list = []
+        for b in sorted((b for c in self.curves for b in c.bifurcations), key=lambda b: b.value):
+            if not any(_same_point(b, seen) for seen in out):
+                out.append(b)
+        return tuple(out)
+
+
+def _same_point(a: TrueBifurcation, b: TrueBifurcation) -> bool:
+    if a.kind != b.kind:
+        return False
+    pairs = [(a.value, b.value), *((a.norms[c], b.norms.get(c, math.nan)) for c in a.norms)]
+    return all(abs(p - q) <= TRUE_CURVE_SAME_ORBIT * max(1.0, abs(p)) for p, q in pairs)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -249,7 +264,7 @@ class _Setup:
     def __init__(self, problem, parameter: str, grid: np.ndarray, order: int, integrator=None):
         from perturb._lambdify import numpy_lambdify
         from perturb.method.driven import amplitude_equations
-        from perturb.oracle.driven_family import DrivenFamily
+        from perturb.oracle import DrivenFamily
         from perturb.validation._quasilinear import excitation_frequency, first_order_expressions
 
         system = problem.system()
@@ -477,11 +492,7 @@ def _monodromy(jac) -> np.ndarray:
 def _tests():
     """The period-doubling and Neimark–Sacker test functions on J = [M − I | ·]."""
     from perturb.continuation import TestFunction
-    from perturb.oracle.bifurcation import (
-        is_neimark_sacker,
-        neimark_sacker_test,
-        period_doubling_test,
-    )
+    from perturb.oracle import is_neimark_sacker, neimark_sacker_test, period_doubling_test
 
     def ns_value(x, t, jac):
         value = neimark_sacker_test(_monodromy(jac))
@@ -705,7 +716,7 @@ def _special_points(curve):
 
 def _critical(kind: str, monodromy) -> complex:
     """The multiplier that crosses the circle at a special point of ``kind``."""
-    from perturb.oracle.bifurcation import critical_multiplier, is_neimark_sacker
+    from perturb.oracle import critical_multiplier, is_neimark_sacker
 
     if not np.all(np.isfinite(monodromy)):
         return complex(math.nan, math.nan)
@@ -769,7 +780,15 @@ TRIVIAL_AMPLITUDE = 1e-12
 
 
 def _crossings(name, rows, tol) -> list[Parting]:
-    """Each passage from agreement (<= tol) to disagreement along the branch, either way."""
+    """Each passage from agreement (<= tol) to disagreement along the branch, either way; a
+    branch that agrees nowhere parts at its first value (and says so)."""
+    if rows and all(not row[3] <= tol for row in rows):
+        first = min(rows, key=lambda r: r[0])
+        least = min(row[3] for row in rows)
+        note = f"the analytic branch is off the truth at every grid value (by {least:.3g} at least)"
+        return [
+            Parting(name, first[0], first[1], first[2], first[3], tol, math.nan, first[0], note)
+        ]
     out = []
     for order in (rows, rows[::-1]):
         agreed = None

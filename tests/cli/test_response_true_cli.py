@@ -69,9 +69,9 @@ def test_a_spent_budget_keeps_the_curve_and_says_so(capsys):
 @pytest.mark.parametrize(
     ("argv", "words"),
     [
-        (["--true", "0"], "from 2 to 5000"),
-        (["--true", "6000"], "the budget's maximum"),
-        (["--true", "many"], "a whole number from 2 to 5000"),
+        (["--true", "0"], "from 2 to 10000"),
+        (["--true", "20000"], "the budget's maximum"),
+        (["--true", "many"], "a whole number from 2 to 10000"),
         (["--true", "--tol", "2"], "between 0 and 1"),
         (["--true", "--tol", "nan"], "between 0 and 1"),
     ],

@@ -150,3 +150,59 @@ def hill_edges(h_eps: float, harmonics: int = 40) -> list[float]:
         brentq(lambda w, s=s: 4 / w**2 - lowest(4 * h_eps / w**2, s), 1.0, 3.0, xtol=1e-15)
         for s in (1, -1)
     )
+
+
+X, XDOT = sp.symbols("x xdot")
+MU, FORCE = sp.symbols("mu F")
+
+
+class ForcedVanDerPol(DrivenProblem):
+    """ẍ + x = ε(μ(1 − x²)ẋ + F cos Ωt): the entrainment of a self-excited oscillator. At strong
+    forcing the locked response loses its stability through a Neimark–Sacker bifurcation (a
+    complex pair of multipliers leaves the circle: the motion becomes quasi-periodic), where the
+    first-order slow flow has its Hopf point at the amplitude √2 (Guckenheimer & Holmes, §2.1)."""
+
+    name = "forced-van-der-pol"
+    summary = "forced van der Pol oscillator near 1:1 entrainment"
+    parameter_specs = (
+        ParameterSpec("eps", 0.05, "scale of the small terms", positive),
+        ParameterSpec("mu", 1.0, "negative damping at rest", positive),
+        ParameterSpec("F", 2.0, "scaled forcing", positive),
+        ParameterSpec("Omega", 1.0, "forcing frequency", positive_frequency),
+    )  # fmt: skip
+    resonance_frequency = 1.0
+
+    @classmethod
+    def build_system(cls) -> QuasilinearSystem:
+        return QuasilinearSystem(
+            coordinates=[X],
+            velocities=[XDOT],
+            frequencies=[1],
+            rhs=[EPS * (MU * (1 - X**2) * XDOT + FORCE * sp.cos(THETA))],
+            parameters=[MU, FORCE, SIGMA],
+            excitation=Excitation(phase=THETA, ratio=1, detuning=SIGMA),
+            name="forced-van-der-pol",
+        )
+
+
+def neimark_sacker_by_forced_shooting(problem, low: float, high: float, guess) -> float:
+    """The Ω in [low, high] where the largest |Floquet multiplier| of the forced van der Pol's
+    response crosses 1, by the oracle's forced shooting in physical time (its own Newton and
+    variational equations, scipy's DOP853) at each Ω and Brent's method on max|μ| − 1."""
+    from scipy.optimize import brentq
+
+    from perturb.oracle import SymbolicRHS, find_forced_orbit
+
+    eps, mu, force = (problem.values[k] for k in ("eps", "mu", "F"))
+    state = {"y": np.asarray(guess, dtype=float)}
+
+    def excess(omega):
+        f = -X + eps * (mu * (1 - X**2) * XDOT + force * sp.cos(THETA))
+        rhs = SymbolicRHS((X, XDOT, THETA), (XDOT, f, omega))
+        orbit = find_forced_orbit(rhs, state["y"], 2 * math.pi / omega, integrator="dop853")
+        if not orbit.success:
+            raise RuntimeError(orbit.message)
+        state["y"] = np.asarray(orbit.initial_state)
+        return float(np.max(np.abs(orbit.floquet_multipliers))) - 1.0
+
+    return brentq(excess, low, high, xtol=1e-12)

@@ -194,3 +194,26 @@ def test_a_two_mode_problem():
             product = np.prod(np.asarray(p.multipliers)).real
             liouville = math.exp(-4 * zeta * eps * 2 * math.pi / p.value)
             assert abs(product / liouville - 1) <= 1e-10
+
+
+def test_the_forced_van_der_pol_loses_its_entrainment_at_neimark_sacker_points():
+    """A complex pair of multipliers on the unit circle at each end of the entrainment band, at
+    the Omega where the oracle's forced shooting (DOP853, physical time) finds max|mu| = 1, to
+    1e-8 (the secant locates the test function to 1e-13 of a step, Brent to 1e-12; the DOP853
+    multipliers are good to ~1e-10, over a slope of max|mu| in Omega of order 1); the amplitude
+    there is the first-order slow flow's Hopf amplitude sqrt 2 to O(eps)."""
+    from tests.driven.published import ForcedVanDerPol, neimark_sacker_by_forced_shooting
+
+    problem = ForcedVanDerPol.create()
+    result = problem_response(problem, "Omega", np.linspace(0.9, 1.1, 9), true=400)
+    found = [b for b in result.true_curve.bifurcations if b.kind == "neimark-sacker"]
+    assert len(found) == 2, result.true_curve
+    for b in found:
+        assert abs(abs(b.multiplier) - 1) <= 1e-9 and abs(b.multiplier.imag) > 0.1
+        assert abs(b.norms["x"] - math.sqrt(2)) <= problem.values["eps"]
+        curve = next(c for c in result.true_curve.curves if b in c.bifurcations)
+        near = min(curve.points, key=lambda p: abs(p.value - b.value))
+        omega = neimark_sacker_by_forced_shooting(
+            problem, b.value - 0.005, b.value + 0.005, near.state
+        )
+        assert abs(omega - b.value) <= 1e-8
