@@ -81,9 +81,9 @@ def cost_table() -> list[str]:
 def _compile_seconds(problem, parameter, grid, order) -> float:
     """The first shot of a fresh augmented field (heyoka's JIT compilation)."""
     from perturb.oracle.heyoka import _THREAD_STATE, _compiled_taylor
-    from perturb.response.true_curve import _Setup
+    from perturb.response.true_family import TrueFamily
 
-    setup = _Setup(problem, parameter, np.linspace(*grid), order)
+    setup = TrueFamily(problem, parameter, np.linspace(*grid), order)
     _compiled_taylor.cache_clear()
     getattr(_THREAD_STATE, "integrators", {}).clear()
     lam = float(grid[0])

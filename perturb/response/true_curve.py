@@ -37,20 +37,28 @@ import math
 from collections.abc import Sequence
 
 import numpy as np
-from attrs import field, frozen
 
 from perturb._defaults import (
-    FD_REL_STEP,
-    MAX_STEP_FRACTION,
-    TRUE_CURVE_AFFINE_TOL,
-    TRUE_CURVE_MARGIN,
     TRUE_CURVE_MULTIPLIER_TOL,
     TRUE_CURVE_POINTS,
     TRUE_CURVE_SAME_ORBIT,
     TRUE_CURVE_SAMPLES,
     TRUE_CURVE_TOL,
 )
-from perturb.errors import InvalidParameterError, PerturbError, bad_value
+from perturb.errors import PerturbError, bad_value
+from perturb.response.true_family import OutsideDomain, ScaledEquations, TrueFamily, floquet_tests
+from perturb.response.true_partings import partings
+from perturb.response.true_results import (
+    BRANCH_POINT,
+    FOLD,
+    NEIMARK_SACKER,
+    PERIOD_DOUBLING,
+    Parting,
+    TrueBifurcation,
+    TrueCurve,
+    TrueCurves,
+    TruePoint,
+)
 
 __all__ = [
     "Parting",
@@ -60,458 +68,6 @@ __all__ = [
     "TruePoint",
     "true_curves",
 ]
-
-#: The kinds of special points, as reported.
-FOLD, BRANCH_POINT = "fold", "branch-point"
-PERIOD_DOUBLING, NEIMARK_SACKER = "period-doubling", "neimark-sacker"
-
-
-def _complexes(values) -> tuple:
-    return tuple(complex(z) for z in values)
-
-
-@frozen
-class TruePoint:
-    """One true periodic response on a continued curve.
-
-    Attributes
-    ----------
-    value : float
-        The swept parameter's value.
-    state : tuple of float
-        The state at t = 0 (θ = 0): ``(x..., xdot...)``.
-    norms : dict
-        Per resonant coordinate, the measure the analytic curve plots: the first harmonic's
-        amplitude read from the initial values, :math:`\\sqrt{x(0)^2 + (\\dot x(0)\\,p/(m\\Omega))^2}`.
-    peaks : dict
-        Per coordinate, max |x| over one period.
-    harmonics : dict
-        Per resonant coordinate, the amplitude of its resonant harmonic (Fourier, over a period).
-    multipliers : tuple of complex
-        The Floquet multipliers (eigenvalues of the monodromy).
-    stable : bool or None
-        All multipliers inside the unit circle (None: the largest within
-        ``TRUE_CURVE_MULTIPLIER_TOL`` of it, a conservative system's orbit).
-    """
-
-    value: float = field(converter=float)
-    state: tuple = field(converter=lambda v: tuple(float(x) for x in v))
-    norms: dict
-    peaks: dict
-    harmonics: dict
-    multipliers: tuple = field(converter=_complexes)
-    stable: bool | None
-
-    def norm(self, coordinate: str | None = None) -> float:
-        """The analytic curve's measure of ``coordinate`` (default: the first)."""
-        return self.norms[coordinate] if coordinate else next(iter(self.norms.values()))
-
-
-@frozen
-class TrueBifurcation:
-    """A special point of a true curve, located on it.
-
-    Attributes
-    ----------
-    kind : str
-        ``fold``, ``branch-point``, ``period-doubling`` or ``neimark-sacker``.
-    value : float
-    norms, peaks : dict
-        As :class:`TruePoint`'s, at the point.
-    multiplier : complex
-        The critical multiplier (+1, −1, or on the circle), as computed there.
-    multipliers : tuple of complex
-    inside : bool
-        Within the sweep (False: in the margin past an end).
-    located : bool
-        The sign change was located to the continuation's tolerance.
-    note : str
-    """
-
-    kind: str
-    value: float = field(converter=float)
-    norms: dict
-    peaks: dict
-    multiplier: complex = field(converter=complex)
-    multipliers: tuple = field(converter=_complexes)
-    inside: bool
-    located: bool = True
-    note: str = ""
-
-
-@frozen
-class TrueCurve:
-    """One continued curve of true responses.
-
-    Attributes
-    ----------
-    branches : tuple of str
-        The analytic branches whose seeds lie on it (the first one started it).
-    points : tuple of TruePoint
-        In the order of the continuation (special points included).
-    bifurcations : tuple of TrueBifurcation
-    status : str
-        How the continuation ended (:class:`perturb.continuation.ContinuationStatus` name).
-    success : bool
-        It ended by leaving the range or the domain, or by closing.
-    message : str
-        Where and why it ended (both directions).
-    shots : int
-        Integrations of the variational equations it took.
-    """
-
-    branches: tuple = field(converter=tuple)
-    points: tuple = field(converter=tuple)
-    bifurcations: tuple = field(converter=tuple)
-    status: str
-    success: bool
-    message: str
-    shots: int = 0
-
-
-@frozen
-class Parting:
-    """Where an analytic branch leaves the true curve by more than the tolerance.
-
-    Attributes
-    ----------
-    branch : str
-    value : float
-        The swept parameter where the relative difference crosses ``tolerance`` (interpolated
-        between the grid values ``after`` and ``before``).
-    analytic, true : float
-        The two amplitudes (the analytic curve's measure) there; ``true`` NaN where no true
-        orbit is left.
-    difference : float
-        At the first grid value past the crossing (inf: no true orbit there).
-    tolerance : float
-    before : float
-        The last grid value where they agree (NaN: they agree nowhere on the branch).
-    after : float
-        The first grid value where they do not.
-    note : str
-        Empty, or that the branch is off the truth at every grid value (the parting is then the
-        branch's first value, with the smallest difference met along it).
-    """
-
-    branch: str
-    value: float = field(converter=float)
-    analytic: float = field(converter=float)
-    true: float = field(converter=float)
-    difference: float = field(converter=float)
-    tolerance: float = field(converter=float)
-    before: float = field(converter=float)
-    after: float = field(converter=float)
-    note: str = ""
-
-
-@frozen
-class TrueCurves:
-    """The true curves of a response (``perturb response --true``).
-
-    Attributes
-    ----------
-    parameter : str
-    curves : tuple of TrueCurve
-    partings : tuple of Parting
-    budget : int
-        The most points of each curve.
-    tolerance : float
-        The relative difference at which the curves part.
-    integrator : str
-    failures : tuple of str
-        Seeds that could not be corrected onto a true orbit, or why nothing was continued.
-    """
-
-    parameter: str
-    curves: tuple = field(converter=tuple)
-    partings: tuple = field(converter=tuple)
-    budget: int
-    tolerance: float
-    integrator: str = ""
-    failures: tuple = field(converter=tuple, factory=tuple)
-
-    @property
-    def bifurcations(self) -> tuple:
-        """Every special point of every curve, sorted by value; one found on two curves (where
-        they overlap, e.g. a curve stopped by its budget and another from a second seed) once."""
-        out: list = []
-        for b in sorted((b for c in self.curves for b in c.bifurcations), key=lambda b: b.value):
-            if not any(_same_point(b, seen) for seen in out):
-                out.append(b)
-        return tuple(out)
-
-
-def _same_point(a: TrueBifurcation, b: TrueBifurcation) -> bool:
-    if a.kind != b.kind:
-        return False
-    pairs = [(a.value, b.value), *((a.norms[c], b.norms.get(c, math.nan)) for c in a.norms)]
-    return all(abs(p - q) <= TRUE_CURVE_SAME_ORBIT * max(1.0, abs(p)) for p, q in pairs)
-
-
-# ---------------------------------------------------------------------------------------------
-# the problem as a family of true responses
-# ---------------------------------------------------------------------------------------------
-
-
-class _OutsideDomain(PerturbError):
-    """A parameter value the problem refuses (the message is the problem's)."""
-
-
-class _Setup:
-    """The problem's driven family along ``parameter``: symbols, parameter map, measures."""
-
-    def __init__(self, problem, parameter: str, grid: np.ndarray, order: int, integrator=None):
-        from perturb._lambdify import numpy_lambdify
-        from perturb.method.driven import amplitude_equations
-        from perturb.oracle import DrivenFamily
-        from perturb.validation._quasilinear import excitation_frequency, first_order_expressions
-
-        system = problem.system()
-        self.problem, self.parameter, self.system, self.order = problem, parameter, system, order
-        if system.initial_values:
-            raise _OutsideDomain("the system's equations contain initial values")
-        drive = system.excitation
-        self.cycles = drive.p
-        self.params = (*system.parameters, system.parameter)
-        exprs = first_order_expressions(system, {})
-        self.frequency = excitation_frequency(system, {})
-        self.family = DrivenFamily.build(
-            system.state_symbols, drive.phase, exprs, self.frequency, self.params, drive.p,
-            integrator,
-        )  # fmt: skip
-        self._omega = numpy_lambdify(self.params, self.frequency)
-        self.names = [c.name for c in system.coordinates]
-        self.n = system.n
-        self.amplitude_equations = amplitude_equations(system, order)
-        index = {c.name: i for i, c in enumerate(system.coordinates)}
-        self.harmonics = {
-            c: (index[c], int(m))
-            for c, m in zip(
-                self.amplitude_equations.coordinates, self.amplitude_equations.harmonics,
-                strict=True,
-            )
-        }  # fmt: skip
-        self._values: dict[float, np.ndarray] = {}
-        lo, hi = float(grid[0]), float(grid[-1])
-        self.affine = self._affine(lo, hi)
-        self.range = (lo, hi)
-
-    def continuation_range(self) -> tuple[float, float, float]:
-        """The sweep widened by ``TRUE_CURVE_MARGIN`` of its width at each end, and the largest
-        step (``MAX_STEP_FRACTION`` of the widened width). An end is widened only where the
-        problem accepts the values one largest step beyond it (a predictor may overshoot the
-        range by a step); where it does not (a parameter's own bound, e.g. F > 0), the curve ends
-        at the sweep."""
-        lo, hi = self.range
-        margin = TRUE_CURVE_MARGIN * (hi - lo)
-        step = MAX_STEP_FRACTION * (hi - lo + 2 * margin)
-        ends = []
-        for end, sign in ((lo, -1.0), (hi, 1.0)):
-            try:
-                self.values(end + sign * (margin + step))
-            except _OutsideDomain:
-                ends.append(end)
-            else:
-                ends.append(end + sign * margin)
-        return ends[0], ends[1], step
-
-    def values(self, lam: float) -> np.ndarray:
-        """The system's parameter values (and ε last) at λ; _OutsideDomain if refused."""
-        lam = float(lam)
-        if lam not in self._values:
-            try:
-                variant = self.problem.with_parameters(**{self.parameter: lam})
-            except InvalidParameterError as exc:
-                raise _OutsideDomain(f"{self.parameter} = {lam:.10g}: {exc}") from None
-            named = variant.symbol_values()
-            missing = [p.name for p in self.params[:-1] if p.name not in named]
-            if missing:
-                raise _OutsideDomain(f"the problem gives no value for {missing}")
-            vector = [named[p.name] for p in self.params[:-1]] + [variant.parameter_value()]
-            if len(self._values) > 4096:
-                self._values.clear()
-            self._values[lam] = np.array(vector, dtype=float)
-        return self._values[lam]
-
-    def _affine(self, lo: float, hi: float) -> np.ndarray | None:
-        """dp/dλ when the parameters move affinely with λ over the sweep (checked at its middle)."""
-        try:
-            a, b, mid = self.values(lo), self.values(hi), self.values(0.5 * (lo + hi))
-        except _OutsideDomain:
-            return None
-        scale = np.maximum(1.0, np.maximum(np.abs(a), np.abs(b)))
-        if np.all(np.abs(mid - 0.5 * (a + b)) <= TRUE_CURVE_AFFINE_TOL * scale):
-            return (b - a) / (hi - lo)
-        return None
-
-    def direction(self, lam: float) -> np.ndarray:
-        """dp/dλ at λ: exact for an affine map, else centred (one-sided at a domain edge)."""
-        if self.affine is not None:
-            return self.affine
-        h = FD_REL_STEP * max(1.0, abs(lam))
-        try:
-            up = self.values(lam + h)
-        except _OutsideDomain:
-            return (self.values(lam) - self.values(lam - h)) / h
-        try:
-            down = self.values(lam - h)
-        except _OutsideDomain:
-            return (up - self.values(lam)) / h
-        return (up - down) / (2 * h)
-
-    def omega(self, lam: float) -> float:
-        return float(self._omega(*self.values(lam)))
-
-    def point(self, lam: float, y0) -> TruePoint:
-        """The true point at (y0, λ): a shot with the orbit sampled, its measures."""
-        shot = self.family.shoot(y0, self.values(lam), self.direction(lam), TRUE_CURVE_SAMPLES)
-        return self.point_of(lam, shot)
-
-    def point_of(self, lam: float, shot) -> TruePoint:
-        y0 = np.asarray(shot.initial_state)
-        mu = shot.multipliers
-        largest = float(np.max(np.abs(mu))) if np.all(np.isfinite(mu)) else math.nan
-        stable = None if abs(largest - 1.0) <= TRUE_CURVE_MULTIPLIER_TOL else largest < 1.0
-        if not math.isfinite(largest):
-            stable = None
-        return TruePoint(
-            lam, y0, self.norms(lam, y0), self._peaks(shot), self._harmonics(shot), mu, stable
-        )
-
-    def norms(self, lam: float, y0) -> dict:
-        """The analytic curve's measure of each resonant coordinate at (y0, λ)."""
-        nu = self.omega(lam) / self.cycles
-        out = {}
-        for name, (i, m) in self.harmonics.items():
-            out[name] = math.hypot(float(y0[i]), float(y0[self.n + i]) / (m * nu))
-        return out
-
-    def _peaks(self, shot) -> dict:
-        orbit = np.asarray(shot.orbit)
-        if orbit.size == 0:
-            return {name: math.nan for name in self.names}
-        return {name: _peak(orbit[i]) for i, name in enumerate(self.names)}
-
-    def _harmonics(self, shot) -> dict:
-        orbit = np.asarray(shot.orbit)
-        out = {}
-        for name, (i, m) in self.harmonics.items():
-            if orbit.size == 0:
-                out[name] = math.nan
-                continue
-            samples = orbit[i]
-            k = np.arange(samples.size)
-            # resonant harmonic m of s = θ/p: exp(-i m θ_k/p), θ_k = 2πp k/n
-            phase = np.exp(-2j * math.pi * m * k / samples.size)
-            out[name] = float(2.0 * abs(np.sum(samples * phase)) / samples.size)
-        return out
-
-
-def _peak(samples: np.ndarray) -> float:
-    """max |x| over a period from equally spaced samples, refined by the parabola through the
-    largest sample and its neighbours (periodic)."""
-    a = np.abs(samples)
-    k = int(np.argmax(a))
-    y0, y1, y2 = a[k - 1], a[k], a[(k + 1) % a.size]
-    curvature = y0 - 2 * y1 + y2
-    if curvature >= 0:
-        return float(y1)
-    shift = 0.5 * (y0 - y2) / curvature
-    return float(y1 - 0.25 * (y0 - y2) * shift)
-
-
-class _Equations:
-    """G(x) = R(y0, λ)·W/U on x = (y0·W/U, λ): the state scaled to the sweep's width W (U the
-    amplitudes' scale), so that a step moves state and parameter alike; shots cached."""
-
-    def __init__(self, setup: _Setup, scale: float, width: float):
-        self.setup, self.width = setup, width
-        self.factor = width / scale
-        self.shots = 0
-        self._cache: dict[bytes, object] = {}
-        self.last_failure = ""
-
-    def unscale(self, x) -> tuple[np.ndarray, float]:
-        x = np.asarray(x, dtype=float)
-        return x[:-1] / self.factor, float(x[-1])
-
-    def scaled(self, y0, lam) -> np.ndarray:
-        return np.append(np.asarray(y0, dtype=float) * self.factor, float(lam))
-
-    def shot(self, x):
-        key = np.asarray(x, dtype=float).tobytes()
-        if key not in self._cache:
-            y0, lam = self.unscale(x)
-            setup = self.setup
-            try:
-                shot = setup.family.shoot(y0, setup.values(lam), setup.direction(lam))
-            except _OutsideDomain as exc:
-                self.last_failure = str(exc)
-                shot = None
-            else:
-                self.shots += 1
-                if not shot.success:
-                    self.last_failure = f"integration at {self.setup.parameter} = {lam:.10g}: " + (
-                        shot.message
-                    )
-            if len(self._cache) > 8:
-                self._cache.clear()
-            self._cache[key] = shot
-        return self._cache[key]
-
-    def residual(self, x) -> np.ndarray:
-        shot = self.shot(x)
-        if shot is None or not shot.success:
-            return np.full(len(x) - 1, math.nan)
-        return shot.defect * self.factor
-
-    def jacobian(self, x) -> np.ndarray:
-        shot = self.shot(x)
-        m = len(x) - 1
-        if shot is None or not shot.success:
-            return np.full((m, m + 1), math.nan)
-        jac = np.array(shot.jacobian)
-        jac[:, -1] *= self.factor
-        return jac
-
-    def domain(self, x) -> str:
-        _, lam = self.unscale(x)
-        try:
-            self.setup.values(lam)
-        except _OutsideDomain as exc:
-            return str(exc)
-        return ""
-
-
-def _monodromy(jac) -> np.ndarray:
-    m = jac.shape[0]
-    return np.asarray(jac[:, :m], dtype=float) + np.eye(m)
-
-
-def _tests():
-    """The period-doubling and Neimark–Sacker test functions on J = [M − I | ·]."""
-    from perturb.continuation import TestFunction
-    from perturb.oracle import is_neimark_sacker, neimark_sacker_test, period_doubling_test
-
-    def ns_value(x, t, jac):
-        value = neimark_sacker_test(_monodromy(jac))
-        # a conservative map: every pair's product is 1 and the test is round-off (module notes)
-        return 0.0 if abs(value) <= TRUE_CURVE_MULTIPLIER_TOL else value
-
-    def ns_kind(x, t, jac):
-        found, _ = is_neimark_sacker(_monodromy(jac), math.sqrt(TRUE_CURVE_MULTIPLIER_TOL))
-        return NEIMARK_SACKER if found else None
-
-    return (
-        TestFunction(PERIOD_DOUBLING, lambda x, t, jac: period_doubling_test(_monodromy(jac))),
-        TestFunction(NEIMARK_SACKER, ns_value, ns_kind),
-    )
-
-
-# ---------------------------------------------------------------------------------------------
-# seeds, curves, partings
-# ---------------------------------------------------------------------------------------------
 
 
 def true_curves(
@@ -554,22 +110,22 @@ def true_curves(
         raise bad_value("tol", tol, "give a positive relative tolerance, e.g. 0.01")
     grid = np.asarray(response.grid, dtype=float)
     try:
-        setup = _Setup(problem, parameter, grid, order, integrator)
-    except _OutsideDomain as exc:
+        setup = TrueFamily(problem, parameter, grid, order, integrator)
+    except OutsideDomain as exc:
         return TrueCurves(parameter, (), (), budget, tol, "", (f"not continued: {exc}",))
     width = float(grid[-1] - grid[0])
     seeds = _seeds(response, names)
     scale = max([1.0] + [float(np.max(np.abs(s[2]))) for s in seeds if s[2] is not None])
-    equations = _Equations(setup, scale, width)
+    equations = ScaledEquations(setup, scale, width)
     curves, failures, covered = [], [], []
     for name, candidates, _ in seeds:
         seeded = _follow(setup, equations, name, candidates, curves, covered, budget)
         if isinstance(seeded, str):
             failures.append(seeded)
     built = tuple(_true_curve(setup, equations, *entry, grid) for entry in covered)
-    partings = _partings(setup, equations, response, names, covered, tol)
+    found = partings(setup, equations, response, names, covered, tol)
     return TrueCurves(
-        parameter, built, partings, int(budget), float(tol), setup.family.integrator.name,
+        parameter, built, found, int(budget), float(tol), setup.family.integrator.name,
         tuple(failures),
     )  # fmt: skip
 
@@ -626,7 +182,7 @@ def _follow(setup, equations, name, candidates, curves, covered, budget):
         equations.last_failure = ""
         lo, hi, step = setup.continuation_range()
         curve = continue_both(
-            equations, first.x, lam_range=(lo, hi), tests=_tests(), max_step=step,
+            equations, first.x, lam_range=(lo, hi), tests=floquet_tests(), max_step=step,
             domain=equations.domain, max_points=max(2, (budget + 1) // 2),
         )  # fmt: skip
         covered.append((curve, [name], equations.shots - before, equations.last_failure))
@@ -668,7 +224,7 @@ def _true_curve(setup, equations, curve, branches, shots, failure, grid) -> True
         y0, lam = equations.unscale(x)
         try:
             points.append(setup.point(lam, y0))
-        except _OutsideDomain:
+        except OutsideDomain:
             continue
     special = []
     for found, note in _special_points(curve):
@@ -677,7 +233,7 @@ def _true_curve(setup, equations, curve, branches, shots, failure, grid) -> True
             shot = setup.family.shoot(
                 y0, setup.values(lam), setup.direction(lam), TRUE_CURVE_SAMPLES
             )
-        except _OutsideDomain:
+        except OutsideDomain:
             continue
         here = setup.point_of(lam, shot)
         special.append(
@@ -728,91 +284,3 @@ def _critical(kind: str, monodromy) -> complex:
 def _in_parameter(message: str, setup, equations) -> str:
     """The continuation's message speaks of λ and u: say what they are."""
     return f"{message} [λ is {setup.parameter}; u the state x {equations.factor:.6g}]"
-
-
-def _partings(setup, equations, response, names, covered, tol) -> tuple[Parting, ...]:
-    """Along each analytic branch, where it leaves the true curves by more than ``tol``: the
-    largest difference over the resonant coordinates, relative to the true orbit's largest
-    amplitude, against the true point nearest it at the same grid value."""
-    grid = [float(g) for g in response.grid]
-    readings: dict[float, list[dict]] = {g: [] for g in grid}
-    for curve, *_ in covered:
-        if curve.points.shape[0] < 2:
-            continue
-        for g, found in zip(grid, curve.values_at(grid), strict=True):
-            for x in found:
-                y0, lam = equations.unscale(x)
-                try:
-                    readings[g].append(setup.norms(lam, y0))
-                except _OutsideDomain:
-                    continue
-    coords = [c for c in response.coordinates if c in setup.harmonics]
-    first = coords[0] if coords else None
-    by_id = {id(p): n for p, n in zip(response.points, names, strict=True)}
-    out = []
-    for branch in response.branches():
-        if not branch or first is None:
-            continue
-        name = by_id.get(id(branch[len(branch) // 2]), "branch")
-        rows = []
-        for p in branch:
-            analytic = {c: float(p.norms[c]) for c in coords}
-
-            def distance(true, analytic=analytic):
-                size = max(max(true[c] for c in coords), max(analytic.values()))
-                if size <= TRIVIAL_AMPLITUDE:
-                    return 0.0
-                gap = max(abs(analytic[c] - true[c]) for c in coords)
-                return gap / max(max(true[c] for c in coords), TRIVIAL_AMPLITUDE)
-
-            trues = readings.get(float(p.value), [])
-            if trues:
-                best = min(trues, key=distance)
-                rows.append((float(p.value), analytic[first], best[first], distance(best)))
-            else:
-                rows.append((float(p.value), analytic[first], math.nan, math.inf))
-        out.extend(_crossings(name, rows, tol))
-    return tuple(out)
-
-
-#: Amplitudes below this are the trivial response x = 0 (as the analytic branches' TRIVIAL).
-TRIVIAL_AMPLITUDE = 1e-12
-
-
-def _crossings(name, rows, tol) -> list[Parting]:
-    """Each passage from agreement (<= tol) to disagreement along the branch, either way; a
-    branch that agrees nowhere parts at its first value (and says so)."""
-    if rows and all(not row[3] <= tol for row in rows):
-        first = min(rows, key=lambda r: r[0])
-        least = min(row[3] for row in rows)
-        note = f"the analytic branch is off the truth at every grid value (by {least:.3g} at least)"
-        return [
-            Parting(name, first[0], first[1], first[2], first[3], tol, math.nan, first[0], note)
-        ]
-    out = []
-    for order in (rows, rows[::-1]):
-        agreed = None
-        for row in order:
-            if row[3] <= tol:
-                agreed = row
-                continue
-            if agreed is not None:
-                out.append(_parting(name, agreed, row, tol))
-            agreed = None
-    unique = {}
-    for p in out:
-        unique.setdefault((round(p.before, 12), round(p.after, 12)), p)
-    return sorted(unique.values(), key=lambda p: p.value)
-
-
-def _parting(name, agreed, row, tol) -> Parting:
-    v0, a0, t0, d0 = agreed
-    v1, a1, t1, d1 = row
-    if math.isfinite(d1) and d1 != d0:
-        w = (tol - d0) / (d1 - d0)
-    else:
-        w = 0.0  # no true orbit at the next value: the parting is somewhere after the last agreement
-    value = v0 + w * (v1 - v0)
-    analytic = a0 + w * (a1 - a0)
-    true = t0 + w * (t1 - t0) if math.isfinite(t1) else t0
-    return Parting(name, value, analytic, true, d1, tol, v0, v1)
