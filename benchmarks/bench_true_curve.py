@@ -21,6 +21,7 @@ from __future__ import annotations
 import argparse
 import math
 import resource
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -67,7 +68,7 @@ def cost_table() -> list[str]:
         for b in curves.bifurcations:
             kinds[b.kind] = kinds.get(b.kind, 0) + 1
         special = ", ".join(f"{k} {v}" for k, v in sorted(kinds.items())) or "none"
-        compile_s = _compile_seconds(problem, parameter, (lo, hi, n), order)
+        compile_s = _compile_seconds(name, overrides, parameter, (lo, hi, n), order)
         label = name + "".join(f" {k}={v:g}" for k, v in overrides.items())
         rows.append(
             f"| {label} | {parameter}={lo:g}:{hi:g}:{n} | {order} | {len(curves.curves)} | "
@@ -78,18 +79,24 @@ def cost_table() -> list[str]:
     return rows
 
 
-def _compile_seconds(problem, parameter, grid, order) -> float:
-    """The first shot of a fresh augmented field (heyoka's JIT compilation)."""
-    from perturb.oracle.heyoka import _THREAD_STATE, _compiled_taylor
-    from perturb.response.true_family import TrueFamily
-
-    setup = TrueFamily(problem, parameter, np.linspace(*grid), order)
-    _compiled_taylor.cache_clear()
-    getattr(_THREAD_STATE, "integrators", {}).clear()
-    lam = float(grid[0])
-    start = time.perf_counter()
-    setup.family.shoot(np.zeros(setup.family.state_size), setup.values(lam), setup.direction(lam))
-    return time.perf_counter() - start
+def _compile_seconds(name: str, overrides: dict, parameter: str, grid, order: int) -> float:
+    """The first shot of the augmented field in a fresh process (heyoka's JIT compilation; within
+    one process heyoka keeps compiled code in memory)."""
+    code = (
+        "import time, numpy as np\n"
+        "from problems import get_problem\n"
+        "from perturb.response.true_family import TrueFamily\n"
+        f"p = get_problem({name!r}).create(**{overrides!r})\n"
+        f"s = TrueFamily(p, {parameter!r}, np.linspace(*{tuple(grid)!r}), {order})\n"
+        f"lam = {float(grid[0])!r}\n"
+        "t = time.perf_counter()\n"
+        "s.family.shoot(np.zeros(s.family.state_size), s.values(lam), s.direction(lam))\n"
+        "print(time.perf_counter() - t)\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True
+    )
+    return float(out.stdout.strip().splitlines()[-1])
 
 
 def published_table() -> list[str]:

@@ -193,7 +193,16 @@ class TrueCurves:
 
 
 def _same_point(a: TrueBifurcation, b: TrueBifurcation) -> bool:
+    """The same special point: the same kind, value and amplitudes. A branch point is where two
+    curves cross, met on each: located in the parameter to the secant's tolerance, but on the
+    curve that turns there (a pitchfork) in amplitude only to its square root."""
     if a.kind != b.kind:
         return False
-    pairs = [(a.value, b.value), *((a.norms[c], b.norms.get(c, math.nan)) for c in a.norms)]
-    return all(abs(p - q) <= TRUE_CURVE_SAME_ORBIT * max(1.0, abs(p)) for p, q in pairs)
+    close = TRUE_CURVE_SAME_ORBIT
+    spread = math.sqrt(close) if a.kind == BRANCH_POINT else close
+    if abs(a.value - b.value) > close * max(1.0, abs(a.value)):
+        return False
+    return all(
+        abs(a.norms[c] - b.norms.get(c, math.nan)) <= spread * max(1.0, abs(a.norms[c]))
+        for c in a.norms
+    )
