@@ -41,6 +41,13 @@ class TrueFamily:
         self.problem, self.parameter, self.system, self.order = problem, parameter, system, order
         if system.initial_values:
             raise OutsideDomain("the system's equations contain initial values")
+        from perturb.validation import as_model
+
+        if not as_model(problem).original_equations().quasilinear:
+            raise OutsideDomain(
+                f"{problem.name} gives its own original equations, and the true curve follows "
+                "its quasilinear system's orbits: compare them with `perturb validate` instead"
+            )
         drive = system.excitation
         self.cycles = drive.p
         self.params = (*system.parameters, system.parameter)

@@ -180,3 +180,21 @@ def test_the_mathieu_tongue_edges_are_branch_points_of_the_trivial_response():
             assert p.stable is False
         elif not low - 1e-6 <= p.value <= high + 1e-6:
             assert p.stable is None
+
+
+def test_a_problem_with_its_own_original_equations_is_not_continued():
+    """The true curve follows the quasilinear system's orbits: a problem whose original equations
+    are its own (here the same ones, given as original_symbolic) is refused with the reason, and
+    the analytic response stands."""
+    from problems.parametric_duffing import ParametricDuffing
+
+    class OwnEquations(ParametricDuffing):
+        def original_symbolic(self):
+            x, v, th = sp.symbols("x xdot theta")
+            return (x, v, th), (v, -x, 2.0)
+
+    problem = OwnEquations.create(zeta=0.0, gamma=0.0)
+    result = problem_response(problem, "Omega", np.linspace(1.9, 2.1, 3), true=50)
+    assert result.response.points and result.true_curve.curves == ()
+    (failure,) = result.true_curve.failures
+    assert "gives its own original equations" in failure
