@@ -49,8 +49,8 @@ from perturb.cache import cached
 from perturb.errors import InvalidSystemError, bad_value
 from perturb.method.conditions import ConditionSolver
 from perturb.method.poincare import PoincareMethod, _OrderByOrder
-from perturb.method.steps import GeneratingSolution
 from perturb.solution import PeriodicSolution, Status
+from perturb.steps import GeneratingSolution
 from perturb.system import EPS, QuasilinearSystem
 
 __all__ = ["AmplitudeEquations", "SlowFlow", "amplitude_equations", "slow_flow"]
@@ -225,11 +225,10 @@ def amplitude_equations(system: QuasilinearSystem, order: int = 1) -> AmplitudeE
     >>> eqs.amplitudes
     (a_x, b_x)
     """
-    if system.excitation is None:
-        raise bad_value(
-            "system", system.name, "it has no excitation: give a driven system (excitation=...)",
-            InvalidSystemError,
-        )  # fmt: skip
+    system.frame.require_driven(
+        "system", system.name, "it has no excitation: give a driven system (excitation=...)",
+        InvalidSystemError,
+    )  # fmt: skip
     if isinstance(order, bool) or not isinstance(order, int) or order < 0:
         raise bad_value("order", order, "give an integer >= 0", InvalidSystemError)
     method = PoincareMethod(order=max(order, 1), cache=False)

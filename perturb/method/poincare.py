@@ -28,7 +28,7 @@ fixed by the balance of orders).
 
 The concerns live in sibling modules: :mod:`perturb.method.expansion` (the forcing of each order),
 :mod:`perturb.method.conditions` (solving the conditions, choosing a branch),
-:mod:`perturb.method.steps` (the printable steps) and :mod:`perturb.method.exact` (zero tests).
+:mod:`perturb.steps` (the printable steps) and :mod:`perturb.method.exact` (zero tests).
 This module holds the options (:class:`PoincareMethod`) and the order-by-order template.
 """
 
@@ -58,9 +58,9 @@ from perturb.method.options import (
     one_of,
     to_amplitudes,
 )
-from perturb.method.steps import GeneratingSolution, OrderStep, PeriodicityCondition
 from perturb.native import Converter, NotNative, ring_for
 from perturb.solution import PeriodicSolution, Status
+from perturb.steps import GeneratingSolution, OrderStep, PeriodicityCondition
 from perturb.system import EPS, QuasilinearSystem
 from perturb.trig import SympyRing, TrigPoly
 
@@ -188,7 +188,7 @@ class PoincareMethod:
             if isinstance(self.branch, Mapping)
             else repr(self.branch)
         )
-        drive = () if system.excitation is None else (repr(system.excitation),)
+        drive = system.frame.cache_tag()
         return (
             tuple(sp.srepr(f) for f in fields) + drive,
             system.regime.value,
