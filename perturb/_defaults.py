@@ -459,6 +459,3 @@ TRUE_CURVE_MULTIPLIER_TOL = 1e-9
 #: orbit: a seed on a curve already followed. The corrector converges to 1e-10; distinct branches
 #: lie orders of magnitude further apart.
 TRUE_CURVE_SAME_ORBIT = 1e-6
-#: The parameter map p(lambda) is affine over the sweep when its midpoint value is the mean of its
-#: ends to this (relative): the floats of a map such as sigma = (Omega - 1)/eps round at 1e-15.
-TRUE_CURVE_AFFINE_TOL = 1e-12

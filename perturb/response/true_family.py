@@ -1,7 +1,8 @@
 """A driven problem as a family of true responses along its swept parameter (for
 :mod:`perturb.response.true_curve`): the shooting map of :class:`perturb.oracle.DrivenFamily` built
 from the problem's system with its parameters symbolic, the map from the swept value to the
-system's parameters (exact when affine, else centred differences), the measures of a true orbit,
+system's parameters (the problem's :class:`perturb.case.Case`: its values and exact rates at any
+λ, the problem's own checks refusing a value outside its domain), the measures of a true orbit,
 the scaled equations the continuation follows, and the Floquet test functions."""
 
 from __future__ import annotations
@@ -11,15 +12,14 @@ import math
 import numpy as np
 
 from perturb._defaults import (
-    FD_REL_STEP,
     MAX_STEP_FRACTION,
-    TRUE_CURVE_AFFINE_TOL,
     TRUE_CURVE_MARGIN,
     TRUE_CURVE_MULTIPLIER_TOL,
     TRUE_CURVE_SAMPLES,
 )
-from perturb.errors import InvalidParameterError, PerturbError
+from perturb.errors import PerturbError
 from perturb.response.true_results import NEIMARK_SACKER, PERIOD_DOUBLING, TruePoint
+from perturb.system import Regime
 
 __all__ = ["OutsideDomain", "ScaledEquations", "TrueFamily", "floquet_tests"]
 
@@ -69,10 +69,9 @@ class TrueFamily:
                 strict=True,
             )
         }  # fmt: skip
+        self._case = problem.case()
         self._values: dict[float, np.ndarray] = {}
-        lo, hi = float(grid[0]), float(grid[-1])
-        self.affine = self._affine(lo, hi)
-        self.range = (lo, hi)
+        self.range = (float(grid[0]), float(grid[-1]))
 
     def continuation_range(self) -> tuple[float, float, float]:
         """The sweep widened by ``TRUE_CURVE_MARGIN`` of its width at each end, and the largest
@@ -93,49 +92,37 @@ class TrueFamily:
                 ends.append(end + sign * margin)
         return ends[0], ends[1], step
 
+    def case(self, lam: float):
+        """The problem's :class:`perturb.case.Case` at λ; OutsideDomain if the problem refuses it."""
+        try:
+            return self._case.at(**{self.parameter: float(lam)})
+        except ValueError as exc:  # the problem's own check: InvalidParameterError and kin
+            raise OutsideDomain(f"{self.parameter} = {lam:.10g}: {exc}") from None
+
     def values(self, lam: float) -> np.ndarray:
-        """The system's parameter values (and ε last) at λ; OutsideDomain if refused."""
+        """The system's parameter values (and its own ε or μ last) at λ; OutsideDomain if
+        refused."""
         lam = float(lam)
         if lam not in self._values:
-            try:
-                variant = self.problem.with_parameters(**{self.parameter: lam})
-            except InvalidParameterError as exc:
-                raise OutsideDomain(f"{self.parameter} = {lam:.10g}: {exc}") from None
-            named = variant.symbol_values()
+            case = self.case(lam)
+            named = case.symbol_values
             missing = [p.name for p in self.params[:-1] if p.name not in named]
             if missing:
                 raise OutsideDomain(f"the problem gives no value for {missing}")
-            vector = [named[p.name] for p in self.params[:-1]] + [variant.parameter_value()]
+            vector = [named[p.name] for p in self.params[:-1]] + [case.parameter_value]
             if len(self._values) > 4096:
                 self._values.clear()
             self._values[lam] = np.array(vector, dtype=float)
         return self._values[lam]
 
-    def _affine(self, lo: float, hi: float) -> np.ndarray | None:
-        """dp/dλ when the parameters move affinely with λ over the sweep (checked at its middle)."""
-        try:
-            a, b, mid = self.values(lo), self.values(hi), self.values(0.5 * (lo + hi))
-        except OutsideDomain:
-            return None
-        scale = np.maximum(1.0, np.maximum(np.abs(a), np.abs(b)))
-        if np.all(np.abs(mid - 0.5 * (a + b)) <= TRUE_CURVE_AFFINE_TOL * scale):
-            return (b - a) / (hi - lo)
-        return None
-
     def direction(self, lam: float) -> np.ndarray:
-        """dp/dλ at λ: exact for an affine map, else centred (one-sided at a domain edge)."""
-        if self.affine is not None:
-            return self.affine
-        h = FD_REL_STEP * max(1.0, abs(lam))
-        try:
-            up = self.values(lam + h)
-        except OutsideDomain:
-            return (self.values(lam) - self.values(lam - h)) / h
-        try:
-            down = self.values(lam - h)
-        except OutsideDomain:
-            return (up - self.values(lam)) / h
-        return (up - down) / (2 * h)
+        """dp/dλ at λ: the case's exact derivatives (of μ = 1/ε too, in the large regime)."""
+        case = self.case(lam)
+        rates, eps_rate = case.rate(self.parameter)
+        own = eps_rate
+        if self.system.regime is Regime.LARGE:
+            own = -eps_rate / case.epsilon**2
+        return np.array([rates.get(p.name, 0.0) for p in self.params[:-1]] + [own], dtype=float)
 
     def omega(self, lam: float) -> float:
         return float(self._omega(*self.values(lam)))
