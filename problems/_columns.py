@@ -116,11 +116,9 @@ def _message(exc: BaseException) -> str:
     return str(exc) or type(exc).__name__
 
 
-def _validated(problem, columns: dict[str, np.ndarray], size: int):
+def _validated(problem, columns: dict[str, np.ndarray], size: int, base: type):
     """Per point, the error :meth:`Problem.create` raises there and the warnings it gives
     (None: some check raised what ``create`` would not report as bad values)."""
-    from problems.base import Problem
-
     cls = type(problem)
     errors = [""] * size
     notes = [""] * size
@@ -141,7 +139,7 @@ def _validated(problem, columns: dict[str, np.ndarray], size: int):
         for i, k in enumerate(inverse.tolist()):
             if found[k] and not errors[i]:
                 errors[i] = found[k]
-    whole_set = getattr_static(cls, "check_values") is not getattr_static(Problem, "check_values")
+    whole_set = getattr_static(cls, "check_values") is not getattr_static(base, "check_values")
     if whole_set:  # whole-set checks: point by point
         names = [s.name for s in cls.parameter_specs]
         rows = {n: columns[n].tolist() for n in names if n in columns}
@@ -163,12 +161,13 @@ def _validated(problem, columns: dict[str, np.ndarray], size: int):
     return errors, notes
 
 
-def problem_columns(problem, columns: Mapping[str, np.ndarray]) -> ParameterColumns | None:
-    """:meth:`problems.Problem.parameter_columns` (see the module docstring)."""
-    from problems.base import Problem
-
+def problem_columns(
+    problem, columns: Mapping[str, np.ndarray], base: type
+) -> ParameterColumns | None:
+    """:meth:`problems.Problem.parameter_columns` (see the module docstring); ``base`` is
+    :class:`~problems.Problem` itself, whose methods a class may override."""
     cls = type(problem)
-    if any(getattr_static(cls, name) is not getattr_static(Problem, name) for name in OWN_METHODS):
+    if any(getattr_static(cls, name) is not getattr_static(base, name) for name in OWN_METHODS):
         return None
     system = problem.system()
     if not system.frame.one_solution_for_all_points:  # a driven point has its own steady state
@@ -188,7 +187,7 @@ def problem_columns(problem, columns: Mapping[str, np.ndarray]) -> ParameterColu
     read = _options_read(problem)
     if read is None or read & _varying(columns):
         return None
-    validated = _validated(problem, columns, size)
+    validated = _validated(problem, columns, size, base)
     if validated is None:
         return None
     errors, notes = validated

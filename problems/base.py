@@ -524,7 +524,7 @@ class Problem(Model, ABC):
         method options do not read the parameters that change (:mod:`problems._columns`)."""
         from problems._columns import problem_columns
 
-        return problem_columns(self, columns)
+        return problem_columns(self, columns, Problem)
 
     # ------------------------------------------------------------------ older duck-typed hooks
     def original_symbolic(self) -> tuple | None:

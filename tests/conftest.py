@@ -1,4 +1,5 @@
-"""Shared test configuration: hypothesis profiles (scipy's approach) and small helpers."""
+"""Shared test configuration: hypothesis profiles (scipy's approach), the test noise
+(PERTURB_TEST_NOISE) seeded per test, and small helpers."""
 
 import os
 import tempfile
@@ -40,3 +41,25 @@ def cache_folder(tmp_path, monkeypatch):
     monkeypatch.setenv("PERTURB_CACHE_DIR", str(tmp_path))
     monkeypatch.setattr(perturb.cache, "_WARNED", set())
     return tmp_path
+
+
+# PERTURB_TEST_NOISE=K (perturb/oracle/_noise.py): every integration and every shooting step moved
+# by up to K ulps, as another machine would. The noise is seeded per test from its node id, and
+# per fixture from its scope's node id and name (so a module fixture gets the same bits however
+# the tests are selected); processes a test starts (Dask workers, the CLI) inherit the seed.
+def _seed_noise(key: str) -> None:
+    from perturb.oracle import _noise
+
+    if _noise.ULPS:
+        _noise.seed(key)
+        os.environ["PERTURB_TEST_NOISE_SEED"] = key
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_fixture_setup(fixturedef, request):
+    _seed_noise(f"{request.node.nodeid}::{fixturedef.argname}")
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtest_call(item):
+    _seed_noise(item.nodeid)

@@ -52,6 +52,7 @@ from perturb._defaults import (
 )
 from perturb._lambdify import numpy_lambdify
 from perturb.errors import bad_value
+from perturb.oracle._noise import solve_noise
 from perturb.oracle.base import RHS, Integrator
 from perturb.oracle.floquet import count_near_one, expected_trivial_multipliers
 from perturb.oracle.orbit import OrbitStatus, PeriodicOrbit, multipliers_of
@@ -155,13 +156,13 @@ def _newton_step(newton: np.ndarray, target: np.ndarray, noise=None):
     """
     if noise is None:
         step, _, rank, _ = np.linalg.lstsq(newton, target, rcond=_RANK_RTOL)
-        return step, int(rank)
+        return solve_noise(step, newton, target), int(rank)
     u, sv, vt = np.linalg.svd(newton, full_matrices=False)
     components = u.T @ target
     kept = sv > _RANK_RTOL * sv[0]
     keep = kept & (np.abs(components) > float(np.linalg.norm(noise)))
     step = vt[keep].T @ (components[keep] / sv[keep])
-    return step, int(np.count_nonzero(kept))
+    return solve_noise(step, newton, target), int(np.count_nonzero(kept))
 
 
 def _variational_rhs(rhs, jac):
