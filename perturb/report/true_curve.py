@@ -25,7 +25,7 @@ def _numbers(mapping: dict) -> dict:
 def true_curve_as_dict(curves) -> dict | None:
     """The ``true_curve`` entry of ``perturb response --format json`` (None without ``--true``).
 
-    ``{"budget", "tolerance", "integrator", "curves": [{"branches", "status", "success",
+    ``{"budget", "tolerance", "measure", "integrator", "curves": [{"branches", "status", "success",
     "message", "shots", "points": [{"value", "state", "norms", "peaks", "harmonics",
     "multipliers", "stable"}]}], "bifurcations": [{"kind", "value", "curve", "norms", "peaks",
     "multiplier", "multipliers", "inside", "located", "note"}], "partings": [{"branch", "value",
@@ -76,6 +76,7 @@ def true_curve_as_dict(curves) -> dict | None:
     return {
         "budget": curves.budget,
         "tolerance": curves.tolerance,
+        "measure": curves.measure,
         "integrator": curves.integrator,
         "curves": out_curves,
         "bifurcations": sorted(bifurcations, key=lambda b: b["value"]),

@@ -60,6 +60,9 @@ from perturb.response.true_results import (
     TruePoint,
 )
 
+#: The amplitude measures a true point carries, by the analytic response's names.
+MEASURES = ("initial", "peak", "first-harmonic")
+
 __all__ = [
     "Parting",
     "TrueBifurcation",
@@ -79,6 +82,7 @@ def true_curves(
     budget: int = TRUE_CURVE_POINTS,
     tol: float = TRUE_CURVE_TOL,
     integrator=None,
+    measure: str = "initial",
 ) -> TrueCurves:
     """The true curves of a driven ``problem``'s response over ``parameter`` (module notes).
 
@@ -99,6 +103,9 @@ def true_curves(
     tol : float
         The relative amplitude difference at which the analytic and true curves part (> 0).
     integrator : Integrator or str, optional
+    measure : str
+        The amplitude compared where the curves part: ``initial`` (the initial-value norm),
+        ``peak`` (max |x|) or ``first-harmonic``, as the analytic response measures its points.
 
     Returns
     -------
@@ -108,11 +115,14 @@ def true_curves(
         raise bad_value("budget", budget, "give the most points of each true curve (>= 2)")
     if not (isinstance(tol, int | float) and math.isfinite(tol) and tol > 0):
         raise bad_value("tol", tol, "give a positive relative tolerance, e.g. 0.01")
+    if measure not in MEASURES:
+        raise bad_value("measure", measure, f"choose one of {list(MEASURES)}")
     grid = np.asarray(response.grid, dtype=float)
     try:
         setup = TrueFamily(problem, parameter, grid, order, integrator)
     except OutsideDomain as exc:
-        return TrueCurves(parameter, (), (), budget, tol, "", (f"not continued: {exc}",))
+        why = (f"not continued: {exc}",)
+        return TrueCurves(parameter, (), (), budget, tol, "", why, measure)
     width = float(grid[-1] - grid[0])
     seeds = _seeds(response, names)
     scale = max([1.0] + [float(np.max(np.abs(s[2]))) for s in seeds if s[2] is not None])
@@ -123,10 +133,10 @@ def true_curves(
         if isinstance(seeded, str):
             failures.append(seeded)
     built = tuple(_true_curve(setup, equations, *entry, grid) for entry in covered)
-    found = partings(setup, equations, response, names, covered, tol)
+    found = partings(setup, equations, response, names, covered, tol, measure)
     return TrueCurves(
         parameter, built, found, int(budget), float(tol), setup.family.integrator.name,
-        tuple(failures),
+        tuple(failures), measure,
     )  # fmt: skip
 
 
@@ -240,6 +250,7 @@ def _true_curve(setup, equations, curve, branches, shots, failure, grid) -> True
             TrueBifurcation(
                 kind=found.kind, value=lam, norms=here.norms, peaks=here.peaks,
                 multiplier=_critical(found.kind, shot.monodromy), multipliers=here.multipliers,
+                harmonics=here.harmonics,
                 inside=bool(lo <= lam <= hi), located=found.located,
                 note="; ".join(n for n in (found.note, note) if n),
             )

@@ -11,12 +11,19 @@ from perturb.response.true_results import Parting
 __all__ = ["partings"]
 
 
-def partings(setup, equations, response, names, covered, tol) -> tuple[Parting, ...]:
+def partings(
+    setup, equations, response, names, covered, tol, measure: str = "initial"
+) -> tuple[Parting, ...]:
     """Along each analytic branch, where it leaves the true curves by more than ``tol``: the
     largest difference over the resonant coordinates, relative to the true orbit's largest
-    amplitude, against the true point nearest it at the same grid value."""
+    amplitude, against the true point nearest it at the same grid value, both by ``measure``
+    (``initial`` from the states alone; ``peak`` and ``first-harmonic`` from a sampled shot)."""
     grid = [float(g) for g in response.grid]
     readings: dict[float, list[dict]] = {g: [] for g in grid}
+    # "no true orbit here" is known only when every curve was followed to its end; a curve that
+    # stopped short (budget, step floor) leaves the values it did not reach unknown, not parted
+    complete = all(curve.success for curve, *_ in covered)
+    coords = [c for c in response.coordinates if c in setup.harmonics]
     for curve, *_ in covered:
         if curve.points.shape[0] < 2:
             continue
@@ -24,10 +31,13 @@ def partings(setup, equations, response, names, covered, tol) -> tuple[Parting, 
             for x in found:
                 y0, lam = equations.unscale(x)
                 try:
-                    readings[g].append(setup.norms(lam, y0))
+                    if measure == "initial":
+                        readings[g].append(setup.norms(lam, y0))
+                    else:
+                        point = setup.point(lam, y0)
+                        readings[g].append({c: point.amplitude(c, measure) for c in coords})
                 except OutsideDomain:
                     continue
-    coords = [c for c in response.coordinates if c in setup.harmonics]
     first = coords[0] if coords else None
     by_id = {id(p): n for p, n in zip(response.points, names, strict=True)}
     out = []
@@ -37,7 +47,7 @@ def partings(setup, equations, response, names, covered, tol) -> tuple[Parting, 
         name = by_id.get(id(branch[len(branch) // 2]), "branch")
         rows = []
         for p in branch:
-            analytic = {c: float(p.norms[c]) for c in coords}
+            analytic = {c: _analytic(p, c, measure) for c in coords}
 
             def distance(true, analytic=analytic):
                 size = max(max(true[c] for c in coords), max(analytic.values()))
@@ -50,10 +60,17 @@ def partings(setup, equations, response, names, covered, tol) -> tuple[Parting, 
             if trues:
                 best = min(trues, key=distance)
                 rows.append((float(p.value), analytic[first], best[first], distance(best)))
-            else:
+            elif complete:
                 rows.append((float(p.value), analytic[first], math.nan, math.inf))
         out.extend(_crossings(name, rows, tol))
     return tuple(out)
+
+
+def _analytic(point, coordinate: str, measure: str) -> float:
+    """The analytic point's amplitude by ``measure`` (its initial-value norm is ``norms``)."""
+    if measure == "initial":
+        return float(point.norms[coordinate])
+    return float(point.amplitude(coordinate, measure))
 
 
 #: Amplitudes below this are the trivial response x = 0 (as the analytic branches' TRIVIAL).

@@ -8,6 +8,7 @@ import math
 from attrs import field, frozen
 
 from perturb._defaults import TRUE_CURVE_SAME_ORBIT
+from perturb.errors import bad_value
 
 __all__ = ["Parting", "TrueBifurcation", "TrueCurve", "TrueCurves", "TruePoint"]
 
@@ -53,8 +54,13 @@ class TruePoint:
     stable: bool | None
 
     def norm(self, coordinate: str | None = None) -> float:
-        """The analytic curve's measure of ``coordinate`` (default: the first)."""
+        """The initial-value measure of ``coordinate`` (default: the first resonant one)."""
         return self.norms[coordinate] if coordinate else next(iter(self.norms.values()))
+
+    def amplitude(self, coordinate: str | None = None, measure: str = "initial") -> float:
+        """``coordinate``'s amplitude by ``measure``: ``peak`` (max |x| over a period),
+        ``first-harmonic`` or ``initial`` (as the analytic response's points)."""
+        return _by_measure(self.norms, self.peaks, self.harmonics, coordinate, measure)
 
 
 @frozen
@@ -76,6 +82,8 @@ class TrueBifurcation:
     located : bool
         The sign change was located to the continuation's tolerance.
     note : str
+    harmonics : dict
+        As :class:`TruePoint`'s, at the point.
     """
 
     kind: str
@@ -87,6 +95,11 @@ class TrueBifurcation:
     inside: bool
     located: bool = True
     note: str = ""
+    harmonics: dict = field(factory=dict)
+
+    def amplitude(self, coordinate: str | None = None, measure: str = "initial") -> float:
+        """As :meth:`TruePoint.amplitude`, at the special point."""
+        return _by_measure(self.norms, self.peaks, self.harmonics, coordinate, measure)
 
 
 @frozen
@@ -171,6 +184,9 @@ class TrueCurves:
     integrator : str
     failures : tuple of str
         Seeds that could not be corrected onto a true orbit, or why nothing was continued.
+    measure : str
+        The amplitude measure of the partings (and of a plot): ``initial``, ``peak`` or
+        ``first-harmonic``.
     """
 
     parameter: str
@@ -180,6 +196,7 @@ class TrueCurves:
     tolerance: float
     integrator: str = ""
     failures: tuple = field(converter=tuple, factory=tuple)
+    measure: str = "initial"
 
     @property
     def bifurcations(self) -> tuple:
@@ -190,6 +207,15 @@ class TrueCurves:
             if not any(_same_point(b, seen) for seen in out):
                 out.append(b)
         return tuple(out)
+
+
+def _by_measure(norms, peaks, harmonics, coordinate, measure) -> float:
+    table = {"peak": peaks, "first-harmonic": harmonics, "initial": norms}
+    if measure not in table:
+        raise bad_value("measure", measure, f"choose one of {sorted(table)}")
+    values = table[measure]
+    coordinate = coordinate or next(iter(norms))
+    return float(values.get(coordinate, math.nan))
 
 
 def _same_point(a: TrueBifurcation, b: TrueBifurcation) -> bool:

@@ -36,7 +36,8 @@ def test_true_curve_json_table_and_plot(capsys, tmp_path):
     assert code == 0, err
     entry = json.loads(out)["true_curve"]
     assert set(entry) == {
-        "budget", "tolerance", "integrator", "curves", "bifurcations", "partings", "failures",
+        "budget", "tolerance", "measure", "integrator", "curves", "bifurcations", "partings",
+        "failures",
     }  # fmt: skip
     assert entry["budget"] == 60 and entry["tolerance"] == 0.01 and entry["failures"] == []
     (curve,) = entry["curves"]

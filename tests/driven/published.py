@@ -50,7 +50,7 @@ class TwinWell(DrivenProblem):
         ParameterSpec("Gamma", 0.1, "forcing amplitude", positive),
         ParameterSpec("Omega", FREQUENCY / math.sqrt(2), "forcing frequency", positive_frequency),
     )  # fmt: skip
-    resonance_frequency = 1.0
+    parameter_map = {"sigma": "(Omega - 1)/eps"}  # Omega = 1 + eps*sigma
 
     @classmethod
     def build_system(cls) -> QuasilinearSystem:
@@ -170,7 +170,7 @@ class ForcedVanDerPol(DrivenProblem):
         ParameterSpec("F", 2.0, "scaled forcing", positive),
         ParameterSpec("Omega", 1.0, "forcing frequency", positive_frequency),
     )  # fmt: skip
-    resonance_frequency = 1.0
+    parameter_map = {"sigma": "(Omega - 1)/eps"}  # Omega = 1 + eps*sigma
 
     @classmethod
     def build_system(cls) -> QuasilinearSystem:

@@ -169,7 +169,7 @@ def test_a_two_mode_problem():
             ParameterSpec("F", 1.0, "forcing", positive),
             ParameterSpec("Omega", 1.0, "frequency", positive_frequency),
         )  # fmt: skip
-        resonance_frequency = 1.0
+        parameter_map = {"sigma": "(Omega - 1)/eps"}
 
         @classmethod
         def build_system(cls):

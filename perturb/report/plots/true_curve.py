@@ -5,8 +5,6 @@ curve parts from them by more than the tolerance."""
 
 from __future__ import annotations
 
-import math
-
 __all__ = ["draw_true_curves"]
 
 #: Marker, colour and legend label of each kind of special point of a true curve.
@@ -19,13 +17,13 @@ MARKERS = {
 _STYLE = {True: "-", False: ":", None: "-."}
 
 
-def _segments(points, coordinate):
+def _segments(points, coordinate, measure):
     """Runs of consecutive points with the same stability: (stable, values, amplitudes). A
     marginal point among others (a fold's, where a multiplier is at 1) joins the run before it;
     only a run of marginal points (a conservative system's) is drawn as marginal."""
     run, key = [], object()
     for p in points:
-        amplitude = p.norms.get(coordinate, math.nan)
+        amplitude = p.amplitude(coordinate, measure)
         stable = p.stable if p.stable is not None or not run else key
         if stable is not key and run:
             yield key, [q[0] for q in run], [q[1] for q in run]
@@ -39,14 +37,14 @@ def _segments(points, coordinate):
 def draw_true_curves(ax, curves, coordinate: str, parameter: str) -> None:
     """Draw ``curves`` (:class:`perturb.response.true_curve.TrueCurves`) on ``ax``.
 
-    The amplitude is the analytic curve's measure of ``coordinate`` (the points' ``norms``), so
-    that the two curves are compared on the same axis.
+    The amplitude is ``curves.measure`` of ``coordinate`` (the analytic curve's measure), so that
+    the two curves are compared on the same axis.
     """
     if curves is None:
         return
     labelled = set()
     for curve in curves.curves:
-        for stable, values, amplitudes in _segments(curve.points, coordinate):
+        for stable, values, amplitudes in _segments(curve.points, coordinate, curves.measure):
             label = {True: "true, stable", False: "true, unstable", None: "true, marginal"}[stable]
             ax.plot(values, amplitudes, _STYLE[stable], color="k", lw=0.9,
                     label=None if label in labelled else label)  # fmt: skip
@@ -54,7 +52,8 @@ def draw_true_curves(ax, curves, coordinate: str, parameter: str) -> None:
     for kind, (marker, colour, label) in MARKERS.items():
         found = [b for b in curves.bifurcations if b.kind == kind]
         if found:
-            ax.plot([b.value for b in found], [b.norms.get(coordinate, math.nan) for b in found],
+            ax.plot([b.value for b in found],
+                    [b.amplitude(coordinate, curves.measure) for b in found],
                     marker, color=colour, ms=6, ls="none", label=label)  # fmt: skip
     if curves.partings:
         ax.plot([p.value for p in curves.partings], [p.analytic for p in curves.partings], "X",
