@@ -58,9 +58,13 @@ class Traced:
     first : tuple of Curve
         The first-order curves.
     failures : tuple of str
+        Curves that could not be followed (their status and where), census that failed.
     harmonics : tuple of int
     group : int
         The number of time shifts that map a response onto itself (p G).
+    notes : tuple of str
+        First-order curves with no order-N curve over them in the window (the first-order
+        equations' artefact there: the homotopy to order N turns back from each of its points).
     """
 
     line: object = field(eq=False)
@@ -71,6 +75,7 @@ class Traced:
     failures: tuple = field(converter=tuple)
     harmonics: tuple = field(converter=tuple)
     group: int = 1
+    notes: tuple = field(converter=tuple, factory=tuple)
 
     def at(self, values) -> list[list[tuple[np.ndarray, int]]]:
         """Every order-N response at each λ in ``values``: per value, a list of ``(amplitudes,
@@ -174,6 +179,7 @@ def _lift(order_n: CurveEquations, first_order: CurveEquations, curve, cap: floa
             _homotopy(order_n, first_order, float(x[-1])), np.append(x[:-1], 0.0),
             lam_range=(-HOMOTOPY_MARGIN, 1 + HOMOTOPY_MARGIN), direction=1.0,
             domain=lambda y: "" if float(np.max(np.abs(y[:-1]))) <= cap else "too large",
+            **homotopy_steps(float(np.max(np.abs(x[:-1])))),
         )  # fmt: skip
         if path.status is not ContinuationStatus.LEFT_RANGE or path.points[-1][-1] < 1:
             continue
@@ -186,15 +192,28 @@ def _lift(order_n: CurveEquations, first_order: CurveEquations, curve, cap: floa
 #: The homotopy's range beyond [0, 1]: it is followed until it leaves it, so that τ = 1 is read
 #: inside the curve.
 HOMOTOPY_MARGIN = 0.05
+#: The homotopy's initial and largest steps, as fractions of 1 + the amplitude it starts from: its
+#: arclength runs in the amplitudes as much as in τ, and a root moves by O(ε) of its size.
+HOMOTOPY_STEP = 0.02
+HOMOTOPY_MAX_STEP = 0.1
+
+
+def homotopy_steps(size: float) -> dict:
+    """Step options of a homotopy in the truncation from a point of amplitude ``size``."""
+    scale = 1.0 + size
+    return {"step": HOMOTOPY_STEP * scale, "max_step": HOMOTOPY_MAX_STEP * scale}
 
 
 def _where(line, x) -> str:
     return f"{line.parameter} = {float(line.lam(x[-1])):.8g}, amplitudes {np.round(x[:-1], 6).tolist()}"
 
 
-def trace(equations, order: int, line, low: float, high: float) -> Traced:
+def trace(
+    equations, order: int, line, low: float, high: float, census_at=None, folds: bool = True
+) -> Traced:
     """The order-N curves of ``equations`` on ``line`` over the window [low, high] of the swept
-    parameter (see the module notes)."""
+    parameter (see the module notes). ``census_at``: where the census is taken (default the
+    window's ends); ``folds``: seed from the exact first-order folds too (closed curves)."""
     n = len(equations.amplitudes)
     symbols = {p.name: p for p in equations.system.parameters}
     harmonics = tuple(equations.harmonics)
@@ -205,8 +224,9 @@ def trace(equations, order: int, line, low: float, high: float) -> Traced:
     order_eqs = line_equations(compiled_displacement(equations, order), line, n)
     mu_range = (float(line.mu(low)), float(line.mu(high)))
     failures: list[str] = []
+    notes: list[str] = []
     seeds = []
-    for lam in (low, high):
+    for lam in (low, high) if census_at is None else census_at:
         values, eps = line.at(lam)
         fixed = {symbols[k]: exact_number(v) for k, v in zip(line.names, values, strict=True)}
         roots, why = census(equations, fixed)
@@ -214,7 +234,7 @@ def trace(equations, order: int, line, low: float, high: float) -> Traced:
             failures.append(f"{line.parameter} = {lam:g}: {why}")
         for i in distinct_orbits(roots, harmonics, group):
             seeds.append(np.append(roots[i], line.mu(lam)))
-    if line.affine:
+    if line.affine and folds:
         mu = sp.Symbol("mu_line")
         base, slope = _exact_line(line, mu)
         folds, why = line_folds(equations, base, slope, mu)
@@ -243,7 +263,7 @@ def trace(equations, order: int, line, low: float, high: float) -> Traced:
     for curve in firsts:
         lifted = _lift(order_eqs, first_eqs, curve, cap, mu_range)
         if lifted is None:
-            failures.append(
+            notes.append(
                 f"the first-order branch through {_where(line, curve.points[0])} has no order-"
                 f"{order} branch over it: from its {LIFT_TRIES} best-conditioned points, the "
                 "homotopy from the first-order equations to the order-N ones turns back"
@@ -255,4 +275,6 @@ def trace(equations, order: int, line, low: float, high: float) -> Traced:
         branches.append(Branch(traced, curve))
         if not traced.success:
             failures.append(f"order {order}: {traced.message}")
-    return Traced(line, (low, high), order, branches, firsts, failures, harmonics, group)
+    return Traced(
+        line, (low, high), order, branches, firsts, failures, harmonics, group, tuple(notes)
+    )

@@ -39,11 +39,11 @@ from collections.abc import Sequence
 import numpy as np
 
 from perturb._defaults import (
+    DEFAULT_TOL,
     TRUE_CURVE_MULTIPLIER_TOL,
     TRUE_CURVE_POINTS,
     TRUE_CURVE_SAME_ORBIT,
     TRUE_CURVE_SAMPLES,
-    TRUE_CURVE_TOL,
 )
 from perturb.errors import PerturbError, bad_value
 from perturb.response.true_family import OutsideDomain, ScaledEquations, TrueFamily, floquet_tests
@@ -80,7 +80,7 @@ def true_curves(
     names: Sequence[str],
     order: int,
     budget: int = TRUE_CURVE_POINTS,
-    tol: float = TRUE_CURVE_TOL,
+    tol: float = DEFAULT_TOL,
     integrator=None,
     measure: str = "initial",
 ) -> TrueCurves:

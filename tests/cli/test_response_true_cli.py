@@ -39,7 +39,8 @@ def test_true_curve_json_table_and_plot(capsys, tmp_path):
         "budget", "tolerance", "measure", "integrator", "curves", "bifurcations", "partings",
         "failures",
     }  # fmt: skip
-    assert entry["budget"] == 60 and entry["tolerance"] == 0.01 and entry["failures"] == []
+    assert entry["budget"] == 60 and entry["failures"] == []
+    assert entry["tolerance"] == 0.1 and entry["measure"] == "peak"  # --tol's and --measure's
     (curve,) = entry["curves"]
     assert curve["branches"] == ["trivial"] and curve["success"]
     assert 2 <= len(curve["points"]) <= 60
@@ -73,8 +74,8 @@ def test_a_spent_budget_keeps_the_curve_and_says_so(capsys):
         (["--true", "0"], "from 2 to 10000"),
         (["--true", "20000"], "the budget's maximum"),
         (["--true", "many"], "a whole number from 2 to 10000"),
-        (["--true", "--tol", "2"], "between 0 and 1"),
-        (["--true", "--tol", "nan"], "between 0 and 1"),
+        (["--true", "--tol", "nan"], "a finite number > 0"),
+        (["--true", "--tol", "-1"], "a finite number > 0"),
     ],
 )
 def test_bad_true_input_is_one_line_and_exit_2(capsys, argv, words):
