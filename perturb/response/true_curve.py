@@ -82,7 +82,7 @@ def true_curves(
     budget: int = TRUE_CURVE_POINTS,
     tol: float = DEFAULT_TOL,
     integrator=None,
-    measure: str = "initial",
+    measure: str | None = None,
 ) -> TrueCurves:
     """The true curves of a driven ``problem``'s response over ``parameter`` (module notes).
 
@@ -103,9 +103,9 @@ def true_curves(
     tol : float
         The relative amplitude difference at which the analytic and true curves part (> 0).
     integrator : Integrator or str, optional
-    measure : str
+    measure : str, optional
         The amplitude compared where the curves part: ``initial`` (the initial-value norm),
-        ``peak`` (max |x|) or ``first-harmonic``, as the analytic response measures its points.
+        ``peak`` (max |x|) or ``first-harmonic`` (default: the analytic response's own).
 
     Returns
     -------
@@ -115,6 +115,7 @@ def true_curves(
         raise bad_value("budget", budget, "give the most points of each true curve (>= 2)")
     if not (isinstance(tol, int | float) and math.isfinite(tol) and tol > 0):
         raise bad_value("tol", tol, "give a positive relative tolerance, e.g. 0.01")
+    measure = response.measure if measure is None else measure
     if measure not in MEASURES:
         raise bad_value("measure", measure, f"choose one of {list(MEASURES)}")
     grid = np.asarray(response.grid, dtype=float)
