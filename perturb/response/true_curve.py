@@ -88,8 +88,8 @@ def true_curves(
 
     Parameters
     ----------
-    problem
-        The driven problem (``system()``, ``with_parameters()``, ``solve(order, family=)``).
+    problem : problems.base.Problem
+        The driven problem (its ``system()``, ``case()`` and ``name``).
     parameter : str
         The swept parameter.
     response : FrequencyResponse
@@ -110,6 +110,20 @@ def true_curves(
     Returns
     -------
     TrueCurves
+
+    Examples
+    --------
+    The undamped linear Mathieu oscillator: x = 0 is its only analytic branch, and the true curve
+    through it has two branch points, the first instability tongue's edges:
+
+    >>> import numpy as np
+    >>> from problems import get_problem
+    >>> from perturb.response.model import problem_response
+    >>> mathieu = get_problem("parametric-duffing").create(zeta=0.0, gamma=0.0)
+    >>> result = problem_response(mathieu, "Omega", np.linspace(1.9, 2.1, 3))
+    >>> curves = true_curves(mathieu, "Omega", result.response, result.branches, order=3)
+    >>> [(b.kind, round(b.value, 9)) for b in curves.bifurcations]
+    [('branch-point', 1.949698438), ('branch-point', 2.049678773)]
     """
     if isinstance(budget, bool) or not isinstance(budget, int | np.integer) or budget < 2:
         raise bad_value("budget", budget, "give the most points of each true curve (>= 2)")
