@@ -356,6 +356,11 @@ SECTION_ZERO = 1e-8
 #: closed-form root in floating point, which can leave a round-off imaginary part of ~1e-16.
 REAL_ROOT_TOL = 1e-12
 
+#: Singular values below this fraction of the largest count as zero in the rank of the shooting's
+#: Newton matrix (its columns are O(1) near the identity; 1e-9 keeps directions resolved to
+#: ~1e-7 of the state, well above what an integration at 1e-12 can blur).
+SHOOTING_RANK_RTOL = 1e-9
+
 # --------------------------------------------------------------------------------------------------
 # Pseudo-arclength continuation (perturb.continuation)
 # --------------------------------------------------------------------------------------------------
