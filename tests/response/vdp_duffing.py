@@ -20,6 +20,7 @@ class VdPDuffing(DrivenProblem):
         ParameterSpec("F", 1.0, "forcing"),
         ParameterSpec("Omega", 1.0, "excitation frequency", positive_frequency),
     )
+    parameter_map = {"sigma": "(Omega - 1)/eps"}  # Omega = 1 + eps*sigma
 
     @classmethod
     def build_system(cls):
