@@ -351,6 +351,24 @@ INVALID_MAX_STEPS = ESTIMATE_FAILED_MAX_STEPS
 #: of the state scale.
 SECTION_ZERO = 1e-8
 
+#: A root of a parameter map's inverse (a fold's σ mapped back to Ω, the user values at another ε)
+#: counts as real when its imaginary part is below this, relative to its size: sympy evaluates the
+#: closed-form root in floating point, which can leave a round-off imaginary part of ~1e-16.
+REAL_ROOT_TOL = 1e-12
+
+#: Singular values below this fraction of the largest count as zero in the rank of the shooting's
+#: Newton matrix (its columns are O(1) near the identity; 1e-9 keeps directions resolved to
+#: ~1e-7 of the state, well above what an integration at 1e-12 can blur).
+SHOOTING_RANK_RTOL = 1e-9
+
+#: Relative size (to the largest) below which a slow-flow eigenvalue's real part counts as zero.
+SLOW_FLOW_ZERO = 1e-9
+
+#: Amplitudes at which the backbone is drawn (the backbone is drawn through the region the
+#: response occupies: from 0 to BACKBONE_REACH times the largest response amplitude).
+BACKBONE_SAMPLES = 41
+#: The backbone is drawn up to this multiple of the largest response amplitude.
+BACKBONE_REACH = 1.05
 # --------------------------------------------------------------------------------------------------
 # Pseudo-arclength continuation (perturb.continuation)
 # --------------------------------------------------------------------------------------------------
@@ -425,7 +443,35 @@ LIFT_TRIES = 6
 #: (marked outside), and a branch that turns just beyond an end is followed back into it.
 WINDOW_MARGIN = 0.1
 
-#: A root of a parameter map's inverse (a fold's σ mapped back to Ω, the user values at another ε)
-#: counts as real when its imaginary part is below this, relative to its size: sympy evaluates the
-#: closed-form root in floating point, which can leave a round-off imaginary part of ~1e-16.
-REAL_ROOT_TOL = 1e-12
+# --------------------------------------------------------------------------------------------------
+# The true curve past the series (perturb.oracle.driven_family, perturb.response.true_curve)
+# --------------------------------------------------------------------------------------------------
+#: heyoka compiles a driven family's augmented field (state, parameters, monodromy, sensitivity:
+#: 19 equations for one oscillator with 5 parameters) in compact mode: measured on the forced
+#: Duffing, 1.1 s to compile and 0.7 ms a shot against 2.8 s and 0.37 ms unrolled; a true curve
+#: takes a few hundred to a few thousand shots, so compact mode is the faster at every size met.
+FAMILY_COMPACT_MODE = True
+#: The most points of one true curve by default (``perturb response --true``; half each way from its
+#: seed), and the most a user may ask for: a curve across a sweep takes 150-650 points on the
+#: shipped problems (steps of 0.5-2 % of the range's width in scaled units, shorter at bends and
+#: folds; benchmarks/bench_true_curve.md), each a Newton correction of 3-5 shots of ~1 ms of CPU;
+#: 10^4 points is a few minutes of the oracle, the budget's ceiling.
+TRUE_CURVE_POINTS = 1000
+TRUE_CURVE_MAX_POINTS = 10_000
+#: The true curves are followed this fraction of the sweep's width past each end, so that a
+#: special point just outside the sweep is reported (as outside).
+TRUE_CURVE_MARGIN = 0.05
+#: Samples of a true orbit per response period for its peak |x| (refined by a parabola through the
+#: largest three: relative error ~(pi/n)^4 m^4, 1e-7 for the resonant harmonic m = 1) and its
+#: resonant harmonic's amplitude (the trapezoid rule on a periodic orbit: spectrally accurate).
+TRUE_CURVE_SAMPLES = 128
+#: A largest |Floquet multiplier| within this of 1 is marginal (None: a conservative orbit, whose
+#: multipliers lie on the circle to the integration's accuracy, ~1e-13); a Neimark-Sacker test
+#: below it is round-off (a conservative map's pairs all have product 1), and the square root of
+#: it is how close to the circle a located pair must lie (an eigenvalue of a double root moves
+#: like the square root of the perturbation).
+TRUE_CURVE_MULTIPLIER_TOL = 1e-9
+#: Two scaled points (state / its scale, parameter / the sweep's width) closer than this are one
+#: orbit: a seed on a curve already followed. The corrector converges to 1e-10; distinct branches
+#: lie orders of magnitude further apart.
+TRUE_CURVE_SAME_ORBIT = 1e-6

@@ -239,7 +239,15 @@ def _add_response(sub) -> None:
     )  # fmt: skip
     response.add_argument(
         "--tol", default=None, metavar="TOL",
-        help="relative orbit error above which a shot point is marked (default 0.1)",
+        help="relative orbit error above which a shot point is marked, and relative amplitude "
+        "difference at which the analytic and true curves part (--true) (default 0.1)",
+    )  # fmt: skip
+    response.add_argument(
+        "--true", nargs="?", const="default", default=None, metavar="POINTS", dest="true_curve",
+        help="also continue the TRUE periodic orbits from the branches (shooting with the period "
+        "fixed, pseudo-arclength, Floquet multipliers) and report their folds, period doublings, "
+        "Neimark-Sacker and branch points and where the analytic curve parts from them; at most "
+        "POINTS points per curve (default 1000, at most 10000)",
     )  # fmt: skip
     response.add_argument(
         "--plot", default=None, metavar="FILE",

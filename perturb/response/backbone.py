@@ -19,16 +19,12 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._defaults import BACKBONE_REACH, BACKBONE_SAMPLES
 from perturb.errors import PerturbError
 from perturb.system import QuasilinearSystem
 
 __all__ = ["Backbone", "backbone", "free_system"]
 
-#: Amplitudes of the backbone, as fractions of the largest response amplitude found (the
-#: backbone is drawn through the region the response occupies).
-BACKBONE_SAMPLES = 41
-#: The backbone is drawn up to this multiple of the largest response amplitude.
-BACKBONE_REACH = 1.05
 
 
 @frozen

@@ -82,6 +82,8 @@ class ProblemResponse:
     backbone : Backbone or None
     true : tuple of TrueResponse
         The shot points (empty unless asked).
+    true_curve : perturb.response.true_curve.TrueCurves or None
+        The true periodic orbits continued from the branches (``--true``; None unless asked).
     """
 
     problem: str
@@ -90,6 +92,7 @@ class ProblemResponse:
     branches: tuple = field(converter=tuple)
     backbone: Backbone | None = None
     true: tuple = field(converter=tuple, factory=tuple)
+    true_curve: object = None
 
 
 def parse_sweep(text: str, argument: str = "--sweep") -> tuple[str, np.ndarray]:
@@ -177,7 +180,7 @@ def check_request(problem, parameter: str):
 
 def problem_response(
     problem, parameter: str, grid: Sequence[float], order: int = 1, validate: int = 0,
-    measure: str = "peak", tol: float | None = None,
+    measure: str = "peak", tol: float | None = None, true: int = 0,
 ) -> ProblemResponse:  # fmt: skip
     """The frequency response of a driven ``problem`` over ``grid`` values of ``parameter``.
 
@@ -204,6 +207,10 @@ def problem_response(
         ``first-harmonic`` or ``initial`` (:data:`perturb.response.measures.MEASURES`).
     tol : float, optional
         The relative orbit error above which a shot point is marked (default ``DEFAULT_TOL``).
+    true : int
+        Continue the true periodic orbits from the branches, at most this many points per curve
+        (0: not; :func:`perturb.response.true_curve.true_curves`), and mark where the analytic
+        curve parts from them by more than ``tol`` (relative, in ``measure``).
 
     Returns
     -------
@@ -244,8 +251,18 @@ def problem_response(
     reference = system.coordinates[system.reference_index].name
     top = max((p.amplitude(reference, measure) for p in response.points), default=math.nan)
     spine = backbone(problem.case(), parameter, top, order, measure) if response.points else None
-    true = _true_points(result, response, validate, measure, tol) if validate else ()
-    return ProblemResponse(problem.name, parameter, response, branch_names_, spine, true)
+    true_points = _true_points(result, response, validate, measure, tol) if validate else ()
+    curves = None
+    if true:
+        from perturb.response.true_curve import true_curves
+
+        curves = true_curves(
+            problem, parameter, response, branch_names_, order, budget=true, tol=tol,
+            measure=measure,
+        )  # fmt: skip
+    return ProblemResponse(
+        problem.name, parameter, response, branch_names_, spine, true_points, curves
+    )
 
 
 #: Most points ``--validate`` shoots on each branch besides the ones it always shoots (largest

@@ -36,8 +36,9 @@ def test_response_json_contract(capsys):
     data = json.loads(out)
     assert set(data) == {
         "problem", "parameter", "order", "epsilon", "parameters", "points", "folds", "backbone",
-        "true", "failures", "measure", "special", "curves",
+        "true", "failures", "measure", "special", "curves", "true_curve",
     }  # fmt: skip
+    assert data["true_curve"] is None  # only with --true
     assert data["parameter"] == "Omega" and data["order"] == 3  # the response's default order
     assert data["measure"]["name"] == "peak"  # the plotted default, and the JSON says which
     assert all(set(p) == POINT_KEYS | POINT_EXTENSIONS for p in data["points"])
