@@ -139,6 +139,20 @@ def locate_on_curve(curve, test: TestFunction, k: int, f0: float, f1: float):
     For test functions too costly to evaluate inside the continuation: evaluate them at the
     curve's points afterwards (in one batch), then locate each sign change here.
 
+    Parameters
+    ----------
+    curve : Curve
+        A continued curve (it carries its equations).
+    test : TestFunction
+    k : int
+        The segment: between ``curve.points[k]`` and ``curve.points[k + 1]``.
+    f0, f1 : float
+        ``test``'s values at its ends.
+
+    Returns
+    -------
+    SpecialPoint or None
+
     Examples
     --------
     >>> import numpy as np

@@ -26,7 +26,6 @@ from perturb.system import QuasilinearSystem
 __all__ = ["Backbone", "backbone", "free_system"]
 
 
-
 @frozen
 class Backbone:
     """The free, undamped system's frequency against its amplitude (the response's spine).

@@ -30,12 +30,13 @@ LIOUVILLE = 1e-10
 MAGNUS_AGREE = 1e-8
 HERE = __import__("pathlib").Path(__file__).parent
 
+SLOW = pytest.mark.slow
 DAMPED = [
     ("forced-duffing", {}, (0.95, 1.2), ("zeta",)),
     ("forced-duffing", {"gamma": -1.0}, (0.8, 1.05), ("zeta",)),
-    ("parametric-duffing", {}, (1.9, 2.2), ("zeta",)),
-    ("superharmonic-duffing", {}, (0.3, 0.37), ("zeta",)),
-    ("autoparametric-absorber", {}, (1.9, 2.1), ("zeta1", "zeta2")),
+    pytest.param("parametric-duffing", {}, (1.9, 2.2), ("zeta",), marks=SLOW),
+    pytest.param("superharmonic-duffing", {}, (0.3, 0.37), ("zeta",), marks=SLOW),
+    pytest.param("autoparametric-absorber", {}, (1.9, 2.1), ("zeta1", "zeta2"), marks=SLOW),
 ]
 
 
@@ -97,7 +98,10 @@ def _dop853_multipliers(problem, order, amplitudes):
 
 @pytest.mark.parametrize(
     ("name", "omega", "branch"),
-    [("forced-duffing", 1.15, "upper"), ("autoparametric-absorber", 1.96, "upper")],
+    [
+        ("forced-duffing", 1.15, "upper"),
+        pytest.param("autoparametric-absorber", 1.96, "upper", marks=pytest.mark.slow),
+    ],
 )
 def test_the_magnus_monodromy_is_dop853s(name, omega, branch):
     problem = get_problem(name).create(Omega=omega)

@@ -56,6 +56,7 @@ def _true_fold(result, fold) -> float:
     return _bisect(inside, outside, exists)
 
 
+@pytest.mark.slow
 def test_the_forced_duffings_jump_down_converges_with_the_order():
     """The jump-down fold of the defaults (the issue's 1.2629): each order nearer the true fold."""
     problem = get_problem("forced-duffing").create()
@@ -96,6 +97,7 @@ def test_a_fold_outside_the_first_order_bracket_is_found_and_one_beside_the_swee
     assert beside.folds[0].value == pytest.approx(fold.value, abs=1e-9)
 
 
+@pytest.mark.slow
 def test_the_entrainment_boundary_converges_with_the_order():
     """A forced van der Pol-Duffing's Neimark-Sacker point (the slow flow's Hopf, where a pair of
     multipliers leaves the unit circle): each order nearer where the true orbit's does."""
