@@ -18,6 +18,7 @@ from attrs import field, frozen
 
 from perturb._defaults import EVENT_MAX_ITER, EVENT_TOL
 from perturb.continuation.newton import bordered, correct, tangent
+from perturb.continuation.special import SpecialPoint
 
 __all__ = [
     "BRANCH_POINT",
@@ -167,8 +168,6 @@ def locate_on_curve(curve, test: TestFunction, k: int, f0: float, f1: float):
     >>> round(float(point.x[0]), 12), round(point.value, 12)
     (-1.2, -0.528)
     """
-    from perturb.continuation.result import SpecialPoint
-
     x0, t0 = curve.points[k], curve.tangents[k]
     length = float(t0 @ (curve.points[k + 1] - x0))
     sigma, here, value, located = locate(test, curve.equations, x0, t0, length, f0, f1)

@@ -20,6 +20,7 @@ import sympy as sp
 
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import AmplitudeEquations
+from perturb.response.exact import exact_number
 from perturb.solution import PeriodicSolution, Status
 
 __all__ = [
@@ -87,16 +88,6 @@ class BranchPoint:
         if coordinate is None:
             return next(iter(self.norms.values()))
         return self.norms[coordinate]
-
-
-def exact_number(value) -> sp.Rational:
-    """A number as the exact rational of its shortest decimal (what the user typed)."""
-    if isinstance(value, sp.Basic) and value.is_Rational:
-        return value
-    value = float(value)
-    if not math.isfinite(value):
-        raise bad_value("value", value, "give a finite number", InvalidParameterError)
-    return sp.Rational(repr(value))
 
 
 def _fixed(equations: AmplitudeEquations, values: Mapping) -> dict:

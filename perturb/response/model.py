@@ -20,18 +20,13 @@ import math
 from collections.abc import Sequence
 
 import numpy as np
-import sympy as sp
 from attrs import field, frozen
 
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import amplitude_equations
 from perturb.response.backbone import Backbone, backbone
-from perturb.response.branches import exact_number
 from perturb.response.curve import (
-    Fold,
     FrequencyResponse,
-    _folds,
-    continue_fold,
 )
 
 __all__ = ["Backbone", "ProblemResponse", "TrueResponse", "problem_response"]
@@ -337,36 +332,3 @@ def _true_points(result, response, count, measure, tol) -> tuple[TrueResponse, .
             )
         )
     return tuple(out)
-
-
-def _problem_folds(equations, case, parameter, grid) -> list[Fold]:
-    """Folds in the one system symbol that ``parameter`` moves, mapped back exactly by the case's
-    parameter map (none when it moves ε or several symbols)."""
-    moved = case.moves(parameter)
-    if len(moved) != 1:
-        return []
-    (name,) = moved
-    (symbol,) = [p for p in equations.system.parameters if p.name == name]
-    first, last = case.at(**{parameter: float(grid[0])}), case.at(**{parameter: float(grid[-1])})
-    s0, s1 = first.symbol_values[name], last.symbol_values[name]
-    fixed = {
-        p: exact_number(first.symbol_values[p.name])
-        for p in equations.system.parameters
-        if p.name in first.symbol_values and p.name != name
-    }
-    rows = [sp.expand(e.xreplace(fixed)) for e in equations.displacement(0)]
-    low, high = sorted((s0, s1))
-    out = []
-    eps = float(case.epsilon)
-    for fold in _folds(rows, list(equations.amplitudes), symbol, low, high, equations):
-        fold = continue_fold(fold, equations, equations.order, fixed, symbol, eps)
-        out.append(
-            Fold(
-                case.to_user(parameter, name, fold.value),
-                fold.amplitudes,
-                fold.norms,
-                case.to_user(parameter, name, fold.first_order),
-                fold.note,
-            )
-        )
-    return sorted(out, key=lambda f: f.value)
