@@ -350,3 +350,8 @@ INVALID_MAX_STEPS = ESTIMATE_FAILED_MAX_STEPS
 #: A velocity component counts as zero at the start (candidate Poincaré section) below this fraction
 #: of the state scale.
 SECTION_ZERO = 1e-8
+
+#: A root of a parameter map's inverse (a fold's σ mapped back to Ω, the user values at another ε)
+#: counts as real when its imaginary part is below this, relative to its size: sympy evaluates the
+#: closed-form root in floating point, which can leave a round-off imaginary part of ~1e-16.
+REAL_ROOT_TOL = 1e-12

@@ -4,13 +4,13 @@
 forcing level, the detuning ``sigma``…) of a driven problem. The amplitude equations are derived
 once for the problem's symbolic system; at each grid value the problem is re-created (its
 parameter checks apply) and every branch is found at its values (:func:`branches_at`). The folds
-come exactly from the first-order equations in the system's parameter the swept one moves (σ for
-Ω: :math:`\\Omega = (p/q)\\omega + \\varepsilon\\sigma`), mapped back to the swept one. The
-backbone is the free engine's frequency of the unforced, undamped system, if the problem gives one
-(``backbone_system``). With ``validate`` > 0 the true orbit is shot at that many points of every
+come exactly from the first-order equations in the system symbol the swept parameter moves (σ for
+Ω: :math:`\\Omega = (p/q)\\omega + \\varepsilon\\sigma`), mapped back through the problem's
+:class:`~perturb.case.ParameterMap`. The backbone is the free engine's frequency of the system's
+conservative, unforced part (:mod:`perturb.response.backbone`). With ``validate`` > 0 the true orbit is shot at that many points of every
 branch (:func:`perturb.validation.validate` ingredients: forced shooting, Floquet multipliers).
 
-The problem is duck-typed: ``system()``, ``symbol_values()``, ``epsilon()``, ``name`` and
+The problem gives ``case()`` (a :class:`perturb.case.Case`), ``name`` and
 ``with_parameters(**values)`` (a :class:`problems.base.Problem` has them all).
 """
 
@@ -25,6 +25,7 @@ from attrs import field, frozen
 
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import amplitude_equations
+from perturb.response.backbone import Backbone, backbone
 from perturb.response.branches import branch_names, branches_at, exact_number
 from perturb.response.curve import (
     Fold,
@@ -35,28 +36,6 @@ from perturb.response.curve import (
 )
 
 __all__ = ["Backbone", "ProblemResponse", "TrueResponse", "problem_response"]
-
-#: Amplitudes of the backbone, as fractions of the largest response amplitude found (the
-#: backbone is drawn through the region the response occupies).
-BACKBONE_SAMPLES = 41
-
-
-@frozen
-class Backbone:
-    """The free, undamped system's frequency against its amplitude (the response's spine).
-
-    Attributes
-    ----------
-    coordinate : str
-    amplitudes : tuple of float
-    values : tuple of float
-        The swept parameter's value at which the forced system resonates with the free motion of
-        that amplitude.
-    """
-
-    coordinate: str
-    amplitudes: tuple = field(converter=tuple)
-    values: tuple = field(converter=tuple)
 
 
 @frozen
@@ -165,13 +144,11 @@ def check_request(problem, parameter: str):
         A problem that is not driven, or an unknown parameter (the closest is suggested).
     """
     system = problem.system()
-    if system.excitation is None:
-        raise bad_value(
-            "problem", problem.name,
-            "it is not driven (its system has no excitation): the frequency response is for "
-            "forced, damped or parametrically excited systems; use `perturb solve`",
-            InvalidParameterError,
-        )  # fmt: skip
+    system.frame.require_driven(
+        "problem", problem.name,
+        "it is not driven (its system has no excitation): the frequency response is for "
+        "forced, damped or parametrically excited systems; use `perturb solve`",
+    )  # fmt: skip
     if parameter not in problem.values:
         from difflib import get_close_matches
 
@@ -225,7 +202,8 @@ def problem_response(
             failures.append(f"{parameter} = {value:g}: {why}")
         names.extend(branch_names(found))
         points.extend(ResponsePoint.of(float(value), branch) for branch in found)
-    folds = _problem_folds(equations, problem, parameter, variants, grid)
+    case = problem.case()
+    folds = _problem_folds(equations, case, parameter, grid)
     response = FrequencyResponse(
         system=problem.name,
         parameter=parameter,
@@ -238,73 +216,44 @@ def problem_response(
         failures=tuple(failures),
         coordinates=equations.coordinates,
     )
-    backbone = _backbone(problem, parameter, variants, grid, points, order)
+    reference = system.coordinates[system.reference_index].name
+    top = max((p.norm(reference) for p in points), default=math.nan)
+    spine = backbone(case, parameter, top, order) if points else None
     true = _shoot(problem, parameter, response, names, order, validate) if validate else ()
-    return ProblemResponse(problem.name, parameter, response, names, backbone, true)
+    return ProblemResponse(problem.name, parameter, response, names, spine, true)
 
 
-def _problem_folds(equations, problem, parameter, variants, grid) -> list[Fold]:
-    """Folds in the system's parameter that ``parameter`` moves (linearly), mapped back."""
-    first, last = variants[0].symbol_values(), variants[-1].symbol_values()
-    moved = [k for k in first if first[k] != last[k]]
+def _problem_folds(equations, case, parameter, grid) -> list[Fold]:
+    """Folds in the one system symbol that ``parameter`` moves, mapped back exactly by the case's
+    parameter map (none when it moves ε or several symbols)."""
+    moved = case.moves(parameter)
     if len(moved) != 1:
         return []
-    name = moved[0]
+    (name,) = moved
     (symbol,) = [p for p in equations.system.parameters if p.name == name]
-    a, b = float(grid[0]), float(grid[-1])
-    s0, s1 = first[name], last[name]
-    slope = (s1 - s0) / (b - a)
-    middle = variants[len(variants) // 2].symbol_values()[name]
-    mid_value = float(grid[len(grid) // 2])
-    if not math.isclose(middle, s0 + slope * (mid_value - a), rel_tol=1e-9, abs_tol=1e-12):
-        return []  # not a linear map: no exact folds in the swept parameter
+    first, last = case.at(**{parameter: float(grid[0])}), case.at(**{parameter: float(grid[-1])})
+    s0, s1 = first.symbol_values[name], last.symbol_values[name]
     fixed = {
-        p: exact_number(first[p.name])
+        p: exact_number(first.symbol_values[p.name])
         for p in equations.system.parameters
-        if p.name in first and p.name != name
+        if p.name in first.symbol_values and p.name != name
     }
     rows = [sp.expand(e.xreplace(fixed)) for e in equations.displacement(0)]
     low, high = sorted((s0, s1))
     out = []
-    eps = float(problem.epsilon())
+    eps = float(case.epsilon)
     for fold in _folds(rows, list(equations.amplitudes), symbol, low, high, equations):
         fold = continue_fold(fold, equations, equations.order, fixed, symbol, eps)
-
-        def back(value):
-            return a + (value - s0) / slope if slope else a
-
         out.append(
-            Fold(back(fold.value), fold.amplitudes, fold.norms, back(fold.first_order), fold.note)
+            Fold(
+                case.to_user(parameter, name, fold.value),
+                fold.amplitudes,
+                fold.norms,
+                case.to_user(parameter, name, fold.first_order),
+                fold.note,
+            )
         )
     return sorted(out, key=lambda f: f.value)
-
-
-def _backbone(problem, parameter, variants, grid, points, order) -> Backbone | None:
-    """The free engine's frequency of the problem's unforced, undamped system, if it has one."""
-    import attrs
-
-    make = getattr(problem, "backbone_system", None)
-    built = make(parameter) if make is not None and points else None
-    if built is None:
-        return None
-    free_system, coordinate, to_parameter = built
-    from perturb.method.poincare import PoincareMethod
-
-    amplitude = sp.Symbol("backbone_amplitude", positive=True)
-    free_system = attrs.evolve(free_system, parameters=(*free_system.parameters, amplitude))
-    method = PoincareMethod(order=max(order, 1), amplitudes={coordinate: amplitude})
-    solution = method.solve(free_system)
-    if not solution.success:
-        return None
-    top = max(p.norm(coordinate) for p in points)
-    values = {k: v for k, v in problem.symbol_values().items()}
-    eps = problem.epsilon()
-    amplitudes = np.linspace(0.0, 1.05 * top, BACKBONE_SAMPLES)
-    frequencies = [
-        2 * math.pi / float(solution.period_at(eps, {**values, amplitude.name: float(a)}))
-        for a in amplitudes
-    ]
-    return Backbone(coordinate, tuple(amplitudes), tuple(to_parameter(w) for w in frequencies))
 
 
 def _shoot(problem, parameter, response, names, order, count) -> tuple[TrueResponse, ...]:

@@ -5,7 +5,7 @@ import pytest
 import sympy as sp
 
 from perturb import EPS, InvalidSystemError, PoincareMethod, QuasilinearSystem, Regime, Status
-from perturb.method.steps import S
+from perturb.steps import S
 from problems import get_problem
 from tests.helpers import roundings
 
