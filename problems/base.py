@@ -462,16 +462,11 @@ class Problem(Model, ABC):
         return super().original_equations(y0)
 
     def integrals_of_motion(self, y0: np.ndarray | None = None) -> Integrals | None:
-        """``first_integrals_function()`` (names from its ``names`` or ``first_integral_names()``),
-        else an ``integrals(y)`` method, else the system's own (for unreduced problems only)."""
+        """``first_integrals_function()`` (names from its ``names``, else ``I0, I1, ...``), else
+        the system's own (for unreduced problems only)."""
         function = self.first_integrals_function()
         if function is not None:
-            names = tuple(getattr(function, "names", ()))
-            if not names and callable(getattr(self, "first_integral_names", None)):
-                names = tuple(self.first_integral_names())
-            return Integrals(function, names)
-        if callable(getattr(self, "integrals", None)):
-            return Integrals(self.integrals, tuple(getattr(self, "integral_names", ())))
+            return Integrals(function, tuple(getattr(function, "names", ())))
         if self.original_symbolic() is None and type(self).original_rhs is Problem.original_rhs:
             return super().integrals_of_motion(y0)
         return None

@@ -45,6 +45,7 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._defaults import SLOW_FLOW_ZERO
 from perturb.cache import cached
 from perturb.errors import InvalidSystemError, bad_value
 from perturb.method.given_period import DrivenOrderByOrder
@@ -253,10 +254,6 @@ class SlowFlow:
     def fold(self) -> bool:
         """A real eigenvalue at zero: the branch turns (saddle-node) or another one crosses."""
         return self.stable is None
-
-
-#: Relative size (to the largest) below which a slow-flow eigenvalue's real part counts as zero.
-SLOW_FLOW_ZERO = 1e-9
 
 
 def slow_flow(

@@ -8,7 +8,7 @@ moves
 
 * every integration's result — each state of :meth:`perturb.oracle.base.IntegratorBase.integrate`
   after the start, whatever the backend — by :func:`integration_noise`, and
-* every Newton step of the shootings (:func:`perturb.oracle.shooting._newton_step`, which the
+* every Newton step of the shootings (:func:`perturb.oracle.newton.newton_step`, which the
   driven shooting :mod:`perturb.oracle.forced` and the rigid body's conditioned shooting use too)
   by :func:`solve_noise`,
 

@@ -19,16 +19,12 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._defaults import BACKBONE_REACH, BACKBONE_SAMPLES
 from perturb.errors import PerturbError
 from perturb.system import QuasilinearSystem
 
 __all__ = ["Backbone", "backbone", "free_system"]
 
-#: Amplitudes of the backbone, as fractions of the largest response amplitude found (the
-#: backbone is drawn through the region the response occupies).
-BACKBONE_SAMPLES = 41
-#: The backbone is drawn up to this multiple of the largest response amplitude.
-BACKBONE_REACH = 1.05
 
 
 @frozen
@@ -87,8 +83,14 @@ def free_system(system: QuasilinearSystem) -> QuasilinearSystem | None:
     return attrs.evolve(system, rhs=tuple(rhs), parameters=parameters, excitation=None)
 
 
-def backbone(case, parameter: str, top: float, order: int) -> Backbone | None:
+def backbone(
+    case, parameter: str, top: float, order: int, measure: str = "initial"
+) -> Backbone | None:
     """The backbone of ``case``'s system in the user ``parameter``, up to amplitude ``top``.
+
+    ``measure`` is the amplitude's (``initial``: the free series' amplitude parameter, as drawn
+    before issue 29; ``peak``: max |x| over a period of the free series; ``first-harmonic``: its
+    first harmonic), so that the backbone lies in the response's own axis.
 
     None when ``parameter`` does not move the detuning, the free system is linear, or its free
     frequency cannot be derived (several modes in internal resonance).
@@ -124,4 +126,20 @@ def backbone(case, parameter: str, top: float, order: int) -> Backbone | None:
             return None
         sigma = ratio * (2 * math.pi / period - reference) / eps
         out.append(case.to_user(parameter, detuning.name, sigma))
+    if measure != "initial":
+        amplitudes = _measured(solution, coordinate, eps, values, amplitude, amplitudes, measure)
     return Backbone(coordinate, tuple(amplitudes), tuple(out))
+
+
+def _measured(solution, coordinate, eps, values, amplitude, amplitudes, measure) -> np.ndarray:
+    """The free series' ``measure`` at each of its amplitude parameters (max |x| over a period,
+    or its first harmonic), all in one vectorised evaluation."""
+    from perturb.response.measures import peak_abs
+
+    index = [c.name for c in solution.system.coordinates].index(coordinate)
+    _, cos, sin = solution.coefficients(eps, {**values, amplitude.name: amplitudes})
+    c = np.moveaxis(np.asarray(cos[index], dtype=float), 0, -1)
+    s = np.moveaxis(np.asarray(sin[index], dtype=float), 0, -1)
+    if measure == "peak":
+        return peak_abs(c, s)
+    return np.hypot(c[:, 1], s[:, 1]) if c.shape[1] > 1 else np.zeros(len(amplitudes))

@@ -19,6 +19,7 @@ from perturb.system import QuasilinearSystem
 __all__ = [
     "conservative_energy",
     "excitation_frequency",
+    "first_order_expressions",
     "first_order_form",
     "lambdify_integrals",
     "quasilinear_state_names",
@@ -112,15 +113,21 @@ def substitutions(
     return subs
 
 
-def first_order_form(system: QuasilinearSystem, subs: Mapping) -> SymbolicRHS:
-    """y' = (ẋ, f(x, ẋ) − ω² x) of the quasilinear system, with ``subs`` put in; a driven
-    system's phase θ is appended with θ' = Ω (autonomous form)."""
+def first_order_expressions(system: QuasilinearSystem, subs: Mapping) -> list:
+    """(ẋ, f(x, ẋ) − ω² x) of the quasilinear system on its state ``(x..., ẋ...)``, with ``subs``
+    put in (a driven system's phase θ stays a symbol; parameters left out of ``subs`` too)."""
     n = system.n
     state = system.state_symbols
     forces = [sp.sympify(f).subs(subs) for f in system.rhs]
     w2 = [sp.sympify(w**2).subs(subs) for w in system.frequencies]
-    exprs = list(state[n:]) + [forces[i] - w2[i] * state[i] for i in range(n)]
-    return SymbolicRHS(*system.frame.autonomous(state, exprs, system, subs))
+    return list(state[n:]) + [forces[i] - w2[i] * state[i] for i in range(n)]
+
+
+def first_order_form(system: QuasilinearSystem, subs: Mapping) -> SymbolicRHS:
+    """y' = (ẋ, f(x, ẋ) − ω² x) of the quasilinear system, with ``subs`` put in; a driven
+    system's phase θ is appended with θ' = Ω (autonomous form)."""
+    exprs = first_order_expressions(system, subs)
+    return SymbolicRHS(*system.frame.autonomous(system.state_symbols, exprs, system, subs))
 
 
 def conservative_energy(system: QuasilinearSystem, subs: Mapping) -> sp.Expr | None:
