@@ -46,13 +46,17 @@ def cache_folder(tmp_path, monkeypatch):
 # PERTURB_TEST_NOISE=K (perturb/oracle/_noise.py): every integration and every shooting step moved
 # by up to K ulps, as another machine would. The noise is seeded per test from its node id, and
 # per fixture from its scope's node id and name (so a module fixture gets the same bits however
-# the tests are selected); processes a test starts (Dask workers, the CLI) inherit the seed.
-def _seed_noise(key: str) -> None:
+# the tests are selected). One test is one machine: the processes it starts inherit its seed, and
+# the workers of a Dask cluster a fixture started (and their nannies, which restart them) take it.
+def _seed_noise(key: str, clients=()) -> None:
     from perturb.oracle import _noise
 
-    if _noise.ULPS:
-        _noise.seed(key)
-        os.environ["PERTURB_TEST_NOISE_SEED"] = key
+    if not _noise.ULPS:
+        return
+    _noise.seed(key)
+    for client in clients:
+        client.run(_noise.seed, key)
+        client.run(_noise.seed, key, nanny=True)
 
 
 @pytest.hookimpl(tryfirst=True)
@@ -62,4 +66,6 @@ def pytest_fixture_setup(fixturedef, request):
 
 @pytest.hookimpl(tryfirst=True)
 def pytest_runtest_call(item):
-    _seed_noise(item.nodeid)
+    funcargs = getattr(item, "funcargs", {}).values()
+    clients = [v for v in funcargs if type(v).__module__.startswith("distributed.client")]
+    _seed_noise(item.nodeid, clients)

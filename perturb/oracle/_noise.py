@@ -70,9 +70,11 @@ _seed: bytes = os.environ.get("PERTURB_TEST_NOISE_SEED", "").encode()
 
 
 def seed(key: str) -> None:
-    """Seed the noise with ``key`` (the test suite: each test's node id)."""
+    """Seed the noise with ``key`` (the test suite: each test's node id), here and, through
+    ``PERTURB_TEST_NOISE_SEED``, in the processes started from now on."""
     global _seed
     _seed = key.encode()
+    os.environ["PERTURB_TEST_NOISE_SEED"] = key
 
 
 def _spacing(values: np.ndarray) -> np.ndarray:
