@@ -88,7 +88,7 @@ def backbone(
     """The backbone of ``case``'s system in the user ``parameter``, up to amplitude ``top``.
 
     ``measure`` is the amplitude's (``initial``: the free series' amplitude parameter, as drawn
-    before issue 29; ``peak``: max |x| over a period of the free series; ``first-harmonic``: its
+    before issue 29; ``peak``: max ``|x|`` over a period of the free series; ``first-harmonic``: its
     first harmonic), so that the backbone lies in the response's own axis.
 
     None when ``parameter`` does not move the detuning, the free system is linear, or its free
@@ -131,7 +131,7 @@ def backbone(
 
 
 def _measured(solution, coordinate, eps, values, amplitude, amplitudes, measure) -> np.ndarray:
-    """The free series' ``measure`` at each of its amplitude parameters (max |x| over a period,
+    """The free series' ``measure`` at each of its amplitude parameters (max ``|x|`` over a period,
     or its first harmonic), all in one vectorised evaluation."""
     from perturb.response.measures import peak_abs
 

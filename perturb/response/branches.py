@@ -59,7 +59,7 @@ class BranchPoint:
         Empty, or what to know: the series' terms not decreasing there, a continuation in the
         window that failed.
     peak, first_harmonic, error : dict
-        max |x| over a period, the resonant harmonic's amplitude and the series' error estimate
+        max ``|x|`` over a period, the resonant harmonic's amplitude and the series' error estimate
         of each resonant coordinate (:mod:`perturb.response.measures`).
     series_ok : bool
     liouville : float
@@ -114,7 +114,7 @@ def branches_at(
     Returns
     -------
     (list of BranchPoint, str)
-        The branches sorted by amplitude (max |x|), and "" or why the roots could not be
+        The branches sorted by amplitude (max ``|x|``), and "" or why the roots could not be
         enumerated (then the list is empty: never a silent drop).
     """
     from perturb.response.evaluate import PointEvaluator

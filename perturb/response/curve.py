@@ -8,7 +8,7 @@ window's ends (the count is proved), their exact folds found, and every branch i
 pseudo-arclength through its folds at order N (:mod:`perturb.response.traced`,
 :mod:`perturb.continuation`), then read at the grid values. Each point is judged stable or not by
 its Floquet multipliers along the order-N orbit (:mod:`perturb.response.floquet`), measured by
-max |x|, its first harmonic and its initial values (:mod:`perturb.response.measures`).
+max ``|x|``, its first harmonic and its initial values (:mod:`perturb.response.measures`).
 
 The **folds** (saddle-node points, where a branch turns and the response jumps), branch points
 and Neimark-Sacker points are located on the order-N curves, inside the sweep or just beside it.
@@ -52,7 +52,7 @@ class ResponsePoint:
     note : str
         Empty, or what to know about the point (the series outside its domain there).
     peak, first_harmonic : dict
-        Of each resonant coordinate, from the whole order-N series: max |x| over a period, and
+        Of each resonant coordinate, from the whole order-N series: max ``|x|`` over a period, and
         the amplitude of the harmonic it resonates at (:mod:`perturb.response.measures`);
         ``norms`` is the initial-value norm.
     error : dict
@@ -116,7 +116,7 @@ class Fold:
     ``value`` is the fold of the order-N response, located on its continued curve
     (``first_order``: the nearest fold of the first-order curve); ``note`` says when it could not
     be located to the tolerance; ``inside`` False for a fold just beside the sweep (in its
-    window); ``peak`` max |x| of each coordinate there.
+    window); ``peak`` max ``|x|`` of each coordinate there.
     """
 
     value: float = field(converter=float)

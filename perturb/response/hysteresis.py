@@ -42,7 +42,7 @@ class SweepRun:
     omega : ndarray
         Ω at the end of each forcing period.
     envelope : ndarray
-        max |x| over that forcing period.
+        max ``|x|`` over that forcing period.
     jump : float
         Ω where the envelope changes most from one period to the next.
     jump_size : float

@@ -2,7 +2,7 @@
 
 Three amplitude measures of a coordinate x(s) = Σ_j c_j cos js + s_j sin js (all orders summed):
 
-* ``peak``: max |x| over a period, the engineer's peak (found on ``PEAK_SAMPLES`` samples and
+* ``peak``: max ``|x|`` over a period, the engineer's peak (found on ``PEAK_SAMPLES`` samples and
   polished by Newton's method on the trigonometric polynomial itself: exact to rounding);
 * ``first-harmonic``: √(c_m² + s_m²) of the harmonic m the coordinate resonates at;
 * ``initial``: |(x(0), ẋ(0)/(mν))|, the norm of the initial values — the generating amplitudes

@@ -198,7 +198,7 @@ def problem_response(
         largest amplitude, both sides of each fold and the ends (0: none; at most
         ``MAX_VALIDATE``).
     measure : str
-        The amplitude measure the branches are named and drawn by: ``peak`` (max |x|),
+        The amplitude measure the branches are named and drawn by: ``peak`` (max ``|x|``),
         ``first-harmonic`` or ``initial`` (:data:`perturb.response.measures.MEASURES`).
     tol : float, optional
         The relative orbit error above which a shot point is marked (default ``DEFAULT_TOL``).

@@ -105,7 +105,7 @@ def true_curves(
     integrator : Integrator or str, optional
     measure : str, optional
         The amplitude compared where the curves part: ``initial`` (the initial-value norm),
-        ``peak`` (max |x|) or ``first-harmonic`` (default: the analytic response's own).
+        ``peak`` (max ``|x|``) or ``first-harmonic`` (default: the analytic response's own).
 
     Returns
     -------

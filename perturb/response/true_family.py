@@ -173,7 +173,7 @@ class TrueFamily:
 
 
 def _peak(samples: np.ndarray) -> float:
-    """max |x| over a period from equally spaced samples, refined by the parabola through the
+    """max ``|x|`` over a period from equally spaced samples, refined by the parabola through the
     largest sample and its neighbours (periodic)."""
     a = np.abs(samples)
     k = int(np.argmax(a))

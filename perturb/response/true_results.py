@@ -35,7 +35,7 @@ class TruePoint:
         Per resonant coordinate, the measure the analytic curve plots: the first harmonic's
         amplitude read from the initial values, :math:`\\sqrt{x(0)^2 + (\\dot x(0)\\,p/(m\\Omega))^2}`.
     peaks : dict
-        Per coordinate, max |x| over one period.
+        Per coordinate, max ``|x|`` over one period.
     harmonics : dict
         Per resonant coordinate, the amplitude of its resonant harmonic (Fourier, over a period).
     multipliers : tuple of complex
@@ -58,7 +58,7 @@ class TruePoint:
         return self.norms[coordinate] if coordinate else next(iter(self.norms.values()))
 
     def amplitude(self, coordinate: str | None = None, measure: str = "initial") -> float:
-        """``coordinate``'s amplitude by ``measure``: ``peak`` (max |x| over a period),
+        """``coordinate``'s amplitude by ``measure``: ``peak`` (max ``|x|`` over a period),
         ``first-harmonic`` or ``initial`` (as the analytic response's points)."""
         return _by_measure(self.norms, self.peaks, self.harmonics, coordinate, measure)
 

@@ -40,7 +40,7 @@ def plot_frequency_response(result, *, coordinate: str | None = None, ax=None, t
         and period-doubling points by their own markers; the backbone dotted; the true orbits
         (``perturb response --validate K``) as crosses at their true amplitude, the analytic points
         off the truth by more than ``tol`` ringed. The amplitude is the response's ``measure``
-        (max |x| by default), named on the axis.
+        (max ``|x|`` by default), named on the axis.
         With ``--true``, the true curves in black beside them, their special points and where
         the two part (:func:`~perturb.report.plots.true_curve.draw_true_curves`).
 
