@@ -9,7 +9,9 @@ moves ``x``. :func:`damped_newton` then
 
 1. shoots from ``x0``, and stops when the residual is below ``max(tol, floor)``, where the floor
    is the smallest residual the working precision can show (:func:`precision_floor`);
-2. takes the least-squares Newton step, halving it until the residual falls (a line search);
+2. takes the least-squares Newton step, halving it until the residual falls (a line search),
+   leaving out the directions whose singular value is within the rounding of the monodromy
+   (:meth:`PeriodMap.matrix_noise`: there the step would follow the matrix's last bits);
 3. when no step helps, measures the integration noise (the same shot with a loosened
    integrator) and, unless the residual is already at that floor, retries with a step that leaves
    out the directions whose target is within the noise;
