@@ -170,7 +170,7 @@ $$\begin{aligned}@@solution@@\end{aligned}$$
 At the paper's geometry with $\varepsilon = 10^{-4}$ ($k = 2.466\times10^{-5}$, $\gamma_0'' = 7\times10^{-6}$):
 $\beta_1/\varepsilon = @@b1@@$, $\beta_2/\varepsilon = @@b2@@$, $(T-2\pi)/\varepsilon^2 = @@al@@$. The true
 periodic orbit has 3.9179736, 1.1276318, 1.0329529858, found by two independent routes that agree to
-2e-9: a conditioned shooting with heyoka in quadruple precision and a 40-digit mpmath Taylor
+2e-15: a conditioned shooting with heyoka in quadruple precision and a 40-digit mpmath Taylor
 integration with its own Newton shooting (`problems/rigid_body/true_orbit.py`, `true_orbit_mp.py`,
 `tests/rigid_body/test_disk_shooting.py`, `python benchmarks/bench_true_orbit.py`), both from the
 parameters as exact rationals ($C = A + B$ exactly, each coefficient rounded once). The figures

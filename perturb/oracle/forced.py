@@ -107,6 +107,7 @@ def find_forced_orbit(
         message=message,
         integrator=solver.name,
         precision_floor=result.floor,
+        defect=result.shot.defect,
     )
 
 

@@ -9,7 +9,9 @@ moves ``x``. :func:`damped_newton` then
 
 1. shoots from ``x0``, and stops when the residual is below ``max(tol, floor)``, where the floor
    is the smallest residual the working precision can show (:func:`precision_floor`);
-2. takes the least-squares Newton step, halving it until the residual falls (a line search);
+2. takes the least-squares Newton step, halving it until the residual falls (a line search),
+   leaving out the directions whose singular value is within the rounding of the monodromy
+   (:meth:`PeriodMap.matrix_noise`: there the step would follow the matrix's last bits);
 3. when no step helps, measures the integration noise (the same shot with a loosened
    integrator) and, unless the residual is already at that floor, retries with a step that leaves
    out the directions whose target is within the noise;
@@ -46,6 +48,7 @@ __all__ = [
     "defect_noise",
     "newton_step",
     "precision_floor",
+    "rounding_norm",
 ]
 
 
@@ -117,9 +120,25 @@ class PeriodMap(ABC):
     def moved(self, x: np.ndarray, step: np.ndarray, lam: float) -> np.ndarray | None:
         """``x`` moved by ``lam * step`` (None where that leaves the admissible set)."""
 
+    def matrix_noise(self, shot: Shot) -> float:
+        """An absolute bound of the Newton matrix's rounding (in the 2-norm).
+
+        The matrix is the monodromy minus the identity, formed from the monodromy rounded to the
+        working precision: each entry carries :data:`ROUNDING_ULPS` of its spacing whatever the
+        integrator's accuracy, so a singular value below the Frobenius norm of those spacings is
+        indistinguishable from zero (see :func:`newton_step`). This default takes every column of
+        the monodromy; a shooter whose matrix uses some of them says which.
+        """
+        return rounding_norm(shot.monodromy)
+
     def step_size(self, x: np.ndarray, step: np.ndarray) -> float:
         """The relative size of a Newton step (compared with :data:`SHOOTING_STALL_STEP`)."""
         return float(np.max(np.abs(step), initial=0.0)) / self.scale
+
+
+def rounding_norm(entries: np.ndarray) -> float:
+    """:data:`ROUNDING_ULPS` spacings of each entry, as a Frobenius norm (a 2-norm bound)."""
+    return ROUNDING_ULPS * float(np.linalg.norm(np.spacing(np.abs(entries))))
 
 
 def defect_noise(y_start, defect, noise=None) -> np.ndarray:
@@ -166,23 +185,26 @@ def integration_noise(problem: PeriodMap, x, defect):
     return np.abs(probe_defect - defect) / (NOISE_PROBE_FACTOR - 1.0)
 
 
-def newton_step(newton: np.ndarray, target: np.ndarray, noise=None):
+def newton_step(newton: np.ndarray, target: np.ndarray, noise=None, matrix_noise: float = 0.0):
     """The least-squares Newton step and the rank of the Newton matrix.
 
-    Without ``noise``: the minimum-norm least-squares step (singular values below
-    :data:`SHOOTING_RANK_RTOL` of the largest cut). With ``noise`` (the absolute noise of each row of
-    ``target``), a truncated-SVD step that also leaves out every direction whose component of the
-    target is within the noise (a discrepancy rule): near a rank-deficient matrix those directions
-    carry only noise, amplified by a small singular value, and a step along them wrecks the
-    directions that can still converge.
+    Without ``noise``: the minimum-norm least-squares step, from the singular values above both
+    :data:`SHOOTING_RANK_RTOL` of the largest and ``matrix_noise``, the rounding of the matrix
+    itself (:meth:`PeriodMap.matrix_noise`): a singular value within it is the rounding's, not the
+    system's, and a step along its direction (the target's component divided by it) is arbitrary.
+    (A direction exactly degenerate in theory — two unknowns that move the defect alike — is kept
+    by one ulp of noise on the monodromy, whose singular value 1e-16 is far above a relative cut
+    1e-9 of a small matrix; the step then chooses between those unknowns by that ulp.)
+
+    With ``noise`` (the absolute noise of each row of ``target``), a truncated-SVD step that also
+    leaves out every direction whose component of the target is within the noise (a discrepancy
+    rule): near a rank-deficient matrix those directions carry only noise, amplified by a small
+    singular value, and a step along them wrecks the directions that can still converge.
     """
-    if noise is None:
-        step, _, rank, _ = np.linalg.lstsq(newton, target, rcond=SHOOTING_RANK_RTOL)
-        return solve_noise(step, newton, target), int(rank)
     u, sv, vt = np.linalg.svd(newton, full_matrices=False)
     components = u.T @ target
-    kept = sv > SHOOTING_RANK_RTOL * sv[0]
-    keep = kept & (np.abs(components) > float(np.linalg.norm(noise)))
+    kept = sv > max(SHOOTING_RANK_RTOL * sv[0], matrix_noise)
+    keep = kept if noise is None else kept & (np.abs(components) > float(np.linalg.norm(noise)))
     step = vt[keep].T @ (components[keep] / sv[keep])
     return solve_noise(step, newton, target), int(np.count_nonzero(kept))
 
@@ -229,7 +251,8 @@ def damped_newton(problem: PeriodMap, x0: np.ndarray) -> NewtonResult:
             return ended(NewtonOutcome.MAX_ITER)
         iterations += 1
         matrix, target = problem.linearised(x, shot)
-        step, rank = newton_step(matrix, target)
+        rounding = problem.matrix_noise(shot)
+        step, rank = newton_step(matrix, target, matrix_noise=rounding)
         columns = matrix.shape[1]
         found = line_search(step)
         if found is None and not at_floor():
@@ -237,7 +260,7 @@ def damped_newton(problem: PeriodMap, x0: np.ndarray) -> NewtonResult:
             # a step along them (amplified by a small singular value) wrecks the others
             rows = defect_noise(problem.state(x), shot.defect, measured)
             noise = np.concatenate((rows, np.zeros(len(target) - len(rows))))
-            step, _ = newton_step(matrix, target, noise)
+            step, _ = newton_step(matrix, target, noise, rounding)
             found = line_search(step)
         step_size = problem.step_size(x, step)
         if found is None:

@@ -112,6 +112,11 @@ class PeriodicOrbit:
         Multipliers found within ``TRIVIAL_MULTIPLIER_TOL`` of 1 (0 when the monodromy is not
         finite).  More than expected: a nearly neutral direction or an unlisted integral; fewer: an
         integral that is not one, or an inaccurate monodromy.
+    defect : ndarray or None
+        The periodicity defect :math:`y(T) - y(0)` of each component at :attr:`initial_state` (the
+        shot :attr:`residual` is of), None where no shot succeeded. The residual is its largest
+        component; the components tell which rows of the Newton system are how far from zero
+        (an error bound through the Newton matrix needs them, not their maximum).
 
     Examples
     --------
@@ -141,6 +146,9 @@ class PeriodicOrbit:
     n_trivial_expected: int = 0
     n_trivial_found: int = 0
     precision_floor: float = math.nan
+    defect: np.ndarray | None = field(
+        default=None, converter=attrs.converters.optional(_readonly), eq=False
+    )
 
     @property
     def success(self) -> bool:

@@ -48,7 +48,7 @@ from perturb._lambdify import numpy_lambdify
 from perturb.errors import bad_value
 from perturb.oracle.base import RHS, Integrator
 from perturb.oracle.floquet import count_near_one, expected_trivial_multipliers
-from perturb.oracle.newton import NewtonOutcome, PeriodMap, Shot, damped_newton
+from perturb.oracle.newton import NewtonOutcome, PeriodMap, Shot, damped_newton, rounding_norm
 from perturb.oracle.orbit import OrbitStatus, PeriodicOrbit, multipliers_of
 from perturb.oracle.symbolic import SymbolicRHS
 from perturb.oracle.variational import (
@@ -174,6 +174,11 @@ class _AutonomousMap(PeriodMap):
             newton = np.vstack((newton, rows))
             target = np.concatenate((target, misses))
         return newton, target
+
+    def matrix_noise(self, shot) -> float:
+        # the matrix's columns: the free ones of the monodromy and the velocity (the pinned
+        # integrals' rows are gradients at the guess, of their own size: no rounding near zero)
+        return rounding_norm(np.column_stack((shot.monodromy[:, self.free], shot.velocity)))
 
     def moved(self, x, step, lam):
         y_try = x[:-1].copy()
@@ -372,6 +377,7 @@ def find_periodic_orbit(
             status=status,
             message=message,
             integrator=solver.name,
+            defect=result.shot.defect,
         )
 
     if result.outcome is NewtonOutcome.INTEGRATION_FAILED:
@@ -447,4 +453,5 @@ def find_periodic_orbit(
         n_trivial_found=n_found,
         integrator=solver.name,
         precision_floor=floor,
+        defect=result.shot.defect,
     )

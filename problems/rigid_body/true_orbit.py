@@ -10,21 +10,36 @@ below float64 round-off: a plain shooting accepts any seed within ~1 % as "conve
 
 1. the state relative to the seed, :math:`y = y_{ref} + s\\,u` (no cancellation in
    :math:`u(T) - u(0)`), with :math:`s_p = s_q = \\varphi|P|\\,` :data:`RESOLUTION` / :data:`TOL`, so
-   that a relative error :data:`RESOLUTION` in :math:`P(0)` shows as a residual :data:`TOL`;
+   that a relative error :data:`RESOLUTION` in :math:`P(0)` shows as a residual :data:`TOL`; and
+   the section component :math:`\\gamma'` with :math:`s_4 = \\varphi\\,` :data:`RESOLUTION` /
+   :data:`TOL` (at most 1): the P-rows do not see a P-phase error :math:`a` offset by a time shift
+   :math:`\\varphi a`, which shows only as the section's return :math:`\\gamma'(T) - \\gamma'(0)
+   = \\varphi a` — at scale 1 that is 4e-15 for a 1 % error, below any residual the shooting can
+   reach, and a Newton matrix whose singular value there (3e-19) is below the rounding of its
+   monodromy (1e-16) converges anywhere along it (see :func:`amplitude_resolution`);
 2. time :math:`\\tau = r_0 t` in units :math:`1/\\lambda`, so that the Newton column
-   :math:`\\partial F/\\partial T` is of the size of the P columns (the shooting's rank cut is 1e-9);
+   :math:`\\partial F/\\partial T` is of the size of the P columns;
 3. a constant extra component :math:`w` with time rate :math:`1 + \\lambda w`: a float64 period has
    granularity :math:`10^{-16}T`, which alone moves the P-phase by :math:`10^{-16}\\cdot2\\pi`, i.e.
-   :math:`10^{-3}` of :math:`\\varphi` — :math:`w` takes up that last bit of the period;
+   :math:`10^{-3}` of :math:`\\varphi` — :math:`w` takes up that last bit of the period (the
+   period and :math:`w` move the state alike: the shooting's minimum-norm step shares a time
+   correction between them, and its rank cut at the monodromy's rounding keeps one ulp of noise on
+   :math:`\\Phi_{ww} = 1` from deciding the share, which would put it all on the granular period);
 4. heyoka in quadruple precision (real128; else 80-bit long double), from the parameters as exact
    rationals (:mod:`problems.rigid_body.exact_inputs`), each coefficient rounded once;
 5. the origin re-centred on the orbit found and the shooting repeated, since the defect
-   u(T) - u(0) is formed in float64 (see :data:`CENTRED`).
+   u(T) - u(0) is formed in float64 (see :data:`CENTRED`);
+6. the resolution measured on the orbit found (:func:`amplitude_resolution`: the residual and the
+   rounding of the defect through the pseudo-inverse of the Newton matrix), not inferred from the
+   residual alone: an amplitude the defect does not determine is a failure, never a result.
 
 The orbit is the family member of the analytic solution (:math:`r = r_0`, :math:`\\gamma'' =
 \\gamma_0''`, :math:`|\\boldsymbol\\gamma| = 1` pinned), moved along the flow onto the analytic
-solution's section :math:`\\dot G = 0`. About 7 s at the paper geometry (heyoka compiles the
-conditioned system once per pass). An independent check: :mod:`problems.rigid_body.true_orbit_mp`. Tests: ``tests/rigid_body/test_disk_shooting.py``.
+solution's section :math:`\\dot G = 0`. About 3 s at the paper geometry (heyoka compiles the
+conditioned system once per pass, three passes). An independent check:
+:mod:`problems.rigid_body.true_orbit_mp`. Tests: ``tests/rigid_body/test_disk_shooting.py``,
+``tests/rigid_body/test_disk_shooting_any_machine.py`` (the last bits of another machine, of the
+monodromy as of the state).
 """
 
 from __future__ import annotations
@@ -38,6 +53,7 @@ from attrs import field, frozen
 
 from perturb.errors import PerturbError
 from perturb.oracle import Heyoka, SymbolicRHS, find_periodic_orbit, heyoka_available
+from perturb.oracle.newton import defect_noise, rounding_norm
 from problems.rigid_body._stored import stored
 from problems.rigid_body.exact_inputs import (
     FamilyMember,
@@ -47,7 +63,7 @@ from problems.rigid_body.exact_inputs import (
     round_coefficients,
 )
 
-__all__ = ["RESOLUTION", "TOL", "TrueOrbit", "conditioned_true_orbit"]
+__all__ = ["RESOLUTION", "TOL", "TrueOrbit", "amplitude_resolution", "conditioned_true_orbit"]
 
 #: Relative error of P(0) that shows as a shooting residual TOL (see the module docstring).
 RESOLUTION = 1e-6
@@ -58,6 +74,8 @@ N_TRIVIAL = 5
 #: Status when the conditioned shooting cannot run (heyoka missing) or was refused.
 STATUS_UNAVAILABLE = -10
 STATUS_REFUSED = -11
+#: Status when the converged orbit's Newton matrix does not determine the amplitudes.
+STATUS_UNRESOLVED = -12
 #: Significant bits of heyoka's extended types: each coefficient is rounded once to these.
 FP_BITS = {"real128": 113, "long double": 64}
 #: Decimal digits of the final arithmetic (state from the conditioned coordinates, period term):
@@ -65,14 +83,22 @@ FP_BITS = {"real128": 113, "long double": 64}
 WORK_DIGITS = 40
 #: The P-defect u(T) - u(0) is formed in float64: with the origin ``ref`` a relative 1 % off the
 #: orbit, |u| ~ 1e4 and its spacing 2e-12 exceeds TOL. The origin is therefore moved onto the orbit
-#: found and the shooting repeated until |u_p|, |u_q| <= CENTRED (spacing <= 1.5e-14, a hundredth of
-#: TOL), at most MAX_CENTRINGS times (two suffice: the second start is within ~1e-6 of the orbit).
-CENTRED = 64.0
+#: found and the shooting repeated until the pass moved |u_p|, |u_q| by <= CENTRED, at most
+#: MAX_CENTRINGS times (the last pass's resolution is then measured whatever it moved). The first
+#: start is ~1e-6 off the orbit (|u| ~ 3 after it, spacing 4.4e-16), the second ~1e-10 (|u| ~
+#: 1e-4): CENTRED = 1/8 (spacing 2.8e-17) asks for that third pass, whose defect's rounding then
+#: puts the measured resolution (:func:`amplitude_resolution`, ~3e6 times the defect at the paper
+#: geometry) near 1e-10 instead of 8e-9.
+CENTRED = 0.125
 MAX_CENTRINGS = 4
 #: Tolerance of the re-centred passes: with |u| <= CENTRED the P-defect is resolved far below TOL;
-#: 1e-14 puts the amplitudes' resolution at 1e-8 and stays above the float64 spacing (4.4e-16) of
-#: the O(1) components, which limits the residual when r0 = 1 (the time scale s_r = r0).
-FINE_TOL = 1e-14
+#: 1e-16 is what the third pass reaches (its rounding 4 spacings of 1/8 is 1.1e-16, real128's
+#: integration error far less); a pass above it stops at its precision floor (the shooting's
+#: measured floor, the spacing of |u| ~ 3 in the second pass) and the next one goes on.
+FINE_TOL = 1e-16
+#: The unknowns of the conditioned shooting that move the defect: u_p, u_q and the period
+#: component w (the period itself moves it exactly as w does).
+_MOVING = [0, 1, 6]
 #: The conditioned state: u0..u5 for (p, q, r, gamma, gamma', gamma''), u6 the period component w.
 _CONDITIONED_STATE = sp.symbols("u0:7")
 #: The sources the conditioned equations are derived by (their edits invalidate the disk entries).
@@ -105,12 +131,15 @@ class TrueOrbit:
     residual : float
         Conditioned periodicity defect (TOL corresponds to a relative error RESOLUTION of P(0)).
     resolution : float
-        Relative uncertainty of the amplitudes implied by the residual: residual / TOL * RESOLUTION.
+        Relative uncertainty of the amplitudes, :math:`|\\delta(\\beta_1, \\beta_2)| /
+        |(\\beta_1, \\beta_2)|`: the bound :func:`amplitude_resolution` of the converged orbit
+        (about residual / TOL * RESOLUTION where the Newton matrix is well conditioned).
     pin_mismatch : float
         :math:`|r_1 - 1| + |\\gamma'' - \\gamma_0''|` at dG = 0.
     iterations : int
     status : int
-        0 converged; the shooting's negative codes; STATUS_UNAVAILABLE, STATUS_REFUSED.
+        0 converged; the shooting's negative codes; STATUS_UNAVAILABLE, STATUS_REFUSED,
+        STATUS_UNRESOLVED.
     message : str
     integrator : str
     """
@@ -225,6 +254,70 @@ def extended_type() -> str:
     return "real128" if hasattr(heyoka, "real128") else "long double"
 
 
+def amplitude_resolution(orbit, unit: float) -> float:
+    """The relative uncertainty of the amplitudes P(0), Q(0) of a converged conditioned orbit.
+
+    Measured, not assumed: near the orbit the defect is linear in the unknowns that move it, P, Q
+    and the period (the component w; the shooting's period moves the state exactly as w does),
+    ``F = M (x - x*)`` with ``M`` the columns (0, 1, 6) of the monodromy minus the identity, so
+
+    .. math:: |x - x^*| \\le |M^+|\\,(r + n) / (1 - \\|\\delta M\\| / \\sigma_{min})
+
+    elementwise, where ``r`` is the defect of each component (:attr:`PeriodicOrbit.defect`; the
+    residual, its largest, where it is not given), ``n`` the rounding of each component of
+    ``u(T) - u(0)`` (:func:`perturb.oracle.newton.defect_noise`) and ``\\|\\delta M\\|`` the
+    rounding of ``M`` (:func:`perturb.oracle.newton.rounding_norm`). The integration error is not in it:
+    in quadruple precision it is ~1e-30 of the defect's size, and an integrator whose error the
+    defect shows makes the shooting stall at its measured floor, a failure. A residual alone says
+    nothing of a direction the defect hardly sees (a P-phase error offset by a time shift shows
+    only in the section row); this bound sees it as a small singular value.
+
+    Parameters
+    ----------
+    orbit : PeriodicOrbit
+        The conditioned shooting's converged orbit (state ``u``, monodromy).
+    unit : float
+        The relative amplitude change of one conditioned unit of ``u_p``, ``u_q``
+        (``s_p / |P|``).
+
+    Returns
+    -------
+    float
+        ``unit * hypot(du_p, du_q)`` of the bound, or inf when ``M`` is singular within its
+        rounding (the amplitudes are then not determined).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from perturb.oracle import OrbitStatus, PeriodicOrbit
+    >>> phi = np.eye(7)
+    >>> phi[0, 1], phi[1, 0], phi[4, 6] = -1e-12, 1e-12, 1e-12  # P, Q turned; w moves the section
+    >>> def orbit(monodromy):  # converged at residual 1e-15, in every component
+    ...     return PeriodicOrbit(1.0, np.zeros(7), np.ones(7), monodromy, 1e-15, 1,
+    ...                          OrbitStatus.CONVERGED, "")
+    >>> float(np.round(amplitude_resolution(orbit(phi), 1e-6), 12))  # 1e-15 / 1e-12 in u_p, u_q
+    1.416e-09
+    >>> phi[4, 6] = 1e-17  # the time within the monodromy's rounding: P, Q not determined
+    >>> amplitude_resolution(orbit(phi), 1e-6)
+    inf
+    """
+    phi = np.asarray(orbit.monodromy, dtype=float)[:, _MOVING]
+    matrix = phi - np.eye(len(orbit.initial_state))[:, _MOVING]
+    u, sv, vt = np.linalg.svd(matrix, full_matrices=False)
+    rounding = rounding_norm(phi)
+    if not sv[-1] > 2 * rounding:
+        return math.inf
+    state = np.asarray(orbit.initial_state, dtype=float)
+    if orbit.defect is None:  # each component within the residual
+        defect = np.full_like(state, orbit.residual)
+    else:
+        defect = np.abs(np.asarray(orbit.defect, dtype=float))
+    defect = defect + defect_noise(state, defect)
+    pseudo_inverse = vt.T @ (u.T / sv[:, None])
+    bound = np.abs(pseudo_inverse) @ defect / (1 - rounding / sv[-1])
+    return unit * math.hypot(bound[0], bound[1])
+
+
 def _move_to_section(problem, y, forward):
     """Slide along the flow to dG = 0 (the analytic solution's phase): second-order Taylor steps."""
     state, exprs = problem.original_symbolic()
@@ -298,6 +391,7 @@ def conditioned_true_orbit(
     scales = np.ones(6)
     scales[:2] = phi * amplitude * RESOLUTION / TOL
     scales[2] = r0
+    scales[4] = min(1.0, phi * RESOLUTION / TOL)
     lam = phi / max(1.0, amplitude / scales[0])
     fp_name = extended_type()
     u0 = np.zeros(7)
@@ -330,8 +424,8 @@ def conditioned_true_orbit(
                 sp.Rational(mpmath.nstr(_mp(ref_exact[i]) + _mp(scales[i]) * shot[i], WORK_DIGITS))
                 for i in range(2)
             ]
-        if offset_size <= CENTRED and centring > 0:
-            break
+        if (offset_size <= CENTRED and centring > 0) or centring == MAX_CENTRINGS - 1:
+            break  # the last pass's own defect measures what it resolves (amplitude_resolution)
         ref_exact = (*moved, *ref_exact[2:])
         u0 = np.zeros(7)
         u0[6] = orbit.initial_state[6]
@@ -346,14 +440,6 @@ def conditioned_true_orbit(
     )
     if not orbit.success:
         return _failed(orbit.status.code, f"conditioned shooting: {orbit.message}", first, **common)
-    if offset_size > CENTRED:
-        return _failed(
-            STATUS_REFUSED,
-            f"conditioned shooting: the orbit moved by {offset_size:.3g} conditioned units after "
-            f"{MAX_CENTRINGS} re-centrings (> {CENTRED:g}): the P-defect is not resolved",
-            first,
-            **common,
-        )
     with mpmath.workdps(WORK_DIGITS):
         y = np.array([float(_mp(ref_exact[i]) + _mp(scales[i]) * shot[i]) for i in range(6)])
         # the shooting's time is tau / (lam (1 + lam w)), tau = r0 t: the period term in full
@@ -364,9 +450,16 @@ def conditioned_true_orbit(
         t_true = float(tau_period / _mp(member.r0))
     forward = problem.reduction().forward_function(values, eps)
     y, z = _move_to_section(problem, y, forward)
-    # the P-defect is resolved to the residual, and no better than the spacing of the doubles
-    # u(T), u(0) (of size offset_size) the shooting subtracts
-    resolution = max(orbit.residual, float(np.spacing(offset_size))) / TOL * RESOLUTION
+    resolution = amplitude_resolution(orbit, scales[0] / math.hypot(y[0], y[1]))
+    if not math.isfinite(resolution):
+        return _failed(
+            STATUS_UNRESOLVED,
+            "conditioned shooting: the conditioned defect does not determine the amplitudes (the "
+            "Newton matrix of P, Q and the period is singular within the rounding of the "
+            f"monodromy); converged residual {orbit.residual:.2e}",
+            first,
+            **common,
+        )
     return TrueOrbit(
         success=True,
         initial_state=np.asarray(y, dtype=float),

@@ -4,11 +4,14 @@ A different CPU, BLAS or library version changes the last bits of every integrat
 :class:`NoisyIntegrator` wraps a real integrator and adds to each final state a reproducible
 perturbation of a chosen absolute size (seeded by the start), so a test can ask what a machine
 whose floor is higher than ours would get. Given the shooting's augmented state (the state and
-its n x n variational matrix), only the state is perturbed: a machine's last bits move the
-monodromy by its own float64 rounding, not by the state's noise. Its error model is the one the shooting's precision
-floor assumes: :meth:`loosened` makes the noise ``factor`` times larger along with the inner
-integrator's tolerance. The perturbation is :func:`perturb.oracle._noise.perturbed`, the one the
-suite-wide test noise (``PERTURB_TEST_NOISE``) adds to every integration.
+its n x n variational matrix), ``level`` and ``ulps`` perturb the state only: a machine's last
+bits move the monodromy by its own float64 rounding, not by the state's noise. That rounding is
+``monodromy_ulps`` (an extended-precision monodromy cast to float64 differs by up to one ulp from
+one machine to the next), drawn apart from the state's and kept by :meth:`loosened`. The state's
+error model is the one the shooting's precision floor assumes: :meth:`loosened` makes its noise
+``factor`` times larger along with the inner integrator's tolerance. The perturbation is
+:func:`perturb.oracle._noise.perturbed`, the one the suite-wide test noise (``PERTURB_TEST_NOISE``)
+adds to every integration.
 """
 
 from __future__ import annotations
@@ -25,19 +28,28 @@ from perturb.oracle.base import IntegratorBase, Run
 @frozen
 class NoisyIntegrator(IntegratorBase):
     """``inner`` with a perturbation on each final state: ``level`` (absolute, an integration
-    error) plus ``ulps`` float64 spacings of each component (the last bits of the machine)."""
+    error) plus ``ulps`` float64 spacings of each component (the last bits of the machine), and
+    ``monodromy_ulps`` float64 spacings of each entry of a shooting's monodromy. ``machine`` names
+    the machine emulated: another name draws other bits (the empty name, the default, draws those
+    of the suite's seed alone)."""
 
     inner: IntegratorBase
     level: float = 0.0
     ulps: float = 0.0
+    monodromy_ulps: float = 0.0
+    machine: str = ""
 
     @property
     def name(self) -> str:
-        return f"{self.inner.name} + noise {self.level:g} + {self.ulps:g} ulp"
+        return f"{self.inner.name} + noise {self.level:g} + {self.ulps:g} ulp" + (
+            f" + {self.monodromy_ulps:g} ulp on the monodromy" if self.monodromy_ulps else ""
+        )
 
     def loosened(self, factor: float) -> NoisyIntegrator:
         inner = self.inner.loosened(factor) or self.inner
-        return NoisyIntegrator(inner, self.level * factor, self.ulps * factor)
+        return NoisyIntegrator(
+            inner, self.level * factor, self.ulps * factor, self.monodromy_ulps, self.machine
+        )
 
     def _accept_rhs(self, rhs) -> None:
         self.inner._accept_rhs(rhs)
@@ -54,6 +66,14 @@ class NoisyIntegrator(IntegratorBase):
         n = n if n + n * n == size else size
         # the same start gives the same noise: a machine is deterministic, only different
         start = np.asarray(y0, dtype=float)
-        moved = perturbed(states[-1][:n].astype(float), self.ulps, start, level=self.level)
+        machine = self.machine.encode()  # b"": the digest of the seed and the start alone
+        moved = perturbed(states[-1][:n].astype(float), self.ulps, machine, start, level=self.level)
         states[-1][:n] = moved.astype(states[-1].dtype)
+        if self.monodromy_ulps and n < size:
+            # float64 ulps whatever the inner type: the monodromy is used as float64 (its cast
+            # differs by up to one ulp between machines); a draw of its own, apart from the state's
+            phi = perturbed(
+                states[-1][n:].astype(float), self.monodromy_ulps, b"monodromy", machine, start
+            )
+            states[-1][n:] = phi.astype(states[-1].dtype)
         return Run(run.t, states, run.t_reached, run.nfev, run.status, run.message)

@@ -154,6 +154,17 @@ def test_finite_difference_jacobian_is_accurate():
 # --------------------------------------------------------------------------------------------------
 
 
+def test_the_orbit_carries_the_defect_its_residual_is_of(vdp_orbit):
+    """Each component of y(T) - y(0) at the orbit (an error bound through the Newton matrix needs
+    them): the residual is the largest over the state scale, the section component returns."""
+    defect = vdp_orbit.defect
+    assert defect.shape == vdp_orbit.initial_state.shape
+    scale = float(np.max(np.abs([2.0, 0.0])))  # the default scale: the guess's largest component
+    assert float(np.max(np.abs(defect))) / scale == vdp_orbit.residual  # the very same numbers
+    failed = find_periodic_orbit(van_der_pol(EPS), [3.0, 0.0], 5.0, section_index=1, max_iter=1)
+    assert float(np.max(np.abs(failed.defect))) / 3.0 == failed.residual  # failures carry it too
+
+
 def test_no_convergence_returns_status_and_message():
     orbit = find_periodic_orbit(van_der_pol(EPS), [3.0, 0.0], 5.0, section_index=1, max_iter=1)
     assert not orbit.success and orbit.status is OrbitStatus.MAX_ITER
