@@ -150,7 +150,9 @@ def _refined(polys: list, unknowns: list, box: list, midpoint: dict) -> dict:
         return {u: sp.Float(x[i], digits) for i, u in enumerate(unknowns)}
 
 
-def msolve_real_roots(eqs, unknowns, seconds: float, binary: str | None = None) -> RootSet:
+def msolve_real_roots(
+    eqs, unknowns, seconds: float, binary: str | None = None, *, refine: bool = True
+) -> RootSet:
     """Every real root of ``eqs = 0`` (rational coefficients) by msolve, under a time budget.
 
     Parameters
@@ -162,6 +164,10 @@ def msolve_real_roots(eqs, unknowns, seconds: float, binary: str | None = None) 
         The budget; msolve is killed when it is spent (BUDGET_EXCEEDED).
     binary : str, optional
         The executable (default :func:`msolve_binary`).
+    refine : bool
+        What a construction needs: a large root refined by Newton inside its box to its digits
+        (``_refined``), a rational root recognised exactly (``_exact_root``); False keeps the
+        box midpoints (a caller that needs floats only).
 
     Returns
     -------
@@ -223,7 +229,8 @@ def msolve_real_roots(eqs, unknowns, seconds: float, binary: str | None = None) 
         for box in boxes
     ]
     refined = [
-        _refined(polys, unknowns, box, mid) for box, mid in zip(boxes, midpoints, strict=True)
+        _refined(polys, unknowns, box, mid) if refine else mid
+        for box, mid in zip(boxes, midpoints, strict=True)
     ]
     order = sorted(range(len(boxes)), key=lambda i: [midpoints[i][u] for u in reversed(unknowns)])
     return RootSet(
@@ -231,7 +238,7 @@ def msolve_real_roots(eqs, unknowns, seconds: float, binary: str | None = None) 
         [{u: float(v) for u, v in midpoints[i].items()} for i in order],
         unknowns,
         f"{len(boxes)} real roots, isolated by msolve",
-        exact=[_exact_root(polys, unknowns, boxes[i]) for i in order],
+        exact=[_exact_root(polys, unknowns, boxes[i]) if refine else {} for i in order],
         approximations=[refined[i] for i in order],
         certificates=[
             "msolve box "

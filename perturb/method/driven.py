@@ -171,16 +171,19 @@ class _Collecting(_DrivenOrderByOrder):
 
     def _solve_conditions(self, k: int, generating: GeneratingSolution) -> tuple[dict, tuple]:
         to_sympy, expand = self.conv.to_sympy, self.conv.ring.expand
-        # the generating amplitudes become the user's symbols, every correction is zero
-        mapping = {}
-        for u in self.unknowns:
-            name = u.name
-            if name[:2] in ("a_", "b_") and name[2:].rstrip("0123456789") in self.names:
-                digits = name[len(name[2:].rstrip("0123456789")) + 2 :]
-                if digits == "0":
-                    mapping[u] = sp.Symbol(name[:-1])
-                else:
-                    mapping[u] = sp.S.Zero
+        # the generating amplitudes become the user's symbols, every correction is zero (the
+        # generating symbols are read off the generating solution, never parsed from names: a
+        # coordinate named x1 has the generating amplitude a_x10, which no name split tells from
+        # the order-10 correction of a coordinate x)
+        given = {}
+        for i, name in enumerate(self.names):
+            for ab, symbol in (
+                ("a", generating.cos_amplitudes[i]),
+                ("b", generating.sin_amplitudes[i]),
+            ):
+                if isinstance(symbol, sp.Symbol) and symbol in self.unknowns:
+                    given[symbol] = sp.Symbol(f"{ab}_{name}")
+        mapping = {u: given.get(u, sp.S.Zero) for u in self.unknowns}
         self.collected.append(
             tuple(sp.expand(to_sympy(expand(e)).xreplace(mapping)) for e in self.pending)
         )
@@ -309,6 +312,24 @@ class SlowFlow:
         """A real eigenvalue at zero: the branch turns (saddle-node) or another one crosses."""
         return self.stable is None
 
+    @classmethod
+    def of(cls, jacobian, epsilon: float) -> SlowFlow:
+        """The slow flow of the Jacobian ``J`` of the row-scaled conditions at a root, judged.
+
+        Examples
+        --------
+        >>> flow = SlowFlow.of([[-1.0, 2.0], [-2.0, -1.0]], 0.1)
+        >>> flow.stable, [round(abs(m), 4) for m in flow.multipliers]
+        (True, [0.9048, 0.9048])
+        """
+        jac = np.asarray(jacobian, dtype=float)
+        eig = np.linalg.eigvals(jac) if jac.size else np.array([], dtype=complex)
+        scale = max(float(np.max(np.abs(eig), initial=0.0)), math.ulp(1.0))
+        top = float(np.max(eig.real, initial=-math.inf))
+        stable = None if abs(top) <= SLOW_FLOW_ZERO * scale else top < 0
+        multipliers = np.array([cmath.exp(epsilon * complex(e)) for e in eig])
+        return cls(jac, eig, stable, multipliers)
+
 
 #: Relative size (to the largest) below which a slow-flow eigenvalue's real part counts as zero.
 SLOW_FLOW_ZERO = 1e-9
@@ -344,12 +365,7 @@ def slow_flow(
     jac = np.array(
         [[float(sp.diff(r, a).xreplace(subs)) for a in symbols] for r in rows], dtype=float
     )
-    eig = np.linalg.eigvals(jac) if jac.size else np.array([], dtype=complex)
-    scale = max(float(np.max(np.abs(eig), initial=0.0)), math.ulp(1.0))
-    top = float(np.max(eig.real, initial=-math.inf))
-    stable = None if abs(top) <= SLOW_FLOW_ZERO * scale else top < 0
-    multipliers = np.array([cmath.exp(epsilon * complex(e)) for e in eig])
-    return SlowFlow(jac, eig, stable, multipliers)
+    return SlowFlow.of(jac, float(epsilon))
 
 
 def _lookup(mapping: Mapping, symbol: sp.Symbol):

@@ -16,12 +16,11 @@ import attrs
 import numpy as np
 import sympy as sp
 
-from perturb._lambdify import numpy_lambdify
 from perturb.errors import InvalidParameterError, bad_value
-from perturb.method.driven import AmplitudeEquations, slow_flow
+from perturb.method.driven import AmplitudeEquations
+from perturb.response.compiled import CompiledEquations, compiled
 from perturb.response.roots import real_roots
 from perturb.solution import PeriodicSolution, Status
-from perturb.system import EPS
 
 __all__ = [
     "BranchPoint",
@@ -117,20 +116,21 @@ def branches_at(
         the list is empty: never a silent drop).
     """
     fixed = _fixed(equations, values)
-    first = [sp.expand(e.xreplace(fixed)) for e in equations.displacement(0)]
+    ready = compiled(equations, order)
+    first = ready.first_order(fixed)
     unknowns = list(equations.amplitudes)
-    roots = real_roots(first, unknowns)
+    roots = real_roots(first, unknowns, floats=True)
     if not roots.status.success:
         return [], f"{roots.status.value} ({roots.message})"
-    refine = _continuation(equations, order, fixed, float(epsilon))
     point_values = {k.name: float(v) for k, v in fixed.items()}
+    refine = _continuation(ready, point_values, float(epsilon))
     out = []
     for root in _distinct_orbits(roots.roots, equations):
         amplitudes, note = refine(root)
         # the slow flow of the displacement function whose root this is (order 0 when the
         # continuation kept the first-order root): a Jacobian off its own root means nothing
-        flow_order = 0 if note else order
-        flow = slow_flow(equations, amplitudes, point_values, float(epsilon), order=flow_order)
+        vector = [amplitudes[s.name] for s in unknowns]
+        flow = ready.slow_flow(vector, point_values, float(epsilon), first=bool(note))
         norms = {
             c: math.hypot(amplitudes[f"a_{c}"], amplitudes[f"b_{c}"]) for c in equations.coordinates
         }
@@ -182,29 +182,27 @@ def _distinct_orbits(roots, equations: AmplitudeEquations) -> list[dict]:
     return kept
 
 
-def _continuation(equations: AmplitudeEquations, order: int, fixed: dict, eps: float):
-    """Newton on D_order from a first-order root (the identity at order 0)."""
-    names = [s.name for s in equations.amplitudes]
+def _continuation(ready: CompiledEquations, values: dict, eps: float):
+    """Newton on D_N from a first-order root (the identity at order 0)."""
+    symbols = list(ready.equations.amplitudes)
+    names = [s.name for s in symbols]
+    order = ready.order
     if order == 0:
         return lambda root: ({s.name: float(v) for s, v in root.items()}, "")
-    rows = [sp.expand(r.xreplace(fixed).subs(EPS, eps)) for r in equations.displacement(order)]
-    symbols = list(equations.amplitudes)
-    f = numpy_lambdify(symbols, rows)
-    jac = numpy_lambdify(symbols, [[sp.diff(r, a) for a in symbols] for r in rows])
 
     def refine(root):
         x = np.array([float(root[s]) for s in symbols])
         start = x.copy()
         size = max(1.0, float(np.max(np.abs(x))))
-        residual = np.asarray(f(*x), dtype=float)
+        residual = ready.residual(x, values, eps)
         for _ in range(CONTINUATION_ITERATIONS):
             if np.max(np.abs(residual)) <= CONTINUATION_TOL * size:
                 break
             try:
-                x = x + np.linalg.solve(np.asarray(jac(*x), dtype=float), -residual)
+                x = x + np.linalg.solve(ready.jacobian(x, values, eps), -residual)
             except np.linalg.LinAlgError:
                 break
-            residual = np.asarray(f(*x), dtype=float)
+            residual = ready.residual(x, values, eps)
         converged = bool(np.max(np.abs(residual)) <= CONTINUATION_TOL * size * 1e3)
         leap = float(np.max(np.abs(x - start)))
         if not converged or leap > CONTINUATION_LEAP * max(float(np.max(np.abs(start))), eps):
