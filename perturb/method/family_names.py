@@ -69,11 +69,15 @@ import sympy as sp
 
 from perturb.method.exact import is_zero, probe_values
 
-__all__ = ["name_families"]
+__all__ = ["name_families", "response_shape"]
 
 #: A standing wave of n coordinates is "localised" when its participation number is at most this
 #: fraction of n + 1: it moves fewer than about half of the coordinates (module notes, rule 4).
 LOCALISED_BELOW = 0.5
+#: A driven response's coordinate is at rest when its amplitude is at most this fraction of the
+#: largest: far below any amplitude a forcing gives (a symmetry's exact zero comes out of the
+#: certified roots as ~1e-38), far above the roots' rounding.
+AT_REST = 1e-12
 
 
 def _sign(expr: sp.Expr) -> int:
@@ -202,3 +206,49 @@ def name_families(described: list[tuple]) -> list[str]:
         else:
             names[i] = raw[i]
     return names
+
+
+def response_shape(amplitudes: dict) -> str:
+    r"""The mode shape of a driven response of two or more resonant coordinates.
+
+    ``amplitudes`` maps each coordinate to its complex amplitude :math:`z = a - ib` (the response
+    :math:`x = \mathrm{Re}(z e^{is}) = a\cos s + b\sin s`). Each coordinate is compared with the
+    one of largest amplitude r: ``p`` when :math:`\mathrm{Re}(z\bar z_r) > 0` (within a quarter
+    period of it), ``n`` otherwise, ``0`` at rest (:data:`AT_REST`). As for the free families
+    (rule 4): all ``p``: ``in-phase``; neighbours of opposite signs: ``anti-phase``; else
+    ``shape-`` and the signs read from the first moving coordinate, counted positive; followed
+    by ``-localised-c`` when the participation number is below ``LOCALISED_BELOW`` · (n + 1).
+
+    Examples
+    --------
+    >>> response_shape({"x1": 1 - 0.2j, "x2": 0.9 - 0.1j})
+    'in-phase'
+    >>> response_shape({"x1": 1.0 + 0j, "x2": -0.05 + 0.01j})
+    'anti-phase-localised-x1'
+    >>> response_shape({"x1": 0j, "x2": 0j})
+    'trivial'
+    """
+    coords = list(amplitudes)
+    values = [complex(amplitudes[c]) for c in coords]
+    sizes = [abs(z) for z in values]
+    top = max(sizes, default=0.0)
+    if top == 0.0:
+        return "trivial"
+    reference = values[sizes.index(top)]
+    signs = [
+        0 if size <= AT_REST * top else (1 if (z * reference.conjugate()).real > 0 else -1)
+        for z, size in zip(values, sizes, strict=True)
+    ]
+    lead = next(s for s in signs if s)
+    signs = [s * lead for s in signs]
+    if 0 not in signs and len(set(signs)) == 1:
+        name = "in-phase"
+    elif 0 not in signs and all(a != b for a, b in pairwise(signs)):
+        name = "anti-phase"
+    else:
+        name = "shape-" + "".join({1: "p", -1: "n", 0: "0"}[s] for s in signs)
+    squares = [size**2 for size in sizes]
+    participation = sum(squares) ** 2 / sum(q * q for q in squares)
+    if participation < LOCALISED_BELOW * (len(coords) + 1):
+        name += f"-localised-{coords[sizes.index(top)]}"
+    return name

@@ -25,7 +25,7 @@ def response_as_dict(result) -> dict:
 
     ``{"problem", "parameter", "order", "epsilon", "parameters", "points": [{"value", "branch",
     "amplitudes", "norms", "stable", "eigenvalues", "multipliers", "note"}], "folds": [{"value",
-    "norms"}], "backbone": {"coordinate", "amplitudes", "values"} | null, "true": [{"value",
+    "norms"}], "branch_points": [{"value", "norms"}], "backbone": {"coordinate", "amplitudes", "values"} | null, "true": [{"value",
     "branch", "success", "amplitude", "amplitude_error", "floquet_max", "stable_true",
     "stable_analytic", "message"}], "failures": [str]}``; complex numbers are ``[re, im]``.
     """
@@ -72,6 +72,7 @@ def response_as_dict(result) -> dict:
         "parameters": response.values,
         "points": points,
         "folds": [{"value": f.value, "norms": f.norms} for f in response.folds],
+        "branch_points": [{"value": f.value, "norms": f.norms} for f in response.branch_points],
         "backbone": backbone,
         "true": true,
         "failures": list(response.failures),
@@ -113,6 +114,11 @@ def response_as_table(result) -> str:
     if response.folds:
         lines.append("folds (saddle-node: the response jumps here in a slow sweep):")
         for f in response.folds:
+            amps = "  ".join(f"|{c}| = {v:.6g}" for c, v in f.norms.items())
+            lines.append(f"  {result.parameter} = {f.value:.8g}   {amps}")
+    if response.branch_points:
+        lines.append("branch points (a branch crosses another and goes on):")
+        for f in response.branch_points:
             amps = "  ".join(f"|{c}| = {v:.6g}" for c, v in f.norms.items())
             lines.append(f"  {result.parameter} = {f.value:.8g}   {amps}")
     if result.backbone is not None:

@@ -18,6 +18,7 @@ import sympy as sp
 
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import AmplitudeEquations
+from perturb.method.family_names import response_shape
 from perturb.response.compiled import CompiledEquations, compiled
 from perturb.response.roots import real_roots
 from perturb.solution import PeriodicSolution, Status
@@ -39,6 +40,11 @@ CONTINUATION_TOL = 1e-12
 #: A continued root that moves by more than this fraction of its amplitude (plus ε) has left its
 #: first-order root: a spurious root of the truncated series, not that branch.
 CONTINUATION_LEAP = 0.5
+#: What a point says when its slow flow's verdict lies within the slow flow's own error.
+UNCERTAIN_NOTE = (
+    "stability uncertain: a slow-flow pair turns fast and its real part lies within the error of "
+    "the first-order slow flow (near a Neimark-Sacker point): check it with --validate"
+)
 #: A response whose amplitudes are all below this is the trivial one (x = 0).
 TRIVIAL = 1e-12
 #: Two roots this close (relative) are one: far above the isolation width, far below any
@@ -131,6 +137,8 @@ def branches_at(
         # continuation kept the first-order root): a Jacobian off its own root means nothing
         vector = [amplitudes[s.name] for s in unknowns]
         flow = ready.slow_flow(vector, point_values, float(epsilon), first=bool(note))
+        if flow.uncertain:
+            note = "; ".join(filter(None, [note, UNCERTAIN_NOTE]))
         norms = {
             c: math.hypot(amplitudes[f"a_{c}"], amplitudes[f"b_{c}"]) for c in equations.coordinates
         }
@@ -219,14 +227,41 @@ def _continuation(ready: CompiledEquations, values: dict, eps: float):
 def branch_names(points: list[BranchPoint]) -> list[str]:
     """Stable names for the branches at one point, sorted by amplitude: ``trivial`` (x = 0), then
     ``response`` (one), ``lower``/``upper`` (two), ``lower``/``middle``/``upper`` (three),
-    else ``branch-1``, ``branch-2``, …"""
+    else ``branch-1``, ``branch-2``, …
+
+    With several resonant coordinates each branch is named by its mode shape first
+    (:func:`perturb.method.family_names.response_shape`: ``in-phase``, ``anti-phase``,
+    ``shape-pn0``, ``-localised-x2``), and the branches of one shape by amplitude as above:
+    ``in-phase`` alone, ``in-phase-lower`` and ``in-phase-upper``, ``in-phase-1``, …"""
     trivial = [p for p in points if p.trivial]
     others = [p for p in points if not p.trivial]
-    labels = {1: ["response"], 2: ["lower", "upper"], 3: ["lower", "middle", "upper"]}
-    names = labels.get(len(others), [f"branch-{k + 1}" for k in range(len(others))])
-    out = {id(p): n for p, n in zip(others, names, strict=True)}
-    out.update({id(p): "trivial" for p in trivial})
+    out = {id(p): "trivial" for p in trivial}
+    if others and len(others[0].norms) > 1:
+        groups: dict[str, list] = {}
+        for p in others:
+            groups.setdefault(response_shape(_complex(p)), []).append(p)
+        for shape, members in groups.items():
+            members.sort(key=lambda p: math.hypot(*p.norms.values()))
+            for p, rank in zip(members, _ranks(len(members)), strict=True):
+                out[id(p)] = f"{shape}-{rank}" if rank else shape
+        return [out[id(p)] for p in points]
+    names = _ranks(len(others)) if len(others) <= 3 else []
+    names = [n or "response" for n in names] or [f"branch-{k + 1}" for k in range(len(others))]
+    out.update({id(p): n for p, n in zip(others, names, strict=True)})
     return [out[id(p)] for p in points]
+
+
+def _ranks(count: int) -> list[str]:
+    """Names of ``count`` branches of one kind by amplitude ("" for a single one)."""
+    labels = {1: [""], 2: ["lower", "upper"], 3: ["lower", "middle", "upper"]}
+    return labels.get(count, [str(k + 1) for k in range(count)])
+
+
+def _complex(point: BranchPoint) -> dict:
+    """``{coordinate: a - ib}`` of a response point."""
+    return {
+        c: complex(point.amplitudes[f"a_{c}"], -point.amplitudes[f"b_{c}"]) for c in point.norms
+    }
 
 
 def branch_solution(

@@ -29,7 +29,7 @@ from attrs import field, frozen
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import AmplitudeEquations
 from perturb.response.branches import BranchPoint, branches_at, exact_number
-from perturb.response.roots import RootStatus, real_roots
+from perturb.response.singular import singular_points
 
 __all__ = ["Fold", "FrequencyResponse", "ResponsePoint", "frequency_response", "trace_branches"]
 
@@ -119,6 +119,12 @@ class FrequencyResponse:
     failures : tuple of str
         Grid values where the roots could not be enumerated, with the reason (never dropped
         silently).
+    coordinates : tuple of str
+        The resonant coordinates.
+    branch_points : tuple of Fold
+        Where a branch crosses another and goes on (a symmetric response losing its symmetry, a
+        mode at rest starting to move, a trivial response at the edge of its tongue), sorted
+        (:mod:`perturb.response.singular`).
     """
 
     system: str
@@ -131,6 +137,7 @@ class FrequencyResponse:
     folds: tuple = field(converter=tuple)
     failures: tuple = field(converter=tuple, factory=tuple)
     coordinates: tuple = field(converter=tuple, factory=tuple)
+    branch_points: tuple = field(converter=tuple, factory=tuple)
 
     def at(self, value: float) -> tuple[ResponsePoint, ...]:
         """The responses at the grid value nearest ``value``."""
@@ -210,7 +217,7 @@ def frequency_response(
         if why:
             failures.append(f"{parameter} = {value:g}: {why}")
         points.extend(ResponsePoint.of(float(value), branch) for branch in found)
-    folds = _folds(first, unknowns, swept, min(grid), max(grid), equations)
+    folds, branch_points = _singular(first, unknowns, swept, min(grid), max(grid), equations)
     return FrequencyResponse(
         system=system.name,
         parameter=parameter,
@@ -222,35 +229,28 @@ def frequency_response(
         folds=tuple(folds),
         failures=tuple(failures),
         coordinates=equations.coordinates,
+        branch_points=tuple(branch_points),
     )
 
 
 def _folds(first, unknowns, swept, low, high, equations) -> list[Fold]:
-    """Where two first-order roots meet: {P1 = 0, det J = 0} in (amplitudes, swept), exactly."""
-    if swept not in set().union(*(e.free_symbols for e in first)):
-        return []
-    jac = sp.Matrix([[sp.diff(e, u) for u in unknowns] for e in first])
-    det = sp.expand(jac.det(method="berkowitz"))
-    found = real_roots([*first, det], [*unknowns, swept])
-    if found.status is not RootStatus.SOLVED:
-        return []
-    out = []
-    for root in found.roots:
-        value = float(root[swept])
-        if not (low <= value <= high):
-            continue
-        amplitudes = {u.name: float(root[u]) for u in unknowns}
-        norms = {
-            c: math.hypot(amplitudes[f"a_{c}"], amplitudes[f"b_{c}"]) for c in equations.coordinates
-        }
-        if all(n == 0 for n in norms.values()):
-            continue  # the trivial branch's own crossing is a pitchfork, reported by stability
-        if _branch_point(jac, root, unknowns, norms):
-            continue  # likewise where a mode at rest starts to move (the absorber's saturation)
-        if any(_same_orbit(fold, value, norms) for fold in out):
-            continue  # the fold of a response shifted by one forcing period: the same orbit
-        out.append(Fold(value, amplitudes, norms, value))
-    return sorted(out, key=lambda f: f.value)
+    """Where a branch turns: the folds of :func:`_singular` (its branch points left out)."""
+    return _singular(first, unknowns, swept, low, high, equations)[0]
+
+
+def _singular(first, unknowns, swept, low, high, equations) -> tuple[list[Fold], list[Fold]]:
+    """Folds and branch points: {P1 = 0, det J = 0} in (amplitudes, swept), exactly, each told
+    apart by the left null vector of J (:mod:`perturb.response.singular`); a point where a mode at
+    rest starts to move is a branch point by either test."""
+    found = singular_points(first, unknowns, swept, low, high, equations.coordinates)
+    jac = sp.Matrix([[sp.diff(e, u) for u in unknowns] for e in first]) if found.folds else None
+    folds, branch_points = [], []
+    for value, amplitudes, norms in found.folds:
+        root = {**{u: amplitudes[u.name] for u in unknowns}, swept: value}
+        kind = branch_points if _branch_point(jac, root, unknowns, norms) else folds
+        kind.append(Fold(value, amplitudes, norms, value))
+    branch_points += [Fold(v, a, n, v) for v, a, n in found.branch_points]
+    return folds, sorted(branch_points, key=lambda f: f.value)
 
 
 #: Relative distance below which two folds are one: the same value and the same amplitude of
@@ -295,31 +295,49 @@ FOLD_ITERATIONS = 20
 
 def continue_fold(fold: Fold, equations, order: int, fixed: dict, swept, epsilon: float) -> Fold:
     """The order-N fold near a first-order one: Newton on {D_N = 0, det dD_N/d(a, b) = 0} in the
-    amplitudes and the swept parameter, started at the exact first-order fold."""
+    amplitudes and the swept parameter, started at the exact first-order fold.
+
+    D_N and its Jacobian are the compiled functions (:mod:`perturb.response.compiled`); the
+    derivatives of the bordered system in (a, b, swept) are central differences of them (the
+    determinant of a 4 x 4 Jacobian of the forced pair, written out and differentiated
+    symbolically, took 215 s)."""
     import numpy as np
 
-    from perturb._lambdify import numpy_lambdify
-    from perturb.system import EPS
+    from perturb.response.compiled import compiled
 
     if order == 0:
         return fold
-    rows = [sp.expand(r.xreplace(fixed).subs(EPS, epsilon)) for r in equations.displacement(order)]
-    unknowns = [*equations.amplitudes, swept]
-    jac = sp.Matrix([[sp.diff(r, a) for a in equations.amplitudes] for r in rows])
-    system = [*rows, sp.expand(jac.det(method="berkowitz"))]
-    f = numpy_lambdify(unknowns, system)
-    df = numpy_lambdify(unknowns, [[sp.diff(e, u) for u in unknowns] for e in system])
-    x = np.array([*(fold.amplitudes[a.name] for a in equations.amplitudes), fold.value])
+    ready = compiled(equations, order)
+    values = {p.name: float(v) for p, v in fixed.items()}
+    names = [a.name for a in equations.amplitudes]
+    n = len(names)
+
+    def system(x):
+        at = {**values, swept.name: float(x[-1])}
+        rows = ready.residual(x[:n], at, epsilon)
+        return np.append(rows, np.linalg.det(ready.jacobian(x[:n], at, epsilon)))
+
+    def derivative(x):
+        columns = []
+        for j in range(n + 1):
+            h = FOLD_STEP * max(1.0, abs(x[j]))
+            up, down = x.copy(), x.copy()
+            up[j] += h
+            down[j] -= h
+            columns.append((system(up) - system(down)) / (2 * h))
+        return np.array(columns).T
+
+    x = np.array([*(fold.amplitudes[a] for a in names), fold.value], dtype=float)
     start = x.copy()
     for _ in range(FOLD_ITERATIONS):
-        residual = np.asarray(f(*x), dtype=float)
+        residual = system(x)
         if np.max(np.abs(residual)) <= 1e-12 * max(1.0, float(np.max(np.abs(x)))):
             break
         try:
-            x = x + np.linalg.lstsq(np.asarray(df(*x), dtype=float), -residual, rcond=None)[0]
+            x = x + np.linalg.lstsq(derivative(x), -residual, rcond=None)[0]
         except np.linalg.LinAlgError:
             break
-    residual = np.asarray(f(*x), dtype=float)
+    residual = system(x)
     moved = float(np.max(np.abs(x - start)))
     if (
         not np.all(np.isfinite(x))
@@ -328,11 +346,16 @@ def continue_fold(fold: Fold, equations, order: int, fixed: dict, swept, epsilon
     ):
         return Fold(fold.value, fold.amplitudes, fold.norms, fold.value,
                     f"the order-{order} fold did not converge: first-order value kept")  # fmt: skip
-    amplitudes = {a.name: float(v) for a, v in zip(equations.amplitudes, x, strict=False)}
+    amplitudes = {a: float(v) for a, v in zip(names, x, strict=False)}
     norms = {
         c: math.hypot(amplitudes[f"a_{c}"], amplitudes[f"b_{c}"]) for c in equations.coordinates
     }
     return Fold(float(x[-1]), amplitudes, norms, fold.value)
+
+
+#: Relative step of the central differences in :func:`continue_fold` (the functions are smooth
+#: polynomials evaluated in double precision: ~eps**(1/3) balances truncation and rounding).
+FOLD_STEP = 1e-5
 
 
 def trace_branches(points, grid, coordinate: str | None = None) -> list[list[ResponsePoint]]:

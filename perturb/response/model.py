@@ -30,7 +30,7 @@ from perturb.response.curve import (
     Fold,
     FrequencyResponse,
     ResponsePoint,
-    _folds,
+    _singular,
     continue_fold,
 )
 
@@ -225,7 +225,7 @@ def problem_response(
             failures.append(f"{parameter} = {value:g}: {why}")
         names.extend(branch_names(found))
         points.extend(ResponsePoint.of(float(value), branch) for branch in found)
-    folds = _problem_folds(equations, problem, parameter, variants, grid)
+    folds, branch_points = _problem_folds(equations, problem, parameter, variants, grid)
     response = FrequencyResponse(
         system=problem.name,
         parameter=parameter,
@@ -237,18 +237,20 @@ def problem_response(
         folds=tuple(folds),
         failures=tuple(failures),
         coordinates=equations.coordinates,
+        branch_points=tuple(branch_points),
     )
     backbone = _backbone(problem, parameter, variants, grid, points, order)
     true = _shoot(problem, parameter, response, names, order, validate) if validate else ()
     return ProblemResponse(problem.name, parameter, response, names, backbone, true)
 
 
-def _problem_folds(equations, problem, parameter, variants, grid) -> list[Fold]:
-    """Folds in the system's parameter that ``parameter`` moves (linearly), mapped back."""
+def _problem_folds(equations, problem, parameter, variants, grid) -> tuple[list, list]:
+    """Folds and branch points in the system's parameter that ``parameter`` moves (linearly),
+    mapped back."""
     first, last = variants[0].symbol_values(), variants[-1].symbol_values()
     moved = [k for k in first if first[k] != last[k]]
     if len(moved) != 1:
-        return []
+        return [], []
     name = moved[0]
     (symbol,) = [p for p in equations.system.parameters if p.name == name]
     a, b = float(grid[0]), float(grid[-1])
@@ -257,7 +259,7 @@ def _problem_folds(equations, problem, parameter, variants, grid) -> list[Fold]:
     middle = variants[len(variants) // 2].symbol_values()[name]
     mid_value = float(grid[len(grid) // 2])
     if not math.isclose(middle, s0 + slope * (mid_value - a), rel_tol=1e-9, abs_tol=1e-12):
-        return []  # not a linear map: no exact folds in the swept parameter
+        return [], []  # not a linear map: no exact folds in the swept parameter
     fixed = {
         p: exact_number(first[p.name])
         for p in equations.system.parameters
@@ -265,18 +267,21 @@ def _problem_folds(equations, problem, parameter, variants, grid) -> list[Fold]:
     }
     rows = [sp.expand(e.xreplace(fixed)) for e in equations.displacement(0)]
     low, high = sorted((s0, s1))
-    out = []
     eps = float(problem.epsilon())
-    for fold in _folds(rows, list(equations.amplitudes), symbol, low, high, equations):
-        fold = continue_fold(fold, equations, equations.order, fixed, symbol, eps)
 
-        def back(value):
-            return a + (value - s0) / slope if slope else a
+    def back(value):
+        return a + (value - s0) / slope if slope else a
 
-        out.append(
-            Fold(back(fold.value), fold.amplitudes, fold.norms, back(fold.first_order), fold.note)
-        )
-    return sorted(out, key=lambda f: f.value)
+    found = _singular(rows, list(equations.amplitudes), symbol, low, high, equations)
+    out = ([], [])
+    for kind, points in zip(out, found, strict=True):
+        for fold in points:
+            fold = continue_fold(fold, equations, equations.order, fixed, symbol, eps)
+            kind.append(
+                Fold(back(fold.value), fold.amplitudes, fold.norms, back(fold.first_order),
+                     fold.note)
+            )  # fmt: skip
+    return tuple(sorted(kind, key=lambda f: f.value) for kind in out)
 
 
 def _backbone(problem, parameter, variants, grid, points, order) -> Backbone | None:
