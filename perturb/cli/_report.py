@@ -8,6 +8,7 @@ problem and its parameters, runs the lazy pipeline (:mod:`perturb.scene.run`) an
 
 from __future__ import annotations
 
+from perturb._install import install_hint
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _UsageError
 from perturb.errors import InvalidParameterError, ProblemLoadError, UnknownNameError
 
@@ -55,7 +56,7 @@ def _cmd_report(args) -> int:
             import matplotlib  # noqa: F401
         except ImportError:
             raise _UsageError(
-                f"{args.scene}: [outputs] plots need matplotlib: pip install 'perturb[plot]', or "
+                f"{args.scene}: [outputs] plots need matplotlib: {install_hint('plot')}, or "
                 "remove the plots"
             ) from None
     problem = _load(scene)

@@ -7,6 +7,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from perturb._defaults import MAX_TIMES
+from perturb._install import install_hint
 from perturb.cli._errors import _UsageError
 
 
@@ -126,5 +127,5 @@ def _check_plot_backend(plot: str | None) -> None:
         import matplotlib  # noqa: F401
     except ImportError:
         raise _UsageError(
-            "--plot needs matplotlib: pip install 'perturb[plot]', or drop --plot"
+            f"--plot needs matplotlib: {install_hint('plot')}, or drop --plot"
         ) from None

@@ -470,7 +470,7 @@ def test_missing_matplotlib_is_one_clear_import_error(duffing, monkeypatch):
     for module in [m for m in sys.modules if m == "matplotlib" or m.startswith("matplotlib.")]:
         monkeypatch.setitem(sys.modules, module, None)
     with pytest.raises(
-        ImportError, match=r"^plots need matplotlib: pip install 'perturb\[plot\]'$"
+        ImportError, match=r"^plots need matplotlib: pip install 'perturb-poincare\[plot\]'"
     ) as info:
         plot_time_series(t, analytic)
     assert isinstance(info.value, MissingDependencyError)
