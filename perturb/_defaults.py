@@ -350,3 +350,71 @@ INVALID_MAX_STEPS = ESTIMATE_FAILED_MAX_STEPS
 #: A velocity component counts as zero at the start (candidate Poincaré section) below this fraction
 #: of the state scale.
 SECTION_ZERO = 1e-8
+
+# --------------------------------------------------------------------------------------------------
+# Pseudo-arclength continuation (perturb.continuation)
+# --------------------------------------------------------------------------------------------------
+#: The corrector (Newton on {G = 0, t.(x - x_pred) = 0}) has converged when its step is below this
+#: fraction of max(1, |x|): Newton's error after such a step is of its square, ~1e-20, at the
+#: rounding of float64.
+CORRECTOR_TOL = 1e-10
+#: Newton iterations the corrector may take: from a predictor inside its basin it needs 2-4; one
+#: that needs more is on a step too long (it is rejected and the step halved).
+CORRECTOR_MAX_ITER = 8
+#: Iterations of a comfortable step: fewer and the step grows, more and it shrinks.
+CORRECTOR_NOMINAL_ITER = 3
+#: Growth of the step after a corrector that needed at most 2 iterations, and after a nominal one;
+#: shrink after a slower one. Halving on a rejected step.
+STEP_GROWTH_FAST = 1.6
+STEP_GROWTH_NOMINAL = 1.2
+STEP_SHRINK = 0.7
+#: Largest angle (radians) between the tangents at two consecutive points: a longer step across
+#: a bend risks landing on a neighbouring branch or stepping over two sign changes of a test
+#: function (which cancel); 0.3 rad (17 degrees) keeps a bend's chord within 1 % of its arc.
+MAX_TURN = 0.3
+#: The default initial and largest step as fractions of the parameter range's width: at least 50
+#: steps across the range, so values read off the curve start inside Newton's basin.
+INITIAL_STEP_FRACTION = 0.005
+MAX_STEP_FRACTION = 0.02
+#: The floor of the step, a fraction of the initial step: below it the corrector fails where no
+#: step would succeed (a singular point not passed, a curve that ends): a failed status says where.
+MIN_STEP_FRACTION = 1e-9
+#: Most points of one continuation: 50 steps per range and the growth above leave 10^4 as room for
+#: a curve that winds many times through the range; past it the budget is spent and says so.
+CONTINUATION_MAX_POINTS = 10_000
+#: A sign change of a test function is located on its segment to this fraction of the segment's
+#: arclength (the secant's bracket), with at most EVENT_MAX_ITER corrections: Illinois' secant
+#: gains about 1.4 digits an iteration, bisection one bit, so 80 covers the worst case.
+EVENT_TOL = 1e-13
+EVENT_MAX_ITER = 80
+#: A curve that comes back within this fraction of a step of its first point, running the same
+#: way, is closed (a loop): its continuation stops there.
+CLOSURE_FRACTION = 0.5
+#: Newton iterations of a value read off the curve at a given parameter (from the cubic Hermite
+#: interpolant of its segment): more and the reading falls back to the secant along the segment.
+READ_MAX_ITER = 6
+
+# --------------------------------------------------------------------------------------------------
+# The order-N response (perturb.response): continuation, stability, measures
+# --------------------------------------------------------------------------------------------------
+#: Magnus steps over one period of the variational equation along the order-N series (fourth
+#: order, two Gauss nodes a step): its error falls like S^-4 and at S = 256 the multipliers of the
+#: shipped problems agree with a DOP853 integration of the same equation (rtol 1e-12) to ~1e-10
+#: (tests/response/test_floquet.py), far below the series' own O(eps^(N+1)); the product of the
+#: multipliers is exp of the divergence's quadrature exactly, whatever S.
+MAGNUS_STEPS = 64
+#: A largest multiplier within this distance of the unit circle is marginal (stable = None): a
+#: fold of the curve, or an undamped system whose multipliers lie on the circle (Liouville makes
+#: their product exactly 1 there: a pair on the circle is at 1 to rounding, 1e-15).
+MARGINAL_MULTIPLIER = 1e-9
+#: A response curve is followed while its amplitudes stay below this many times the largest one
+#: of the first-order census at the window's ends (and 1): beyond it ε a² is no longer small in
+#: any problem the series is meant for, and the curve leaves the domain with that said.
+AMPLITUDE_CAP = 10.0
+#: The first-order points of a curve tried for the lift to order N (the homotopy in the
+#: truncation), best-conditioned first: one suffices unless the homotopy turns back from it.
+LIFT_TRIES = 6
+#: The window of a response beyond its grid on each side, as a fraction of the grid's width: the
+#: folds, branch points and Neimark-Sacker points just outside the sweep are found and reported
+#: (marked outside), and a branch that turns just beyond an end is followed back into it.
+WINDOW_MARGIN = 0.1

@@ -10,6 +10,7 @@ from __future__ import annotations
 __all__ = [
     "AccuracyWarning",
     "CacheWarning",
+    "ContinuationError",
     "IntegrationError",
     "InvalidParameterError",
     "InvalidSystemError",
@@ -199,3 +200,8 @@ class SceneError(PerturbError, ValueError):
 class SweepError(PerturbError, RuntimeError):
     """A sweep that could not finish: chunks whose workers died again and again, or an
     interrupted run (the store keeps every point written; ``--resume`` continues it)."""
+
+
+class ContinuationError(PerturbError, RuntimeError):
+    """A continuation that could not follow its curve to the end, raised on request
+    (:meth:`perturb.continuation.Curve.raise_for_status`): the message says where and why."""

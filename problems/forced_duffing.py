@@ -31,7 +31,7 @@ class ForcedDuffing(DrivenProblem):
     >>> from problems import get_problem
     >>> duffing = get_problem("forced-duffing").create(Omega=1.05)
     >>> [(f.name, f.solution.message.split("; ")[1]) for f in duffing.families(1)]
-    [('lower', 'stable (slow flow)'), ('middle', 'unstable (slow flow)'), ('upper', 'stable (slow flow)')]
+    [('lower', 'stable (Floquet)'), ('middle', 'unstable (Floquet)'), ('upper', 'stable (Floquet)')]
     """
 
     name = "forced-duffing"

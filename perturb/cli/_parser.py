@@ -201,10 +201,13 @@ def _add_response(sub) -> None:
         "response",
         help="a driven problem's frequency response: every branch, its stability, the folds",
         description="Sweep one parameter of a driven (forced, damped, parametrically excited) "
-        "PROBLEM and find, at each value, every steady-state branch of its response (all real "
-        "roots of the amplitude equations, continued to --order), each branch's stability (slow "
-        "flow), the folds where the response jumps, and the backbone of the free system; with "
-        "--validate K, the true orbit is shot at K points of every branch.",
+        "PROBLEM: every steady-state branch of its order-N response, continued along the sweep "
+        "from the certified first-order census through its folds, each point's stability "
+        "(Floquet multipliers of the variational equation along the order-N series), the folds, "
+        "branch points and Neimark-Sacker points (inside the sweep and just beside it), the "
+        "series' own error estimate and the backbone of the free system; with --validate K, the "
+        "true orbit is shot at K points of every branch spread by arclength, and always at its "
+        "largest amplitude, both sides of each fold and its ends.",
     )
     _add_problem_arguments(response)
     response.add_argument(
@@ -213,7 +216,17 @@ def _add_response(sub) -> None:
     )  # fmt: skip
     response.add_argument(
         "--validate", default="0", metavar="K",
-        help="shoot the true orbit at K points of every branch (default 0)",
+        help="shoot the true orbit at K points of every branch spread by arclength, besides its "
+        "largest amplitude, both sides of each fold and its ends (default 0: none; at most 50)",
+    )  # fmt: skip
+    response.add_argument(
+        "--measure", default="peak", choices=["peak", "first-harmonic", "initial"],
+        help="the amplitude drawn and printed: peak = max |x| over a period (default), "
+        "first-harmonic, or initial = |(x(0), xdot(0)/(m nu))|",
+    )  # fmt: skip
+    response.add_argument(
+        "--tol", default=None, metavar="TOL",
+        help="relative orbit error above which a shot point is marked (default 0.1)",
     )  # fmt: skip
     response.add_argument(
         "--plot", default=None, metavar="FILE",

@@ -3,9 +3,33 @@
 from __future__ import annotations
 
 import json
+import math
+from pathlib import Path
 
 from perturb.cli._errors import EXIT_OK, _UsageError
 from perturb.cli._values import _check_plot_backend, _parse_order, _parse_sets
+
+
+def _check_plot_target(plot: str | None) -> None:
+    """A usage error, before any computing, when ``--plot FILE`` cannot be written: a folder that
+    does not exist, or a format matplotlib does not save (by the file's extension)."""
+    if plot is None:
+        return
+    path = Path(plot)
+    if not path.parent.is_dir():
+        raise _UsageError(
+            f"--plot {plot}: the folder {str(path.parent)!r} does not exist; create it or choose "
+            "another path"
+        )
+    from matplotlib.figure import Figure
+
+    formats = Figure().canvas.get_supported_filetypes()
+    extension = path.suffix.lstrip(".").lower()
+    if extension not in formats:
+        raise _UsageError(
+            f"--plot {plot}: {extension or 'no extension'!r} is not a format matplotlib saves; "
+            f"end FILE with one of {', '.join(sorted(formats))} (e.g. response.png)"
+        )
 
 
 def _parse_sweep(text: str):
@@ -21,7 +45,7 @@ def _parse_sweep(text: str):
 
 def _cmd_response(args) -> int:
     from perturb.report import response_as_csv, response_as_dict, response_as_table
-    from perturb.response.model import problem_response
+    from perturb.response.model import MAX_VALIDATE, problem_response
     from problems import load_problem
 
     cls = load_problem(args.problem)
@@ -34,8 +58,24 @@ def _cmd_response(args) -> int:
         raise _UsageError(f"--validate {args.validate!r}: give a whole number >= 0") from None
     if count < 0:
         raise _UsageError(f"--validate {count}: give a whole number >= 0")
+    if count > MAX_VALIDATE:
+        raise _UsageError(
+            f"--validate {count}: at most {MAX_VALIDATE} points a branch (each is a shooting; the "
+            "largest amplitude, both sides of each fold and the ends are shot besides)"
+        )
+    tol = None
+    if args.tol is not None:
+        try:
+            tol = float(args.tol)
+        except ValueError:
+            raise _UsageError(f"--tol {args.tol!r}: give a number > 0, e.g. --tol 0.01") from None
+        if not (math.isfinite(tol) and tol > 0):
+            raise _UsageError(f"--tol {args.tol}: give a finite number > 0, e.g. --tol 0.01")
     _check_plot_backend(args.plot)
-    result = problem_response(problem, parameter, grid, order=order, validate=count)
+    _check_plot_target(args.plot)
+    result = problem_response(
+        problem, parameter, grid, order=order, validate=count, measure=args.measure, tol=tol
+    )
     if args.format == "json":
         print(json.dumps(response_as_dict(result), allow_nan=False))
     elif args.format == "csv":

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from perturb.report.latex import latex_comment
+from perturb.response.measures import MEASURES
 
 __all__ = ["response_as_csv", "response_as_dict", "response_as_table", "response_latex"]
 
@@ -24,10 +25,18 @@ def response_as_dict(result) -> dict:
     """The JSON contract of ``perturb response --format json``.
 
     ``{"problem", "parameter", "order", "epsilon", "parameters", "points": [{"value", "branch",
-    "amplitudes", "norms", "stable", "eigenvalues", "multipliers", "note"}], "folds": [{"value",
-    "norms"}], "branch_points": [{"value", "norms"}], "backbone": {"coordinate", "amplitudes", "values"} | null, "true": [{"value",
-    "branch", "success", "amplitude", "amplitude_error", "floquet_max", "stable_true",
-    "stable_analytic", "message"}], "failures": [str]}``; complex numbers are ``[re, im]``.
+    "amplitudes", "norms", "stable", "eigenvalues", "multipliers", "note", "peak",
+    "first_harmonic", "error_estimate", "series_ok", "liouville", "curve"}], "folds": [{"value",
+    "norms", "amplitudes", "peak", "first_order", "inside"}], "backbone": {"coordinate",
+    "amplitudes", "values"} | null, "true": [{"value", "branch", "success", "amplitude",
+    "amplitude_error", "floquet_max", "stable_true", "stable_analytic", "message",
+    "true_amplitude", "measure", "within_tol", "reason", "multipliers_true",
+    "multipliers_analytic", "curve"}], "failures": [str], "measure": {"name", "meaning"},
+    "special": [{"kind", "value", "amplitudes", "norms", "peak", "inside", "multipliers"}],
+    "curves": [{"values", "amplitudes": {measure: {coordinate: [...]}}, "stable", "series_ok",
+    "max_multiplier", "status"}]}``; complex numbers are ``[re, im]``. ``norms`` is the
+    initial-value norm; ``measure`` names the amplitude the response is drawn by (``amplitude``
+    and ``true_amplitude`` of the shot points are in it).
     """
     response = result.response
     points = [
@@ -40,6 +49,12 @@ def response_as_dict(result) -> dict:
             "eigenvalues": [_complex(z) for z in p.eigenvalues],
             "multipliers": [_complex(z) for z in p.multipliers],
             "note": p.note,
+            "peak": _numbers(p.peak),
+            "first_harmonic": _numbers(p.first_harmonic),
+            "error_estimate": _numbers(p.error),
+            "series_ok": p.series_ok,
+            "liouville": _number(p.liouville),
+            "curve": p.branch,
         }
         for p, name in zip(response.points, result.branches, strict=True)
     ]
@@ -61,6 +76,13 @@ def response_as_dict(result) -> dict:
             "stable_true": t.stable_true,
             "stable_analytic": t.stable_analytic,
             "message": t.message,
+            "true_amplitude": _number(t.true_amplitude),
+            "measure": t.measure,
+            "within_tol": t.within_tol,
+            "reason": t.reason,
+            "multipliers_true": [_complex(z) for z in t.multipliers_true],
+            "multipliers_analytic": [_complex(z) for z in t.multipliers_analytic],
+            "curve": t.curve,
         }
         for t in result.true
     ]
@@ -71,56 +93,119 @@ def response_as_dict(result) -> dict:
         "epsilon": response.epsilon,
         "parameters": response.values,
         "points": points,
-        "folds": [{"value": f.value, "norms": f.norms} for f in response.folds],
-        "branch_points": [{"value": f.value, "norms": f.norms} for f in response.branch_points],
+        "folds": [
+            {
+                "value": f.value,
+                "norms": f.norms,
+                "amplitudes": _numbers(f.amplitudes),
+                "peak": _numbers(f.peak),
+                "first_order": _number(f.first_order),
+                "inside": f.inside,
+            }
+            for f in response.folds
+        ],
         "backbone": backbone,
         "true": true,
         "failures": list(response.failures),
+        "measure": {"name": response.measure, "meaning": MEASURES.get(response.measure, "")},
+        "special": [
+            {
+                "kind": sp.kind,
+                "value": sp.value,
+                "amplitudes": _numbers(sp.amplitudes),
+                "norms": _numbers(sp.norms),
+                "peak": _numbers(sp.peak),
+                "inside": sp.inside,
+                "multipliers": [_complex(z) for z in sp.multipliers],
+            }
+            for sp in response.special
+        ],
+        "curves": [
+            {
+                "values": [_number(v) for v in c.values],
+                "amplitudes": {
+                    m: {k: [_number(v) for v in a] for k, a in by.items()}
+                    for m, by in c.measures.items()
+                },
+                "stable": list(c.stable),
+                "series_ok": list(c.series_ok),
+                "max_multiplier": [_number(v) for v in c.largest],
+                "status": c.status,
+            }
+            for c in response.curves
+        ],
     }
 
 
+def _numbers(mapping) -> dict:
+    return {k: _number(v) for k, v in mapping.items()}
+
+
 def response_as_csv(result) -> str:
-    """One row per branch point: ``PARAMETER,branch,<coordinate> amplitude...,stable``."""
+    """One row per branch point: ``PARAMETER,branch,<coordinate>_amplitude...,stable`` (the
+    amplitude the initial-value norm, as always), then ``<coordinate>_peak...,
+    <coordinate>_first_harmonic..., max_multiplier, series_ok``."""
     response = result.response
     coords = list(response.coordinates)
-    header = [result.parameter, "branch", *(f"{c}_amplitude" for c in coords), "stable"]
+    header = [
+        result.parameter, "branch", *(f"{c}_amplitude" for c in coords), "stable",
+        *(f"{c}_peak" for c in coords), *(f"{c}_first_harmonic" for c in coords),
+        "max_multiplier", "series_ok",
+    ]  # fmt: skip
     rows = [",".join(header)]
     for p, name in zip(response.points, result.branches, strict=True):
         cells = [f"{p.value:.12g}", name, *(f"{p.norms[c]:.12g}" for c in coords)]
-        rows.append(",".join([*cells, _STABILITY[p.stable]]))
+        largest = max((abs(z) for z in p.multipliers), default=math.nan)
+        extra = [
+            *(f"{p.peak.get(c, math.nan):.12g}" for c in coords),
+            *(f"{p.first_harmonic.get(c, math.nan):.12g}" for c in coords),
+            f"{largest:.12g}", str(p.series_ok).lower(),
+        ]  # fmt: skip
+        rows.append(",".join([*cells, _STABILITY[p.stable], *extra]))
     return "\n".join(rows)
 
 
 def response_as_table(result) -> str:
-    """A readable table: the points, the folds, the shot points, what could not be solved."""
+    """A readable table: the points, the special points, the shot points, what failed."""
     response = result.response
     coords = list(response.coordinates)
+    measure = getattr(response, "measure", "initial")
+
+    def size(p, c):
+        if hasattr(p, "amplitude"):
+            return p.amplitude(c, measure)
+        table = {"peak": p.peak, "initial": p.norms}.get(measure) or p.norms
+        return table.get(c, math.nan)
+
     lines = [
         f"# response {result.problem}  sweep {result.parameter}  order {response.order}  "
-        f"epsilon {response.epsilon:g}",
+        f"epsilon {response.epsilon:g}  amplitude: {MEASURES.get(measure, measure)}",
         "# " + "  ".join(f"{k}={v:g}" for k, v in response.values.items()),
         f"{result.parameter:>12s} {'branch':>9s} "
         + " ".join(f"{'|' + c + '|':>12s}" for c in coords)
-        + f" {'stability':>10s} {'max|lambda|':>12s}",
+        + f" {'stability':>10s} {'max|lambda|':>12s} {'prod lambda':>12s}",
     ]
     for p, name in zip(response.points, result.branches, strict=True):
         largest = max((abs(z) for z in p.multipliers), default=math.nan)
+        product = math.prod(p.multipliers).real if p.multipliers else math.nan
         lines.append(
             f"{p.value:12.6g} {name:>9s} "
-            + " ".join(f"{p.norms[c]:12.6g}" for c in coords)
-            + f" {_STABILITY[p.stable]:>10s} {largest:12.6f}"
+            + " ".join(f"{size(p, c):12.6g}" for c in coords)
+            + f" {_STABILITY[p.stable]:>10s} {largest:12.6f} {product:12.6f}"
             + (f"  ({p.note})" if p.note else "")
         )
     if response.folds:
-        lines.append("folds (saddle-node: the response jumps here in a slow sweep):")
+        lines.append("folds (saddle-node: the response jumps here in a slow sweep; * beside it):")
         for f in response.folds:
-            amps = "  ".join(f"|{c}| = {v:.6g}" for c, v in f.norms.items())
-            lines.append(f"  {result.parameter} = {f.value:.8g}   {amps}")
-    if response.branch_points:
-        lines.append("branch points (a branch crosses another and goes on):")
-        for f in response.branch_points:
-            amps = "  ".join(f"|{c}| = {v:.6g}" for c, v in f.norms.items())
-            lines.append(f"  {result.parameter} = {f.value:.8g}   {amps}")
+            amps = "  ".join(f"|{c}| = {size(f, c):.6g}" for c in coords)
+            lines.append(f" {' ' if f.inside else '*'} {result.parameter} = {f.value:.8g}   {amps}")
+    others = [s for s in response.special if s.kind != "fold"]
+    if others:
+        lines.append("branch points, Neimark-Sacker, period doubling (* beside the sweep):")
+        for s in others:
+            amps = "  ".join(f"|{c}| = {s.peak.get(c, math.nan):.6g}" for c in coords)
+            mark = " " if s.inside else "*"
+            lines.append(f" {mark}{s.kind:>15s} at {result.parameter} = {s.value:.8g}   {amps}")
     if result.backbone is not None:
         b = result.backbone
         lines.append(
@@ -131,12 +216,14 @@ def response_as_table(result) -> str:
         lines.append("true motion (forced shooting, Floquet multipliers):")
         for t in result.true:
             agree = "agree" if t.stable_true == t.stable_analytic else "DISAGREE"
+            within = {True: "", False: " > tol", None: ""}[t.within_tol]
             lines.append(
                 f"  {result.parameter} = {t.value:.6g} {t.branch:>9s}: "
                 + (
-                    f"amplitude error {t.amplitude_error:.3g}, max|lambda| {t.floquet_max:.6f} "
-                    f"({_STABILITY[t.stable_true]}; slow flow {_STABILITY[t.stable_analytic]}: "
-                    f"{agree})"
+                    f"amplitude {t.amplitude:.6g} (true {t.true_amplitude:.6g}), orbit error "
+                    f"{t.amplitude_error:.3g}{within}, max|lambda| {t.floquet_max:.6f} "
+                    f"({_STABILITY[t.stable_true]}; analytic {_STABILITY[t.stable_analytic]}: "
+                    f"{agree}) [{t.reason}]"
                     if t.success
                     else f"no true orbit found: {t.message}"
                 )

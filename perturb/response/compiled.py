@@ -1,156 +1,173 @@
-"""The amplitude equations of a driven system, prepared once for every parameter point.
+"""The order-N response compiled once: the displacement function, the series' harmonics, the
+Jacobian of the equations of motion — evaluated at any point without deriving anything again.
 
-A response curve or a phase diagram solves the same amplitude equations at many parameter
-values. What does not depend on the values is done once per :class:`~perturb.method.driven.
-AmplitudeEquations` and order (:func:`compiled`):
+* :func:`compiled_displacement`: the rows of :math:`D_N` (:meth:`AmplitudeEquations.displacement`)
+  as polynomials in (amplitudes, system parameters, ε), with their gradients
+  (:class:`~perturb.response.polynomial.CompiledPolynomials`, kept in the disk cache);
+* :func:`compiled_series`: the cosine and sine coefficients of every harmonic of every coordinate
+  of the order-N series, summed over the orders, as polynomials in the same variables;
+* :func:`compiled_motion`: the Jacobian of the first-order equations of motion of the driven
+  system, (ẋ, ẍ) = (v, −ω²x + f(x, v, θ)), with respect to the state, as numpy functions of
+  (state, θ, parameters, ε), for the variational equation along the series
+  (:mod:`perturb.response.floquet`).
 
-* the first-order rows as polynomials in the amplitudes whose coefficients are expressions in the
-  parameters, the common factor π taken out (every periodicity condition is π times a Fourier
-  coefficient of the forcing, rational for a polynomial right-hand side): putting exact values in
-  is then a few small substitutions, and the rows handed to the certified solver are the exact
-  ones (:meth:`CompiledEquations.first_order`);
-* the displacement function :math:`D_N` and its Jacobian in the amplitudes as numpy functions of
-  (amplitudes, parameters, ε): the order-N continuation of a root and its slow flow cost a few
-  function calls, not a symbolic substitution per root.
+Rows that are not polynomial in these variables (a parameter under a square root) are lambdified
+instead, behind the same two methods.
 """
 
 from __future__ import annotations
-
-import threading
-from collections.abc import Mapping
 
 import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
 from perturb._lambdify import numpy_lambdify
-from perturb.method.driven import AmplitudeEquations, SlowFlow
+from perturb.cache import cached
+from perturb.response.polynomial import CompiledPolynomials, compile_polynomials
 from perturb.system import EPS
 
-__all__ = ["CompiledEquations", "compiled"]
+__all__ = ["Motion", "Series", "compiled_displacement", "compiled_motion", "compiled_series"]
 
-#: Compiled equations kept per process (each holds numpy functions of a few kB).
-_CACHE: dict[tuple[int, int], tuple[AmplitudeEquations, CompiledEquations]] = {}
-_LOCK = threading.Lock()
-#: At most this many are kept (the oldest dropped): a process sweeps one or two systems.
-CACHE_SIZE = 16
+
+def variables(equations) -> list[sp.Symbol]:
+    """The variables of the compiled rows: the amplitudes, the system's parameters, ε."""
+    return [*equations.amplitudes, *equations.system.parameters, EPS]
 
 
 @frozen
-class CompiledEquations:
-    """The amplitude equations of one driven system to one order, ready for many points.
+class Lambdified:
+    """Rows that are not polynomial, lambdified: the interface of CompiledPolynomials."""
 
-    Attributes
-    ----------
-    equations : AmplitudeEquations
-    order : int
-        The order N of the displacement function compiled (0: the first-order equations).
-    parameters : tuple of sympy.Symbol
-        The system's parameters, in the order the numeric functions take them.
-    first_terms : tuple
-        Per first-order row, ``((monomial, coefficient), ...)``: the exponents of the amplitudes
-        and the coefficient, an expression in the parameters.
+    names: tuple = field(converter=tuple)
+    rows: object = field(eq=False)
+    gradient: object = field(eq=False)
+
+    def values(self, x) -> np.ndarray:
+        x = np.asarray(x, dtype=float)
+        out = np.array(self.rows(*np.moveaxis(x, -1, 0)), dtype=float)
+        return np.moveaxis(np.broadcast_to(out, (out.shape[0], *x.shape[:-1])), 0, -1)
+
+    def values_and_gradient(self, x):
+        x = np.asarray(x, dtype=float)
+        return (
+            np.asarray(self.rows(*x), dtype=float),
+            np.asarray(self.gradient(*x), dtype=float),
+        )
+
+    def specialized(self, fixed: dict, moving: dict, name: str = "lam"):
+        return None  # the caller evaluates the full rows along the line
+
+
+def _compile(key, rows, symbols, lambdified_gradient: bool = True):
+    """The rows compiled to polynomials (disk-cached under ``key``), else lambdified."""
+    compiled = cached("compiled-response", key, lambda: compile_polynomials(rows(), symbols))
+    if compiled is not None:
+        return compiled
+    exprs = rows()
+    fn = numpy_lambdify(symbols, exprs, cse=True)
+    grad = (
+        numpy_lambdify(symbols, [[sp.diff(r, s) for s in symbols] for r in exprs], cse=True)
+        if lambdified_gradient
+        else None
+    )
+    return Lambdified(tuple(s.name for s in symbols), fn, grad)
+
+
+def _key(equations, what: str, order: int) -> tuple:
+    from perturb.method.poincare import PoincareMethod
+
+    method = PoincareMethod(order=1, cache=False)
+    return ("compiled-response", what, method._cache_key(equations.system), order)
+
+
+def compiled_displacement(equations, order: int) -> CompiledPolynomials | Lambdified:
+    """:math:`D_{order}` of ``equations`` in :func:`variables` (disk-cached when polynomial)."""
+    return _compile(
+        lambda: _key(equations, "displacement", order),
+        lambda: list(equations.displacement(order)),
+        variables(equations),
+    )
+
+
+@frozen
+class Series:
+    """The order-N series' harmonics as compiled rows.
+
+    ``rows`` evaluates to ``(n_coordinates, 2, H + 1)`` numbers per point (cos and sin of
+    harmonics 0..H, summed over the orders); ``frequency`` the frequency ν of the strained time
+    (s = νt) as a row too (the last one).
     """
 
-    equations: AmplitudeEquations = field(eq=False)
-    order: int
-    parameters: tuple
-    first_terms: tuple = field(eq=False, repr=False)
-    _rows: object = field(eq=False, repr=False, alias="rows")
-    _jacobian: object = field(eq=False, repr=False, alias="jacobian")
-    _first_jacobian: object = field(eq=False, repr=False, alias="first_jacobian")
+    coordinates: tuple = field(converter=tuple)
+    harmonics: int
+    rows: object = field(eq=False)
 
-    @classmethod
-    def of(cls, equations: AmplitudeEquations, order: int) -> CompiledEquations:
-        """Prepare ``equations`` to ``order`` (see the module notes)."""
-        amplitudes = list(equations.amplitudes)
-        parameters = tuple(equations.system.parameters)
-        args = [*amplitudes, *parameters, EPS]
-        first = [sp.expand(r) for r in equations.displacement(0)]
-        terms = []
-        for row in first:
-            scaled = sp.expand(row / sp.pi)
-            if scaled.has(sp.pi):  # not a common factor: the row as it is
-                scaled = row
-            poly = sp.Poly(scaled, *amplitudes)
-            terms.append(tuple(poly.terms()))
-        rows = [sp.expand(r) for r in equations.displacement(order)] if order else first
-        jacobian = [[sp.diff(r, a) for a in amplitudes] for r in rows]
-        first_jacobian = (
-            jacobian if not order else [[sp.diff(r, a) for a in amplitudes] for r in first]
-        )
-        return cls(
-            equations=equations,
-            order=order,
-            parameters=parameters,
-            first_terms=tuple(terms),
-            rows=numpy_lambdify(args, rows),
-            jacobian=numpy_lambdify(args, jacobian),
-            first_jacobian=numpy_lambdify(args, first_jacobian),
-        )
+    def evaluate(self, x) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(nu, cos, sin)`` at points ``x`` (shape (P, k)): (P,), (P, n, H + 1) twice."""
+        values = self.rows.values(np.atleast_2d(x))
+        n, h = len(self.coordinates), self.harmonics + 1
+        coefficients = values[:, :-1].reshape(-1, n, 2, h)
+        return values[:, -1], coefficients[:, :, 0, :], coefficients[:, :, 1, :]
 
-    def first_order(self, fixed: Mapping) -> list[sp.Expr]:
-        """The first-order rows at the exact parameter values ``fixed`` ({symbol: rational}),
-        as polynomials in the amplitudes (π taken out where it is a common factor)."""
-        amplitudes = self.equations.amplitudes
+
+def compiled_series(equations) -> Series:
+    """The series of ``equations.solution`` (state to its order) as :class:`Series`."""
+    solution = equations.solution
+    symbols = variables(equations)
+    h = max((t.max_harmonic for row in solution.terms for t in row), default=0)
+    names = tuple(c.name for c in solution.system.coordinates)
+
+    def rows():
         out = []
-        for terms in self.first_terms:
-            coefficients = {}
-            for monomial, coefficient in terms:
-                value = sp.sympify(coefficient).xreplace(fixed)
-                if value != 0:
-                    coefficients[monomial] = value
-            if not coefficients:
-                out.append(sp.S.Zero)
-                continue
-            out.append(sp.Poly.from_dict(coefficients, *amplitudes).as_expr())
+        for row in solution.terms:
+            for which in (0, 1):
+                for j in range(h + 1):
+                    out.append(
+                        sp.Add(*(EPS**k * t.coefficient(j)[which] for k, t in enumerate(row)))
+                    )
+        out.append(solution.frequency_expr)
         return out
 
-    def _args(self, amplitudes, values: Mapping, epsilon: float) -> list[float]:
-        return [
-            *(float(a) for a in amplitudes),
-            *(float(values[p.name]) for p in self.parameters),
-            float(epsilon),
-        ]
-
-    def residual(self, amplitudes, values: Mapping, epsilon: float) -> np.ndarray:
-        """:math:`D_N` at ``amplitudes`` (in the order of ``equations.amplitudes``)."""
-        return np.asarray(self._rows(*self._args(amplitudes, values, epsilon)), dtype=float)
-
-    def jacobian(self, amplitudes, values: Mapping, epsilon: float, first: bool = False):
-        """:math:`\\partial D_N/\\partial(a, b)` (``first``: of the first-order rows)."""
-        function = self._first_jacobian if first else self._jacobian
-        return np.asarray(function(*self._args(amplitudes, values, epsilon)), dtype=float)
-
-    def slow_flow(self, amplitudes, values: Mapping, epsilon: float, first: bool) -> SlowFlow:
-        """The slow flow at a root (as :func:`perturb.method.driven.slow_flow`): of the
-        first-order rows (``first``) or of :math:`D_N`."""
-        matrix = self.jacobian(amplitudes, values, epsilon, first=first or not self.order)
-        return SlowFlow.of(matrix, float(epsilon))
+    key = lambda: _key(equations, "series", equations.order)  # noqa: E731
+    compiled = _compile(key, rows, symbols, lambdified_gradient=False)
+    return Series(names, h, compiled)
 
 
-def compiled(equations: AmplitudeEquations, order: int) -> CompiledEquations:
-    """:class:`CompiledEquations` of ``equations`` to ``order``, prepared once per process.
+@frozen
+class Motion:
+    """The driven system's equations of motion, ready for the variational equation.
 
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> from perturb import EPS, Excitation, QuasilinearSystem, amplitude_equations
-    >>> x, v, th, s, F = sp.symbols("x v theta sigma F")
-    >>> duffing = QuasilinearSystem([x], [v], [1], [EPS * (F * sp.cos(th) - x**3 - v)],
-    ...     parameters=[s, F], excitation=Excitation(th, 1, s))
-    >>> ready = compiled(amplitude_equations(duffing, 1), 1)
-    >>> ready.first_order({s: sp.Integer(0), F: sp.Integer(2)})
-    [3*a_x**2*b_x/4 - a_x + 3*b_x**3/4, -3*a_x**3/4 - 3*a_x*b_x**2/4 - b_x + 2]
+    ``jacobian(state (..., 2n), theta (...), params (..., m), eps (...))`` is the Jacobian of
+    (v, −ω²x + f) with respect to (x, v), shape (..., 2n, 2n); ``divergence`` its trace.
+    ``p`` the excitation's numerator (θ = p s in the strained time s).
     """
-    key = (id(equations), int(order))
-    with _LOCK:
-        hit = _CACHE.get(key)
-        if hit is not None and hit[0] is equations:
-            return hit[1]
-    ready = CompiledEquations.of(equations, int(order))
-    with _LOCK:
-        if len(_CACHE) >= CACHE_SIZE:
-            _CACHE.pop(next(iter(_CACHE)))
-        _CACHE[key] = (equations, ready)
-    return ready
+
+    n: int
+    p: int
+    function: object = field(eq=False)
+
+    def jacobian(self, state, theta, params, eps) -> np.ndarray:
+        state = np.asarray(state, dtype=float)
+        shape = state.shape[:-1]
+        args = [*np.moveaxis(state, -1, 0), theta, *np.moveaxis(params, -1, 0), eps]
+        blocks = self.function(*args)  # [[d f_i / d x_j] .., [d f_i / d v_j] ..] and -omega^2
+        n = self.n
+        out = np.zeros((*shape, 2 * n, 2 * n))
+        out[..., :n, n:] = np.eye(n)
+        for i in range(n):
+            for j in range(2 * n):
+                out[..., n + i, j] = np.broadcast_to(blocks[i][j], shape)
+        return out
+
+
+def compiled_motion(system) -> Motion:
+    """The Jacobian of the driven ``system``'s first-order equations (see :class:`Motion`)."""
+    n = system.n
+    coords, velocities = system.coordinates, system.velocities
+    rhs = [sp.sympify(f).subs(system.parameter, EPS) for f in system.rhs]
+    rows = []
+    for i in range(n):
+        accel = rhs[i] - sp.sympify(system.frequencies[i]) ** 2 * coords[i]
+        rows.append([sp.diff(accel, s) for s in (*coords, *velocities)])
+    args = [*coords, *velocities, system.excitation.phase, *system.parameters, EPS]
+    return Motion(n, system.excitation.p, numpy_lambdify(args, rows, cse=True))

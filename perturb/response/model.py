@@ -2,13 +2,13 @@
 
 :func:`problem_response` sweeps a user-facing parameter (the excitation frequency ``Omega``, a
 forcing level, the detuning ``sigma``…) of a driven problem. The amplitude equations are derived
-once for the problem's symbolic system; at each grid value the problem is re-created (its
-parameter checks apply) and every branch is found at its values (:func:`branches_at`). The folds
-come exactly from the first-order equations in the system's parameter the swept one moves (σ for
-Ω: :math:`\\Omega = (p/q)\\omega + \\varepsilon\\sigma`), mapped back to the swept one. The
-backbone is the free engine's frequency of the unforced, undamped system, if the problem gives one
-(``backbone_system``). With ``validate`` > 0 the true orbit is shot at that many points of every
-branch (:func:`perturb.validation.validate` ingredients: forced shooting, Floquet multipliers).
+once for the problem's symbolic system, and every order-N branch is continued along the sweep
+from the certified first-order census (:mod:`perturb.response.continued`: its folds, branch
+points and Neimark-Sacker points located on the order-N curves, its stability from the Floquet
+multipliers along the order-N series). The backbone is the free engine's frequency of the
+unforced, undamped system, if the problem gives one (``backbone_system``). With ``validate`` > 0
+the true orbit is shot at points of every branch chosen by arclength
+(:mod:`perturb.response.truth`).
 
 The problem is duck-typed: ``system()``, ``symbol_values()``, ``epsilon()``, ``name`` and
 ``with_parameters(**values)`` (a :class:`problems.base.Problem` has them all).
@@ -25,20 +25,15 @@ from attrs import field, frozen
 
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import amplitude_equations
-from perturb.response.branches import branch_names, branches_at, exact_number
+from perturb.response.branches import exact_number
 from perturb.response.curve import (
     Fold,
     FrequencyResponse,
-    ResponsePoint,
-    _singular,
+    _folds,
     continue_fold,
 )
 
 __all__ = ["Backbone", "ProblemResponse", "TrueResponse", "problem_response"]
-
-#: Amplitudes of the backbone, as fractions of the largest response amplitude found (the
-#: backbone is drawn through the region the response occupies).
-BACKBONE_SAMPLES = 41
 
 
 @frozen
@@ -61,7 +56,14 @@ class Backbone:
 
 @frozen
 class TrueResponse:
-    """The true periodic orbit shot at one response point."""
+    """The true periodic orbit shot at one point of a continued response curve.
+
+    ``amplitude`` is the analytic amplitude and ``true_amplitude`` the shot orbit's, both by
+    ``measure`` (of the first resonant coordinate); ``amplitude_error`` the largest distance of
+    the analytic orbit from the true one over a period, relative to the true amplitude;
+    ``within_tol`` whether that is within the run's ``tol``; ``reason`` why the point was chosen
+    (the largest amplitude, a side of a fold, an end, the arclength spread).
+    """
 
     value: float
     branch: str
@@ -72,6 +74,13 @@ class TrueResponse:
     stable_true: bool | None
     stable_analytic: bool | None
     message: str
+    true_amplitude: float = math.nan
+    measure: str = "initial"
+    within_tol: bool | None = None
+    reason: str = ""
+    multipliers_true: tuple = field(converter=tuple, factory=tuple)
+    multipliers_analytic: tuple = field(converter=tuple, factory=tuple)
+    curve: int = -1
 
 
 @frozen
@@ -186,9 +195,14 @@ def check_request(problem, parameter: str):
 
 
 def problem_response(
-    problem, parameter: str, grid: Sequence[float], order: int = 1, validate: int = 0
-) -> ProblemResponse:
+    problem, parameter: str, grid: Sequence[float], order: int = 1, validate: int = 0,
+    measure: str = "peak", tol: float | None = None,
+) -> ProblemResponse:  # fmt: skip
     """The frequency response of a driven ``problem`` over ``grid`` values of ``parameter``.
+
+    Every branch is the order-N one, continued from the certified first-order census through its
+    folds (:mod:`perturb.response.continued`); stability from the Floquet multipliers of the
+    variational equation along the order-N series.
 
     Parameters
     ----------
@@ -201,7 +215,14 @@ def problem_response(
     order : int
         The state's order (>= 1).
     validate : int
-        Shoot the true orbit at this many points of each branch (0: none).
+        Shoot the true orbit at this many points of each branch, spread by arclength, besides the
+        largest amplitude, both sides of each fold and the ends (0: none; at most
+        ``MAX_VALIDATE``).
+    measure : str
+        The amplitude measure the branches are named and drawn by: ``peak`` (max |x|),
+        ``first-harmonic`` or ``initial`` (:data:`perturb.response.measures.MEASURES`).
+    tol : float, optional
+        The relative orbit error above which a shot point is marked (default ``DEFAULT_TOL``).
 
     Returns
     -------
@@ -211,46 +232,117 @@ def problem_response(
     ------
     InvalidParameterError
         A problem that is not driven, an unknown parameter, a grid of fewer than 2 increasing
-        finite values, or invalid parameter values at a grid point.
+        finite values, invalid parameter values at a grid point, an unknown measure, or a
+        validation budget beyond ``MAX_VALIDATE``.
     """
+    from perturb._defaults import DEFAULT_TOL
+    from perturb.response.backbone import backbone_of
+    from perturb.response.continued import continued_response
+    from perturb.response.line import line_of_problem
+    from perturb.response.sampled import response_of
+
     system = check_request(problem, parameter)
     grid = _check_grid(parameter, grid)
+    check_measure(measure)
+    check_validate(validate)
+    tol = DEFAULT_TOL if tol is None else check_tol(tol)
+    for value in grid:  # the problem's own checks at every grid value (one line, exit 2)
+        problem.with_parameters(**{parameter: float(value)})
     equations = amplitude_equations(system, order)
-    points, names, failures, variants = [], [], [], []
-    for value in grid:
-        variant = problem.with_parameters(**{parameter: float(value)})
-        variants.append(variant)
-        found, why = branches_at(equations, variant.symbol_values(), variant.epsilon(), order)
-        if why:
-            failures.append(f"{parameter} = {value:g}: {why}")
-        names.extend(branch_names(found))
-        points.extend(ResponsePoint.of(float(value), branch) for branch in found)
-    folds, branch_points = _problem_folds(equations, problem, parameter, variants, grid)
-    response = FrequencyResponse(
-        system=problem.name,
-        parameter=parameter,
-        order=order,
+    names = [p.name for p in system.parameters]
+    line = line_of_problem(problem, parameter, names, float(grid[0]), float(grid[-1]))
+    result = continued_response(equations, order, line, grid)
+    response, branch_names_ = response_of(
+        result, system=problem.name, parameter=parameter, order=order,
         epsilon=float(problem.epsilon()),
         values={k: float(v) for k, v in problem.values.items() if k != parameter},
-        grid=tuple(float(g) for g in grid),
-        points=tuple(points),
-        folds=tuple(folds),
-        failures=tuple(failures),
-        coordinates=equations.coordinates,
-        branch_points=tuple(branch_points),
-    )
-    backbone = _backbone(problem, parameter, variants, grid, points, order)
-    true = _shoot(problem, parameter, response, names, order, validate) if validate else ()
-    return ProblemResponse(problem.name, parameter, response, names, backbone, true)
+        grid=grid, coordinates=equations.coordinates, measure=measure,
+    )  # fmt: skip
+    backbone = backbone_of(problem, parameter, response.points, order, measure)
+    true = _true_points(result, response, validate, measure, tol) if validate else ()
+    return ProblemResponse(problem.name, parameter, response, branch_names_, backbone, true)
 
 
-def _problem_folds(equations, problem, parameter, variants, grid) -> tuple[list, list]:
-    """Folds and branch points in the system's parameter that ``parameter`` moves (linearly),
-    mapped back."""
+#: Most points ``--validate`` shoots on each branch besides the ones it always shoots (largest
+#: amplitude, fold sides, ends): each is a shooting with variational equations, 0.05-0.5 s.
+MAX_VALIDATE = 50
+
+
+def check_measure(measure: str) -> str:
+    """``measure`` if it is one of :data:`perturb.response.measures.MEASURES`, else one line."""
+    from perturb.response.measures import MEASURES
+
+    if measure not in MEASURES:
+        raise bad_value(
+            "measure", measure, f"choose one of {sorted(MEASURES)}", InvalidParameterError
+        )
+    return measure
+
+
+def check_validate(count) -> int:
+    """A validation budget: a whole number from 0 to :data:`MAX_VALIDATE`, else one line."""
+    if isinstance(count, bool) or not isinstance(count, int | np.integer) or count < 0:
+        raise bad_value("validate", count, "give a whole number >= 0", InvalidParameterError)
+    if count > MAX_VALIDATE:
+        raise bad_value(
+            "validate", count,
+            f"at most {MAX_VALIDATE} points a branch (each is a shooting); the largest amplitude, "
+            "both sides of each fold and the ends are always shot besides",
+            InvalidParameterError,
+        )  # fmt: skip
+    return int(count)
+
+
+def check_tol(tol) -> float:
+    """A tolerance: a finite number > 0, else one line."""
+    try:
+        value = float(tol)
+    except (TypeError, ValueError):
+        raise bad_value("tol", tol, "give a number > 0", InvalidParameterError) from None
+    if not (math.isfinite(value) and value > 0):
+        raise bad_value("tol", tol, "give a finite number > 0", InvalidParameterError)
+    return value
+
+
+def _true_points(result, response, count, measure, tol) -> tuple[TrueResponse, ...]:
+    from perturb.response.truth import shoot_along
+
+    first = response.coordinates[0]
+    out = []
+    for shot in shoot_along(result, response, count, measure, tol):
+        true = shot.get("true", {})
+        multipliers = shot.get("multipliers", ())
+        largest = max((abs(z) for z in multipliers), default=math.nan)
+        success = bool(shot["success"])
+        out.append(
+            TrueResponse(
+                value=shot["value"],
+                branch=shot["branch"],
+                success=success,
+                amplitude=shot["analytic"][first],
+                amplitude_error=shot.get("orbit_error", math.nan),
+                floquet_max=largest,
+                stable_true=(largest < 1) if success else None,
+                stable_analytic=shot["stable_analytic"],
+                message=shot["message"],
+                true_amplitude=true.get(first, math.nan),
+                measure=measure,
+                within_tol=shot.get("within_tol"),
+                reason=shot["reason"],
+                multipliers_true=multipliers,
+                multipliers_analytic=shot["multipliers_analytic"],
+                curve=shot["curve"],
+            )
+        )
+    return tuple(out)
+
+
+def _problem_folds(equations, problem, parameter, variants, grid) -> list[Fold]:
+    """Folds in the system's parameter that ``parameter`` moves (linearly), mapped back."""
     first, last = variants[0].symbol_values(), variants[-1].symbol_values()
     moved = [k for k in first if first[k] != last[k]]
     if len(moved) != 1:
-        return [], []
+        return []
     name = moved[0]
     (symbol,) = [p for p in equations.system.parameters if p.name == name]
     a, b = float(grid[0]), float(grid[-1])
@@ -259,7 +351,7 @@ def _problem_folds(equations, problem, parameter, variants, grid) -> tuple[list,
     middle = variants[len(variants) // 2].symbol_values()[name]
     mid_value = float(grid[len(grid) // 2])
     if not math.isclose(middle, s0 + slope * (mid_value - a), rel_tol=1e-9, abs_tol=1e-12):
-        return [], []  # not a linear map: no exact folds in the swept parameter
+        return []  # not a linear map: no exact folds in the swept parameter
     fixed = {
         p: exact_number(first[p.name])
         for p in equations.system.parameters
@@ -267,85 +359,15 @@ def _problem_folds(equations, problem, parameter, variants, grid) -> tuple[list,
     }
     rows = [sp.expand(e.xreplace(fixed)) for e in equations.displacement(0)]
     low, high = sorted((s0, s1))
-    eps = float(problem.epsilon())
-
-    def back(value):
-        return a + (value - s0) / slope if slope else a
-
-    found = _singular(rows, list(equations.amplitudes), symbol, low, high, equations)
-    out = ([], [])
-    for kind, points in zip(out, found, strict=True):
-        for fold in points:
-            fold = continue_fold(fold, equations, equations.order, fixed, symbol, eps)
-            kind.append(
-                Fold(back(fold.value), fold.amplitudes, fold.norms, back(fold.first_order),
-                     fold.note)
-            )  # fmt: skip
-    return tuple(sorted(kind, key=lambda f: f.value) for kind in out)
-
-
-def _backbone(problem, parameter, variants, grid, points, order) -> Backbone | None:
-    """The free engine's frequency of the problem's unforced, undamped system, if it has one."""
-    import attrs
-
-    make = getattr(problem, "backbone_system", None)
-    built = make(parameter) if make is not None and points else None
-    if built is None:
-        return None
-    free_system, coordinate, to_parameter = built
-    from perturb.method.poincare import PoincareMethod
-
-    amplitude = sp.Symbol("backbone_amplitude", positive=True)
-    free_system = attrs.evolve(free_system, parameters=(*free_system.parameters, amplitude))
-    method = PoincareMethod(order=max(order, 1), amplitudes={coordinate: amplitude})
-    solution = method.solve(free_system)
-    if not solution.success:
-        return None
-    top = max(p.norm(coordinate) for p in points)
-    values = {k: v for k, v in problem.symbol_values().items()}
-    eps = problem.epsilon()
-    amplitudes = np.linspace(0.0, 1.05 * top, BACKBONE_SAMPLES)
-    frequencies = [
-        2 * math.pi / float(solution.period_at(eps, {**values, amplitude.name: float(a)}))
-        for a in amplitudes
-    ]
-    return Backbone(coordinate, tuple(amplitudes), tuple(to_parameter(w) for w in frequencies))
-
-
-def _shoot(problem, parameter, response, names, order, count) -> tuple[TrueResponse, ...]:
-    """Shoot the true orbit at ``count`` points of each branch."""
-    from perturb.validation import as_model, state_along
-    from perturb.validation.forced import forced_orbit_check
-
     out = []
-    for branch_name in sorted(set(names)):
-        indices = [i for i, n in enumerate(names) if n == branch_name]
-        picks = sorted({indices[round(j)] for j in np.linspace(0, len(indices) - 1, count)})
-        for i in picks:
-            point = response.points[i]
-            variant = problem.with_parameters(**{parameter: point.value})
-            solution = variant.solve(order, family=branch_name)
-            model = as_model(variant)
-            period = float(model.period(solution))
-            y0 = np.array(
-                [float(v[0]) for v in state_along(solution, [0.0], variant.parameter_value(),
-                                                  variant.symbol_values()).values()]
-            )  # fmt: skip
-            equations = model.original_equations(y0)
-            check = forced_orbit_check(model, solution, equations, y0, period, None, 1e-12, False)
-            largest = max((abs(z) for z in check.floquet), default=math.nan)
-            amplitude = point.norm()
-            out.append(
-                TrueResponse(
-                    value=point.value,
-                    branch=branch_name,
-                    success=check.success,
-                    amplitude=amplitude,
-                    amplitude_error=check.orbit_error,
-                    floquet_max=largest,
-                    stable_true=(largest < 1) if check.success else None,
-                    stable_analytic=point.stable,
-                    message=check.message,
-                )
-            )
-    return tuple(out)
+    eps = float(problem.epsilon())
+    for fold in _folds(rows, list(equations.amplitudes), symbol, low, high, equations):
+        fold = continue_fold(fold, equations, equations.order, fixed, symbol, eps)
+
+        def back(value):
+            return a + (value - s0) / slope if slope else a
+
+        out.append(
+            Fold(back(fold.value), fold.amplitudes, fold.norms, back(fold.first_order), fold.note)
+        )
+    return sorted(out, key=lambda f: f.value)
