@@ -300,67 +300,21 @@ class SlowFlow:
         an undamped system: decided at the next order).
     multipliers : ndarray of complex
         The Floquet multipliers it predicts, :math:`1 + \\varepsilon\\lambda`.
-    epsilon : float
-        ε.
     """
 
     jacobian: np.ndarray = field(eq=False)
     eigenvalues: np.ndarray = field(eq=False)
     stable: bool | None
     multipliers: np.ndarray = field(eq=False)
-    epsilon: float = field(default=math.nan, eq=False)
-
-    @property
-    def margin(self) -> float:
-        """How far the verdict is from its own error: :math:`|\\mathrm{Re}\\,\\lambda| /
-        (\\varepsilon|\\lambda|^2)` for the eigenvalue of largest real part. The first-order slow
-        flow misses the next order of averaging, whose size in an eigenvalue is of order
-        :math:`\\varepsilon|\\lambda|^2`: large for a pair that turns fast
-        (:math:`\\varepsilon\\,\\mathrm{Im}\\,\\lambda` of a radian per period)."""
-        if not self.eigenvalues.size:
-            return math.inf
-        top = self.eigenvalues[int(np.argmax(self.eigenvalues.real))]
-        size = self.epsilon * abs(top) ** 2
-        return math.inf if size == 0 else abs(top.real) / size
-
-    @property
-    def uncertain(self) -> bool:
-        """Whether the verdict lies within the slow flow's own error (:attr:`margin` below
-        :data:`NEAR_BIFURCATION`): near a Neimark-Sacker point the true orbit may disagree."""
-        return self.stable is not None and self.margin < NEAR_BIFURCATION
 
     @property
     def fold(self) -> bool:
         """A real eigenvalue at zero: the branch turns (saddle-node) or another one crosses."""
         return self.stable is None
 
-    @classmethod
-    def of(cls, jacobian, epsilon: float) -> SlowFlow:
-        """The slow flow of the Jacobian ``J`` of the row-scaled conditions at a root, judged.
-
-        Examples
-        --------
-        >>> flow = SlowFlow.of([[-1.0, 2.0], [-2.0, -1.0]], 0.1)
-        >>> flow.stable, [round(float(abs(m)), 4) for m in flow.multipliers]
-        (True, [0.9048, 0.9048])
-        """
-        jac = np.asarray(jacobian, dtype=float)
-        eig = np.linalg.eigvals(jac) if jac.size else np.array([], dtype=complex)
-        scale = max(float(np.max(np.abs(eig), initial=0.0)), math.ulp(1.0))
-        top = float(np.max(eig.real, initial=-math.inf))
-        stable = None if abs(top) <= SLOW_FLOW_ZERO * scale else top < 0
-        multipliers = np.array([cmath.exp(epsilon * complex(e)) for e in eig])
-        return cls(jac, eig, stable, multipliers, float(epsilon))
-
 
 #: Relative size (to the largest) below which a slow-flow eigenvalue's real part counts as zero.
 SLOW_FLOW_ZERO = 1e-9
-#: :attr:`SlowFlow.margin` below which a stability verdict is flagged as uncertain. Measured: the
-#: forced chain of 3 at Omega = 1.1, eps = 0.05 has a branch whose slow flow says stable with a
-#: pair -0.149 +- 9.58i (margin 0.032) while its true orbit's largest multiplier is 1.0037; the
-#: error of the real part there was 0.048 eps|lambda|^2. Every other branch of the shipped driven
-#: problems checked against shooting (tests/coupled) has a margin above 0.1.
-NEAR_BIFURCATION = 0.05
 
 
 def slow_flow(
@@ -393,7 +347,12 @@ def slow_flow(
     jac = np.array(
         [[float(sp.diff(r, a).xreplace(subs)) for a in symbols] for r in rows], dtype=float
     )
-    return SlowFlow.of(jac, float(epsilon))
+    eig = np.linalg.eigvals(jac) if jac.size else np.array([], dtype=complex)
+    scale = max(float(np.max(np.abs(eig), initial=0.0)), math.ulp(1.0))
+    top = float(np.max(eig.real, initial=-math.inf))
+    stable = None if abs(top) <= SLOW_FLOW_ZERO * scale else top < 0
+    multipliers = np.array([cmath.exp(epsilon * complex(e)) for e in eig])
+    return SlowFlow(jac, eig, stable, multipliers)
 
 
 def _lookup(mapping: Mapping, symbol: sp.Symbol):

@@ -126,7 +126,6 @@ def shoot_point(evaluator, line, u: np.ndarray, lam: float) -> dict:
     return out
 
 
-
 def _on_curve(curve, special) -> bool:
     """Whether a special point lies on ``curve`` (its λ and amplitudes among the curve's)."""
     u = np.array(list(special.amplitudes.values()))
