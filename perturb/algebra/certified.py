@@ -258,7 +258,7 @@ def _solve_leaf(
         )
         return found, leaf
     if binary is not None:
-        if exact_first:  # exact values (radicals) where the exact route is quick
+        if exact_first and _can_bound():  # exact values (radicals) where the route is quick
             try:
                 slice_ = min(EXACT_FIRST_SECONDS, seconds / 4)
                 return solve_bounded(polys, variables, slice_, exact_real_roots), leaf
@@ -271,6 +271,15 @@ def _solve_leaf(
         return RootSet(
             RootStatus.BUDGET_EXCEEDED, (), variables, size=SystemSize.of(polys, variables)
         ), leaf
+
+
+def _can_bound() -> bool:
+    """Whether a solve can be given a budget here: not in a daemonic process (a Dask worker, a
+    pool's), where :func:`~perturb.algebra.budget.solve_bounded` runs without one — the exact
+    route's first slice would then be unbounded (a phase diagram's census hung on it)."""
+    import multiprocessing
+
+    return not multiprocessing.current_process().daemon
 
 
 def _dimension(leaf: Piece, seconds: float) -> RootSet | None:

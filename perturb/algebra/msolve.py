@@ -147,7 +147,10 @@ def _refined(polys: list, unknowns: list, box: list, midpoint: dict) -> dict:
         jacobian = sp.lambdify(unknowns, sp.Matrix(polys).jacobian(unknowns), "mpmath")
         x = mpmath.matrix([mpmath.mpf(midpoint[u].p) / midpoint[u].q for u in unknowns])
         for _ in range(NEWTON_STEPS):
-            step = mpmath.lu_solve(mpmath.matrix(jacobian(*x)), mpmath.matrix(f(*x)))
+            try:
+                step = mpmath.lu_solve(mpmath.matrix(jacobian(*x)), mpmath.matrix(f(*x)))
+            except ZeroDivisionError:  # a multiple root (a fold's): the midpoint is what we have
+                return midpoint
             x -= step
             if mpmath.norm(step) <= mpmath.mpf(10) ** (-digits) * max(1, mpmath.norm(x)):
                 break

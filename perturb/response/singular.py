@@ -53,7 +53,9 @@ class SingularPoints(tuple):
         return self[2]
 
 
-def singular_points(first, unknowns, swept, low: float, high: float, coordinates) -> SingularPoints:
+def singular_points(
+    first, unknowns, swept, low: float, high: float, coordinates, seconds: float | None = None
+) -> SingularPoints:
     """Folds and branch points of the first-order rows ``first`` in ``[low, high]`` of ``swept``.
 
     Parameters
@@ -65,6 +67,8 @@ def singular_points(first, unknowns, swept, low: float, high: float, coordinates
     swept : sympy.Symbol
     low, high : float
     coordinates : sequence of str
+    seconds : float, optional
+        The certified solver's budget (default that of :func:`~perturb.response.roots.real_roots`).
 
     Returns
     -------
@@ -84,7 +88,8 @@ def singular_points(first, unknowns, swept, low: float, high: float, coordinates
         return SingularPoints(([], [], ""))
     jac = sp.Matrix([[sp.diff(e, u) for u in unknowns] for e in first])
     det = sp.expand(jac.det(method="berkowitz"))
-    found = real_roots([*first, det], [*unknowns, swept], floats=True)
+    budget = {} if seconds is None else {"seconds": seconds}
+    found = real_roots([*first, det], [*unknowns, swept], floats=True, **budget)
     if found.status is RootStatus.NO_REAL_ROOT:
         return SingularPoints(([], [], ""))
     if found.status is not RootStatus.SOLVED:
