@@ -82,6 +82,7 @@ def _trajectory_error(system, solution, amplitude: float, eps: float) -> float:
     return float(np.max(np.abs(true.y - state)))
 
 
+@pytest.mark.slow
 def test_the_free_chain_of_three_has_its_exact_linear_mode():
     """The issue's example: cubic springs, free ends, nothing fixed. Three synchronous families,
     among them the in-phase mode on which no spring stretches: exact at every order, Omega = 1 at
