@@ -240,6 +240,18 @@ def phase_diagram(
         refuses (checked before any work).
     perturb.errors.MissingDependencyError
         The extra ``perturb[sweep]`` is not installed.
+
+    Examples
+    --------
+    HarmonicBalance.jl's coupled parametrons over the pump's frequency and depth (the counts of
+    stable states at every point, the first-order ones certified):
+
+    >>> import perturb
+    >>> from problems import get_problem
+    >>> pair = get_problem("coupled-parametrons").create()
+    >>> ds = perturb.phase_diagram(pair, ["Omega=1.98:2.02:5", "h=1.5:2.5:3"])  # doctest: +SKIP
+    >>> ds.n_stable_first_order.sel(h=2.0).values.tolist()  # doctest: +SKIP
+    [1, 1, 2, 5, 1]
     """
     from perturb._defaults import SWEEP_CONNECT_SECONDS
     from perturb.response.model import check_request
