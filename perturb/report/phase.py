@@ -83,6 +83,19 @@ def phase_as_table(dataset) -> str:
                   *_grid(dataset, "n_stable_first_order"),
                   "steady states of the first-order equations (certified):",
                   *_grid(dataset, "n_first_order")]  # fmt: skip
+    both = (proved >= 0) & (states >= 0)
+    if np.any(both):
+        fewer, more = int(np.sum(both & (states < proved))), int(np.sum(both & (states > proved)))
+        stable_first = np.asarray(dataset["n_stable_first_order"].values)
+        agree = int(np.sum(both & (stable == stable_first)))
+        lines.append(
+            f"order {dataset.attrs['order']} against the certified first order: the stable "
+            f"counts agree at {agree} of {int(np.sum(both))} points; the steady states at "
+            f"{int(np.sum(both)) - fewer - more}"
+            + (f", fewer at {fewer}" if fewer else "") + (f", more at {more}" if more else "")
+            + (" (a branch the continuation did not follow, or a fold within O(eps) of the point)"
+               if fewer or more else "")
+        )  # fmt: skip
     if "n_states_columns" in dataset:
         columns = np.asarray(dataset["n_states_columns"].values)
         both = (columns >= 0) & (states >= 0)

@@ -99,14 +99,14 @@ def plot_phase_diagram(x, y, counts, special=(), *, xname: str, yname: str, labe
             ax.scatter(xs, ys, s=size, marker=marker, c=face, linewidths=0.8, zorder=3, **edges)
             handles.append(Line2D([], [], ls="", marker=marker, markerfacecolor=face,
                                   markeredgecolor=edge, label=kind.replace("-", " ")))  # fmt: skip
-        if handles:
-            ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.25, 1.0),
-                      borderaxespad=0, fontsize="small")  # fmt: skip
+        if handles:  # below the map, one row: the colour bar keeps the right-hand side
+            ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.16),
+                      ncol=len(handles), frameon=False, fontsize="small")  # fmt: skip
         ax.set_xlim(x[0] - (x[-1] - x[0]) * 0.02, x[-1] + (x[-1] - x[0]) * 0.02)
         ax.set_xlabel(display_name(xname))
         ax.set_ylabel(display_name(yname))
         if title:
-            ax.set_title(title)
+            ax.set_title(title, fontsize="medium")
     return fig
 
 
