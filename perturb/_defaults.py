@@ -351,6 +351,24 @@ INVALID_MAX_STEPS = ESTIMATE_FAILED_MAX_STEPS
 #: of the state scale.
 SECTION_ZERO = 1e-8
 
+#: A root of a parameter map's inverse (a fold's σ mapped back to Ω, the user values at another ε)
+#: counts as real when its imaginary part is below this, relative to its size: sympy evaluates the
+#: closed-form root in floating point, which can leave a round-off imaginary part of ~1e-16.
+REAL_ROOT_TOL = 1e-12
+
+#: Singular values below this fraction of the largest count as zero in the rank of the shooting's
+#: Newton matrix (its columns are O(1) near the identity; 1e-9 keeps directions resolved to
+#: ~1e-7 of the state, well above what an integration at 1e-12 can blur).
+SHOOTING_RANK_RTOL = 1e-9
+
+#: Relative size (to the largest) below which a slow-flow eigenvalue's real part counts as zero.
+SLOW_FLOW_ZERO = 1e-9
+
+#: Amplitudes at which the backbone is drawn (the backbone is drawn through the region the
+#: response occupies: from 0 to BACKBONE_REACH times the largest response amplitude).
+BACKBONE_SAMPLES = 41
+#: The backbone is drawn up to this multiple of the largest response amplitude.
+BACKBONE_REACH = 1.05
 # --------------------------------------------------------------------------------------------------
 # Pseudo-arclength continuation (perturb.continuation)
 # --------------------------------------------------------------------------------------------------
@@ -397,12 +415,18 @@ READ_MAX_ITER = 6
 # --------------------------------------------------------------------------------------------------
 # The order-N response (perturb.response): continuation, stability, measures
 # --------------------------------------------------------------------------------------------------
-#: Magnus steps over one period of the variational equation along the order-N series (fourth
-#: order, two Gauss nodes a step): its error falls like S^-4 and at S = 256 the multipliers of the
-#: shipped problems agree with a DOP853 integration of the same equation (rtol 1e-12) to ~1e-10
-#: (tests/response/test_floquet.py), far below the series' own O(eps^(N+1)); the product of the
+#: Magnus steps over one period of the variational equation along the order-N series (sixth
+#: order, three Gauss nodes a step): its error falls like S^-6 (a factor 64 a doubling, measured)
+#: and at S = 128 the multipliers agree with DOP853 on the same equation (rtol 1e-12) to 4e-10 at
+#: the forced Duffing's largest amplitude (|x| = 3.5 at Omega = 1.2, eps = 0.05; 2e-8 at S = 64),
+#: far below the series' own O(eps^(N+1)) (tests/response/test_floquet.py); the product of the
 #: multipliers is exp of the divergence's quadrature exactly, whatever S.
-MAGNUS_STEPS = 64
+MAGNUS_STEPS = 128
+#: The same along the drawn curves (every continuation point), where the multipliers only colour
+#: the curve and bracket the Neimark-Sacker test's sign changes (each then located with
+#: MAGNUS_STEPS): at 32 steps their error is ~2e-6 at the largest amplitude, and Liouville's
+#: product is exact all the same.
+MAGNUS_DRAW_STEPS = 32
 #: A largest multiplier within this distance of the unit circle is marginal (stable = None): a
 #: fold of the curve, or an undamped system whose multipliers lie on the circle (Liouville makes
 #: their product exactly 1 there: a pair on the circle is at 1 to rounding, 1e-15).
@@ -418,3 +442,92 @@ LIFT_TRIES = 6
 #: folds, branch points and Neimark-Sacker points just outside the sweep are found and reported
 #: (marked outside), and a branch that turns just beyond an end is followed back into it.
 WINDOW_MARGIN = 0.1
+
+# --------------------------------------------------------------------------------------------------
+# The true curve past the series (perturb.oracle.driven_family, perturb.response.true_curve)
+# --------------------------------------------------------------------------------------------------
+#: heyoka compiles a driven family's augmented field (state, parameters, monodromy, sensitivity:
+#: 19 equations for one oscillator with 5 parameters) in compact mode: measured on the forced
+#: Duffing, 1.1 s to compile and 0.7 ms a shot against 2.8 s and 0.37 ms unrolled; a true curve
+#: takes a few hundred to a few thousand shots, so compact mode is the faster at every size met.
+FAMILY_COMPACT_MODE = True
+#: The most points of one true curve by default (``perturb response --true``; half each way from its
+#: seed), and the most a user may ask for: a curve across a sweep takes 150-650 points on the
+#: shipped problems (steps of 0.5-2 % of the range's width in scaled units, shorter at bends and
+#: folds; benchmarks/bench_true_curve.md), each a Newton correction of 3-5 shots of ~1 ms of CPU;
+#: 10^4 points is a few minutes of the oracle, the budget's ceiling.
+TRUE_CURVE_POINTS = 1000
+TRUE_CURVE_MAX_POINTS = 10_000
+#: The true curves are followed this fraction of the sweep's width past each end, so that a
+#: special point just outside the sweep is reported (as outside).
+TRUE_CURVE_MARGIN = 0.05
+#: Samples of a true orbit per response period for its peak |x| (refined by a parabola through the
+#: largest three: relative error ~(pi/n)^4 m^4, 1e-7 for the resonant harmonic m = 1) and its
+#: resonant harmonic's amplitude (the trapezoid rule on a periodic orbit: spectrally accurate).
+TRUE_CURVE_SAMPLES = 128
+#: A largest |Floquet multiplier| within this of 1 is marginal (None: a conservative orbit, whose
+#: multipliers lie on the circle to the integration's accuracy, ~1e-13); a Neimark-Sacker test
+#: below it is round-off (a conservative map's pairs all have product 1), and the square root of
+#: it is how close to the circle a located pair must lie (an eigenvalue of a double root moves
+#: like the square root of the perturbation).
+TRUE_CURVE_MULTIPLIER_TOL = 1e-9
+#: Two scaled points (state / its scale, parameter / the sweep's width) closer than this are one
+#: orbit: a seed on a curve already followed. The corrector converges to 1e-10; distinct branches
+#: lie orders of magnitude further apart.
+TRUE_CURVE_SAME_ORBIT = 1e-6
+
+# -- perturb.continuation.reading
+#: Two readings closer than this (relative to max(1, |x|)) are one point: the same crossing seen
+#: from the two segments that share an end, far below any distance between distinct branches.
+SAME_READING = 1e-8
+
+# -- perturb.case.parameters
+#: Digits of the evaluation of an inverse at the given doubles (taken as exact): far past double
+#: precision, so the double returned is the correctly rounded value of the exact inverse.
+EVAL_DIGITS = 30
+
+# -- perturb.oracle.symbolic
+#: Fields whose numeric functions are kept by value (:func:`_derived`): a sweep builds an equal
+#: field at every point, and a validation asks each for its numeric functions.
+DERIVED_CACHE_SIZE = 64
+
+# -- perturb.method.families
+#: How many orders past the requested one a continuum with several free amplitudes is carried to
+#: see whether a later order restricts it (Hénon–Heiles: the directions of its lines are fixed by
+#: the conditions of order 4, i.e. carrying order 2, from the requested order 1: one order more;
+#: two leave room for a family order of 2 on a quadratic right-hand side's neighbour).
+PROBE_ORDERS = 2
+
+#: Successive restrictions of one continuum (each removes at least one free amplitude).
+MAX_RESTRICTIONS = 4
+
+# -- perturb.method.family_names
+#: A standing wave of n coordinates is "localised" when its participation number is at most this
+#: fraction of n + 1: it moves fewer than about half of the coordinates (module notes, rule 4).
+LOCALISED_BELOW = 0.5
+#: A driven response's coordinate is at rest when its amplitude is at most this fraction of the
+#: largest (``response_shape``): far below any amplitude a forcing gives (a symmetry's exact zero
+#: comes out of the certified roots as ~1e-38), far above the roots' rounding.
+AT_REST = 1e-12
+
+# -- perturb.algebra.certified
+#: On the msolve route a leaf's linear pivot is put in only when it raises the largest total
+#: degree by at most this: the frequency correction of a free system (3 -> 4; the chain of 6:
+#: 13 s -> 2 s) is, a driven system's forced amplitude is not (a cubic into cubics, 3 -> 9:
+#: the forced pair's four unknowns took 1.2 s that way against 0.06 s as typed).
+PIVOT_GROWTH = 1
+
+# -- perturb.response.singular
+#: A singular point is a branch point when :math:`|w\cdot P_\lambda| \le` this times
+#: :math:`|P_\lambda|` (w of unit length): symmetry makes the product zero exactly, the roots come
+#: from a certified isolation to 2**-128, so their rounding leaves ~1e-15; a fold's is of order 1.
+BRANCH_POINT_TOL = 1e-8
+#: Relative distance below which two singular points are one: the same value and the same
+#: amplitude of every coordinate (a shift by a forcing period rotates the phases, never the norms).
+SAME_POINT = 1e-9
+
+# -- perturb.sweep.phase
+#: Budget of one line's exact first-order singular points (five unknowns for a pair: msolve on
+#: {P1 = 0, det J = 0} takes seconds to tens of seconds; past it the line's boundaries are missing
+#: and said so in ``failures``).
+SINGULAR_SECONDS = 120.0

@@ -16,7 +16,7 @@ from perturb._defaults import NEAR_RESONANCE
 from perturb._install import install_hint
 from perturb._lambdify import numpy_lambdify
 from perturb.errors import AccuracyWarning, InvalidParameterError, PerturbError, bad_value
-from perturb.method.steps import GeneratingSolution, OrderStep, S
+from perturb.steps import GeneratingSolution, OrderStep, S
 from perturb.system import EPS, QuasilinearSystem, Regime
 
 __all__ = ["PeriodicSolution", "SolutionFailed", "Status"]

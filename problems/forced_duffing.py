@@ -47,8 +47,7 @@ class ForcedDuffing(DrivenProblem):
         ParameterSpec("F", 1.0, "scaled forcing amplitude (the force is eps*F)", positive),
         ParameterSpec("Omega", 1.0, "excitation frequency", positive_frequency),
     )  # fmt: skip
-
-    unforced = {"F": 0.0, "zeta": 0.0}
+    parameter_map = {"sigma": "(Omega - 1)/eps"}  # Omega = 1 + eps*sigma
 
     def check_values(self, values) -> None:
         super().check_values(values)

@@ -55,7 +55,7 @@ class SuperharmonicDuffing(DrivenProblem):
         ParameterSpec("F", 1.0, "forcing amplitude (not small: a hard excitation)", positive),
         ParameterSpec("Omega", 1.0 / 3.0, "excitation frequency", positive_frequency),
     )  # fmt: skip
-    resonance_frequency = 1.0 / 3.0
+    parameter_map = {"sigma": "(Omega - 1/3)/eps"}  # Omega = 1/3 + eps*sigma
 
     @classmethod
     def build_system(cls) -> QuasilinearSystem:

@@ -26,7 +26,11 @@ def _files():
             yield path
         elif path.is_dir():
             for file in path.rglob("*"):
-                if file.is_file() and file.suffix in SUFFIXES and not SKIPPED_DIRS & set(file.parts):
+                if (
+                    file.is_file()
+                    and file.suffix in SUFFIXES
+                    and not SKIPPED_DIRS & set(file.parts)
+                ):
                     yield file
 
 
@@ -43,7 +47,11 @@ def test_no_hint_names_the_taken_distribution():
 
 
 def test_the_pattern_catches_the_forms_users_copy():
-    for hint in ("pip install 'perturb[plot]'", "pip install perturb", 'pip install "perturb[fast]"'):
+    for hint in (
+        "pip install 'perturb[plot]'",
+        "pip install perturb",
+        'pip install "perturb[fast]"',
+    ):
         assert TAKEN.search(hint), hint
     assert not TAKEN.search(install_hint("plot"))
     assert not TAKEN.search('pip install -e ".[plot]"')

@@ -7,6 +7,7 @@ import time
 import sympy as sp
 from attrs import evolve
 
+from perturb._defaults import PIVOT_GROWTH
 from perturb.algebra.budget import solve_bounded
 from perturb.algebra.msolve import INSTALL_HINT, msolve_binary, msolve_real_roots
 from perturb.algebra.rootset import RootSet, RootStatus
@@ -28,11 +29,6 @@ EXACT_FIRST_SECONDS = 2.0
 #: Digits to which a root with inexact values must satisfy a continuum's equations to count as a
 #: point of it (its values carry at least 30, NUMBER_DIGITS; cubic equations: scale**3).
 ON_DIGITS = 20
-#: On the msolve route a leaf's linear pivot is put in only when it raises the largest total
-#: degree by at most this: the frequency correction of a free system (3 -> 4; the chain of 6:
-#: 13 s -> 2 s) is, a driven system's forced amplitude is not (a cubic into cubics, 3 -> 9:
-#: the forced pair's four unknowns took 1.2 s that way against 0.06 s as typed).
-PIVOT_GROWTH = 1
 
 
 def _check(eqs, unknowns) -> None:

@@ -197,6 +197,12 @@ def _build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+#: The default order of ``perturb response``: the curve is continued, so order 3 costs about
+#: what order 1 does, and at the forced Duffing's defaults it places the jump-down fold within
+#: 1.1e-4 of the true one (order 1: 5e-3 beyond it; tests/response/test_special_points.py).
+RESPONSE_ORDER = 3
+
+
 def _add_response(sub) -> None:
     """``perturb response``: a driven problem's frequency response."""
     response = sub.add_parser(
@@ -212,6 +218,13 @@ def _add_response(sub) -> None:
         "largest amplitude, both sides of each fold and its ends.",
     )
     _add_problem_arguments(response)
+    response.set_defaults(order=str(RESPONSE_ORDER))
+    for action in response._actions:
+        if action.dest == "order":
+            action.help = (
+                f"highest power of the small parameter kept (integer >= 1; default "
+                f"{RESPONSE_ORDER} for a response: its curve costs a Newton step a point)"
+            )
     response.add_argument(
         "--sweep", required=True, metavar="NAME=START:STOP:N",
         help="the parameter swept and its grid (N >= 2 values, START < STOP), e.g. Omega=0.9:1.2:61",
@@ -228,7 +241,15 @@ def _add_response(sub) -> None:
     )  # fmt: skip
     response.add_argument(
         "--tol", default=None, metavar="TOL",
-        help="relative orbit error above which a shot point is marked (default 0.1)",
+        help="relative orbit error above which a shot point is marked, and relative amplitude "
+        "difference at which the analytic and true curves part (--true) (default 0.1)",
+    )  # fmt: skip
+    response.add_argument(
+        "--true", nargs="?", const="default", default=None, metavar="POINTS", dest="true_curve",
+        help="also continue the TRUE periodic orbits from the branches (shooting with the period "
+        "fixed, pseudo-arclength, Floquet multipliers) and report their folds, period doublings, "
+        "Neimark-Sacker and branch points and where the analytic curve parts from them; at most "
+        "POINTS points per curve (default 1000, at most 10000)",
     )  # fmt: skip
     response.add_argument(
         "--plot", default=None, metavar="FILE",

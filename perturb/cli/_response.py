@@ -43,6 +43,30 @@ def _parse_sweep(text: str):
         raise _UsageError(str(exc)) from None
 
 
+def _parse_true(points: str | None) -> int:
+    """``--true [POINTS]``: the most points of each true curve (0 without --true), or a usage
+    error (exit 2)."""
+    from perturb._defaults import TRUE_CURVE_MAX_POINTS, TRUE_CURVE_POINTS
+
+    if points is None:
+        return 0
+    if points == "default":
+        return TRUE_CURVE_POINTS
+    try:
+        count = int(points)
+    except ValueError:
+        raise _UsageError(
+            f"--true {points!r}: give the most points of each true curve, a whole number from 2 "
+            f"to {TRUE_CURVE_MAX_POINTS}"
+        ) from None
+    if not 2 <= count <= TRUE_CURVE_MAX_POINTS:
+        raise _UsageError(
+            f"--true {count}: the most points of each true curve must be from 2 to "
+            f"{TRUE_CURVE_MAX_POINTS} (the budget's maximum)"
+        )
+    return count
+
+
 def _cmd_response(args) -> int:
     from perturb.report import response_as_csv, response_as_dict, response_as_table
     from perturb.response.model import MAX_VALIDATE, problem_response
@@ -71,11 +95,13 @@ def _cmd_response(args) -> int:
             raise _UsageError(f"--tol {args.tol!r}: give a number > 0, e.g. --tol 0.01") from None
         if not (math.isfinite(tol) and tol > 0):
             raise _UsageError(f"--tol {args.tol}: give a finite number > 0, e.g. --tol 0.01")
+    true = _parse_true(args.true_curve)
     _check_plot_backend(args.plot)
     _check_plot_target(args.plot)
     result = problem_response(
-        problem, parameter, grid, order=order, validate=count, measure=args.measure, tol=tol
-    )
+        problem, parameter, grid, order=order, validate=count, measure=args.measure, tol=tol,
+        true=true,
+    )  # fmt: skip
     if args.format == "json":
         print(json.dumps(response_as_dict(result), allow_nan=False))
     elif args.format == "csv":

@@ -25,7 +25,8 @@ The unit circle u² + λ² = 1 from (1, 0), both ways: a loop with two folds at 
 from perturb.continuation.arclength import CurveEquations, continue_both, continue_curve
 from perturb.continuation.events import BRANCH_POINT, FOLD, TestFunction, locate_on_curve
 from perturb.continuation.reading import values_at
-from perturb.continuation.result import ContinuationStatus, Curve, SpecialPoint
+from perturb.continuation.result import ContinuationStatus, Curve
+from perturb.continuation.special import SpecialPoint
 
 __all__ = [
     "BRANCH_POINT",

@@ -42,7 +42,8 @@ from perturb.continuation.newton import (
     null_tangent,
     tangent,
 )
-from perturb.continuation.result import ContinuationStatus, Curve, SpecialPoint
+from perturb.continuation.result import ContinuationStatus, Curve
+from perturb.continuation.special import SpecialPoint
 from perturb.errors import InvalidParameterError, bad_value
 
 __all__ = ["CurveEquations", "continue_both", "continue_curve"]

@@ -18,6 +18,7 @@ from attrs import field, frozen
 
 from perturb._defaults import EVENT_MAX_ITER, EVENT_TOL
 from perturb.continuation.newton import bordered, correct, tangent
+from perturb.continuation.special import SpecialPoint
 
 __all__ = [
     "BRANCH_POINT",
@@ -139,6 +140,20 @@ def locate_on_curve(curve, test: TestFunction, k: int, f0: float, f1: float):
     For test functions too costly to evaluate inside the continuation: evaluate them at the
     curve's points afterwards (in one batch), then locate each sign change here.
 
+    Parameters
+    ----------
+    curve : Curve
+        A continued curve (it carries its equations).
+    test : TestFunction
+    k : int
+        The segment: between ``curve.points[k]`` and ``curve.points[k + 1]``.
+    f0, f1 : float
+        ``test``'s values at its ends.
+
+    Returns
+    -------
+    SpecialPoint or None
+
     Examples
     --------
     >>> import numpy as np
@@ -153,8 +168,6 @@ def locate_on_curve(curve, test: TestFunction, k: int, f0: float, f1: float):
     >>> round(float(point.x[0]), 12), round(point.value, 12)
     (-1.2, -0.528)
     """
-    from perturb.continuation.result import SpecialPoint
-
     x0, t0 = curve.points[k], curve.tangents[k]
     length = float(t0 @ (curve.points[k + 1] - x0))
     sigma, here, value, located = locate(test, curve.equations, x0, t0, length, f0, f1)

@@ -52,6 +52,32 @@ def _finite(*arrays) -> bool:
     return all(math.isfinite(a.sum()) for a in arrays)
 
 
+def _solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``a⁻¹ b`` for the small systems of a continuation: 2 x 2 and 3 x 3 by Cramer's rule on
+    floats (numpy's per-call cost dwarfs their arithmetic), larger ones by LAPACK. Raises
+    :class:`numpy.linalg.LinAlgError` on a singular matrix, as numpy does."""
+    n = a.shape[0]
+    if n == 2:
+        (p, q), (r, t) = a.tolist()
+        det = p * t - q * r
+        if det == 0 or not math.isfinite(det):
+            raise np.linalg.LinAlgError("singular matrix")
+        u, v = b.tolist()
+        return np.array([(t * u - q * v) / det, (p * v - r * u) / det])
+    if n == 3:
+        (a0, a1, a2), (b0, b1, b2), (c0, c1, c2) = a.tolist()
+        m0, m1, m2 = b1 * c2 - b2 * c1, b2 * c0 - b0 * c2, b0 * c1 - b1 * c0
+        det = a0 * m0 + a1 * m1 + a2 * m2
+        if det == 0 or not math.isfinite(det):
+            raise np.linalg.LinAlgError("singular matrix")
+        u, v, w = b.tolist()
+        x = (u * m0 + v * (a2 * c1 - a1 * c2) + w * (a1 * b2 - a2 * b1)) / det
+        y = (u * m1 + v * (a0 * c2 - a2 * c0) + w * (a2 * b0 - a0 * b2)) / det
+        z = (u * m2 + v * (a1 * c0 - a0 * c1) + w * (a0 * b1 - a1 * b0)) / det
+        return np.array([x, y, z])
+    return np.linalg.solve(a, b)
+
+
 def _size(v: np.ndarray) -> float:
     """max |v_i| (ndarray methods: a fraction of numpy's function-call cost on tiny arrays)."""
     return float(abs(v).max()) if v.size else 0.0
@@ -72,7 +98,7 @@ def tangent(jacobian: np.ndarray, previous: np.ndarray) -> np.ndarray | None:
     rhs = np.zeros(jacobian.shape[1])
     rhs[-1] = 1.0
     try:
-        z = np.linalg.solve(bordered(jacobian, previous), rhs)
+        z = _solve(bordered(jacobian, previous), rhs)
     except np.linalg.LinAlgError:
         return None
     norm = float(np.linalg.norm(z))
@@ -96,7 +122,7 @@ def correct(equations, predictor: np.ndarray, normal: np.ndarray) -> Correction:
             return Correction(x, None, iteration, False, False)
         rhs = np.concatenate((-g, [-float(normal @ (x - predictor))]))
         try:
-            step = np.linalg.solve(bordered(jac, normal), rhs)
+            step = _solve(bordered(jac, normal), rhs)
         except np.linalg.LinAlgError:
             return Correction(x, jac, iteration, False)
         size = _size(step)
@@ -124,7 +150,7 @@ def newton_fixed(equations, x0: np.ndarray, max_iter: int = CORRECTOR_MAX_ITER) 
         if not _finite(g, jac):
             return Correction(x, None, iteration, False, False)
         try:
-            step = np.linalg.solve(jac[:, :-1], -g)
+            step = _solve(jac[:, :-1], -g)
         except np.linalg.LinAlgError:
             return Correction(x, jac, iteration, False)
         size = _size(step)

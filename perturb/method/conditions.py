@@ -30,8 +30,8 @@ from perturb.algebra.rootset import RootStatus
 from perturb.algebra.size import SystemSize
 from perturb.errors import InvalidSystemError, bad_value
 from perturb.method.exact import exact_if_close, is_zero, probe_values, rational_form, vanishes
-from perturb.method.steps import GeneratingSolution
 from perturb.solution import Status
+from perturb.steps import GeneratingSolution
 
 __all__ = [
     "ConditionSolver",

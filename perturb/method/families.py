@@ -42,7 +42,7 @@ import attrs
 import sympy as sp
 from attrs import field, frozen
 
-from perturb._defaults import SOLVE_SECONDS
+from perturb._defaults import MAX_RESTRICTIONS, PROBE_ORDERS, SOLVE_SECONDS
 from perturb.errors import InvalidSystemError, UnknownNameError, bad_value
 from perturb.method.components import (
     Component,
@@ -51,10 +51,11 @@ from perturb.method.components import (
     solution_components,
 )
 from perturb.method.conditions import ConditionSolver, OrderFailed, amplitude_pairs
+from perturb.method.construction import OrderByOrder
 from perturb.method.exact import is_zero
 from perturb.method.family_names import name_families
 from perturb.method.options import check_system
-from perturb.method.poincare import PoincareMethod, _OrderByOrder
+from perturb.method.poincare import PoincareMethod
 from perturb.method.projective import (
     exact_modes,
     exact_or,
@@ -71,13 +72,6 @@ __all__ = ["Family", "FamilyList", "find_families"]
 
 #: The two kinds of family, as reported to users.
 ISOLATED, CONTINUUM = "isolated", "continuum"
-#: How many orders past the requested one a continuum with several free amplitudes is carried to
-#: see whether a later order restricts it (Hénon–Heiles: the directions of its lines are fixed by
-#: the conditions of order 4, i.e. carrying order 2, from the requested order 1: one order more;
-#: two leave room for a family order of 2 on a quadratic right-hand side's neighbour).
-PROBE_ORDERS = 2
-#: Successive restrictions of one continuum (each removes at least one free amplitude).
-MAX_RESTRICTIONS = 4
 
 
 @frozen
@@ -309,8 +303,8 @@ def _method(order: int, options: Mapping, phase: str | None) -> PoincareMethod:
 
 def _runner(
     method: PoincareMethod, system: QuasilinearSystem, passes: bool, **solver_options
-) -> _OrderByOrder:
-    runner = _OrderByOrder(method, system)
+) -> OrderByOrder:
+    runner = OrderByOrder(method, system)
     zeros, phase_amplitude = _frame(runner, passes)
     runner.solver = _FamilySolver(
         inner=runner.solver,
@@ -323,7 +317,7 @@ def _runner(
     return runner
 
 
-def _frame(runner: _OrderByOrder, passes: bool) -> tuple[dict, object]:
+def _frame(runner: OrderByOrder, passes: bool) -> tuple[dict, object]:
     """Generating amplitudes forced to zero (resonant coordinates before the phase coordinate,
     in a pass over the phase coordinates) and the phase amplitude's symbol (None when given)."""
     zeros = {}

@@ -74,17 +74,10 @@ from itertools import pairwise
 
 import sympy as sp
 
+from perturb._defaults import AT_REST, LOCALISED_BELOW
 from perturb.method.exact import is_zero, probe_values
 
 __all__ = ["name_families", "response_shape"]
-
-#: A standing wave of n coordinates is "localised" when its participation number is at most this
-#: fraction of n + 1: it moves fewer than about half of the coordinates (module notes, rule 4).
-LOCALISED_BELOW = 0.5
-#: A driven response's coordinate is at rest when its amplitude is at most this fraction of the
-#: largest: far below any amplitude a forcing gives (a symmetry's exact zero comes out of the
-#: certified roots as ~1e-38), far above the roots' rounding.
-AT_REST = 1e-12
 
 
 def _sign(expr: sp.Expr) -> int:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from perturb.report.latex import latex_comment
+from perturb.report.true_curve import true_curve_as_dict, true_curve_latex, true_curve_lines
 from perturb.response.measures import MEASURES
 
 __all__ = ["response_as_csv", "response_as_dict", "response_as_table", "response_latex"]
@@ -34,9 +35,10 @@ def response_as_dict(result) -> dict:
     "multipliers_analytic", "curve"}], "failures": [str], "measure": {"name", "meaning"},
     "special": [{"kind", "value", "amplitudes", "norms", "peak", "inside", "multipliers"}],
     "curves": [{"values", "amplitudes": {measure: {coordinate: [...]}}, "stable", "series_ok",
-    "max_multiplier", "status"}]}``; complex numbers are ``[re, im]``. ``norms`` is the
-    initial-value norm; ``measure`` names the amplitude the response is drawn by (``amplitude``
-    and ``true_amplitude`` of the shot points are in it).
+    "max_multiplier", "status"}], "true_curve": {...} | null}``; complex numbers are
+    ``[re, im]``. ``norms`` is the initial-value norm; ``measure`` names the amplitude the response is drawn by (``amplitude``
+    and ``true_amplitude`` of the shot points are in it). ``true_curve`` (``--true``; null
+    without it) is :func:`~perturb.report.true_curve.true_curve_as_dict`.
     """
     response = result.response
     points = [
@@ -134,6 +136,7 @@ def response_as_dict(result) -> dict:
             }
             for c in response.curves
         ],
+        "true_curve": true_curve_as_dict(result.true_curve),
     }
 
 
@@ -230,6 +233,7 @@ def response_as_table(result) -> str:
             )
     for failure in response.failures:
         lines.append(f"not solved: {failure}")
+    lines.extend(true_curve_lines(result.true_curve, result.parameter))
     return "\n".join(lines)
 
 
@@ -246,6 +250,7 @@ def response_latex(result) -> str:
         for p, name in zip(response.points, result.branches, strict=True)
     ]
     folds = "".join(f"% fold at {result.parameter} = {f.value:.8g}\n" for f in response.folds)
+    folds += true_curve_latex(result.true_curve, result.parameter)
     return (
         f"% {latex_comment(result.problem)}: frequency response, order {response.order}\n"
         + folds

@@ -22,6 +22,7 @@ import sympy as sp
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import AmplitudeEquations
 from perturb.method.family_names import response_shape
+from perturb.response.exact import exact_number
 from perturb.solution import PeriodicSolution, Status
 
 __all__ = [
@@ -91,16 +92,6 @@ class BranchPoint:
         return self.norms[coordinate]
 
 
-def exact_number(value) -> sp.Rational:
-    """A number as the exact rational of its shortest decimal (what the user typed)."""
-    if isinstance(value, sp.Basic) and value.is_Rational:
-        return value
-    value = float(value)
-    if not math.isfinite(value):
-        raise bad_value("value", value, "give a finite number", InvalidParameterError)
-    return sp.Rational(repr(value))
-
-
 def _fixed(equations: AmplitudeEquations, values: Mapping) -> dict:
     names = {p.name: p for p in equations.system.parameters}
     missing = sorted(set(names) - set(values))
@@ -128,12 +119,13 @@ def branches_at(
         The branches sorted by amplitude (max |x|), and "" or why the roots could not be
         enumerated (then the list is empty: never a silent drop).
     """
-    from perturb.response.continued import _Evaluator
-    from perturb.response.line import line_of_values
+    from perturb.response.evaluate import PointEvaluator
+    from perturb.response.line import excitation_frequency, line_of_values
     from perturb.response.traced import trace
 
     fixed = _fixed(equations, values)
     floats = {k.name: float(v) for k, v in fixed.items()}
+    excitation_frequency(equations.system, floats, float(epsilon))
     names = [p.name for p in equations.system.parameters]
     detuning = equations.system.excitation.detuning
     swept = detuning.name if isinstance(detuning, sp.Symbol) and detuning.name in floats else None
@@ -152,7 +144,7 @@ def branches_at(
     found = traced.at([centre])[0]
     if not found:
         return [], ""
-    evaluator = _Evaluator(equations, line)
+    evaluator = PointEvaluator(equations, line)
     at = evaluator.evaluate([u for u, _ in found], [centre] * len(found))
     trouble = "; ".join(traced.failures)
     out = []
@@ -194,7 +186,7 @@ SINGLE_POINT_WINDOW = 2.0
 SINGLE_POINT_SHARE = 0.5
 
 
-def _count_name(name: str) -> bool:
+def count_name(name: str) -> bool:
     """Whether ``name`` is one of the names :func:`branch_names` gives by count (or by mode shape
     and count)."""
     if name in ("trivial", "response", "lower", "middle", "upper"):
@@ -338,7 +330,7 @@ class SteadyState:
             index = nontrivial[-1] if nontrivial else len(self.points) - 1
         elif name in self.names:
             index = self.names.index(name)
-        elif _count_name(name):  # a branch that exists elsewhere, not here: a failed run
+        elif count_name(name):  # a branch that exists elsewhere, not here: a failed run
             return attrs.evolve(
                 self.equations.solution,
                 status=Status.NO_ROOT,

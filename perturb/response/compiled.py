@@ -1,8 +1,9 @@
 """The order-N response compiled once: the displacement function, the series' harmonics, the
 Jacobian of the equations of motion — evaluated at any point without deriving anything again.
 
-* :func:`compiled_displacement`: the rows of :math:`D_N` (:meth:`AmplitudeEquations.displacement`)
-  as polynomials in (amplitudes, system parameters, ε), with their gradients
+* :func:`compiled_displacement`: the rows of :math:`D_N`
+  (:meth:`perturb.method.driven.AmplitudeEquations.displacement`) as polynomials in (amplitudes,
+  system parameters, ε), with their gradients
   (:class:`~perturb.response.polynomial.CompiledPolynomials`, kept in the disk cache);
 * :func:`compiled_series`: the cosine and sine coefficients of every harmonic of every coordinate
   of the order-N series, summed over the orders, as polynomials in the same variables;

@@ -18,33 +18,13 @@ import numpy as np
 from attrs import field, frozen
 
 from perturb._defaults import WINDOW_MARGIN
-from perturb.continuation import (
-    ContinuationStatus,
-    TestFunction,
-    continue_curve,
-    locate_on_curve,
-)
-from perturb.continuation.newton import newton_fixed
+from perturb.continuation import TestFunction, locate_on_curve
 from perturb.response.census import same_orbit
-from perturb.response.compiled import compiled_displacement, compiled_motion, compiled_series
-from perturb.response.floquet import stability_along
-from perturb.response.measures import compiled_terms, peak_abs, series_estimate
-from perturb.response.traced import (
-    HOMOTOPY_MARGIN,
-    _homotopy,
-    homotopy_steps,
-    line_equations,
-    trace,
-)
+from perturb.response.evaluate import PointEvaluator
+from perturb.response.traced import trace
 
 __all__ = ["Continued", "ResponseCurve", "SpecialResponse", "continued_response", "window_of"]
 
-#: An order-N point whose Newton step to the order-(N−1) equations moves it by less than this
-#: fraction of its amplitudes has a counterpart one order lower (the orders' roots differ by
-#: O(ε^N) away from folds); a longer move is decided by the homotopy in the truncation.
-LOWER_LEAP = 0.5
-#: The homotopy back to order N − 1 stays within this many times the point's amplitude.
-LOWER_CAP = 4.0
 #: A fold and a branch point this close (relative, in λ and amplitudes) are one point: a
 #: pitchfork, where the branch crossing the other turns in λ too.
 SAME_POINT = 1e-6
@@ -112,120 +92,6 @@ def window_of(line, low: float, high: float) -> tuple[float, float]:
     return ends[0], ends[1]
 
 
-class _Evaluator:
-    """Everything about points (u, λ) in one batch: measures, estimate, stability, and whether
-    each has a counterpart one order lower (:func:`lower_order`)."""
-
-    def __init__(self, equations, line, order: int | None = None):
-        self.equations, self.line = equations, line
-        self.series = compiled_series(equations)
-        self.terms = compiled_terms(equations)
-        self.motion = compiled_motion(equations.system)
-        names = list(self.series.coordinates)
-        self.resonant = [names.index(c) for c in equations.coordinates]
-        self.order = equations.order if order is None else order
-        self.lower = self.upper = None
-        if self.order >= 1:
-            n = len(equations.amplitudes)
-            self.lower = line_equations(compiled_displacement(equations, self.order - 1), line, n)
-            self.upper = line_equations(compiled_displacement(equations, self.order), line, n)
-
-    def lower_order(self, u, lam: float) -> str:
-        """ "" when the order-N point (u, λ) is carried continuously to a root of the order-(N−1)
-        equations at the same λ (Newton, else the homotopy in the truncation from τ = 1 to 0);
-        else why not: a root of the truncated series with no counterpart one order lower, not a
-        motion the series describes (nor, in the O(ε^N) band beside a fold, a sure one)."""
-        if self.lower is None:
-            return ""
-        x = np.append(np.asarray(u, dtype=float), float(self.line.mu(lam)))
-        near = newton_fixed(self.lower, x)
-        size = max(float(np.max(np.abs(x[:-1]))), 1e-12)
-        if near.converged and float(np.max(np.abs(near.x - x))) <= LOWER_LEAP * size:
-            return ""
-        path = continue_curve(
-            _homotopy(self.upper, self.lower, float(x[-1])), np.append(x[:-1], 1.0),
-            lam_range=(-HOMOTOPY_MARGIN, 1 + HOMOTOPY_MARGIN), direction=-1.0,
-            domain=lambda y: "" if float(np.max(np.abs(y[:-1]))) <= LOWER_CAP * size else "far",
-            **homotopy_steps(size),
-        )  # fmt: skip
-        if path.status is ContinuationStatus.LEFT_RANGE and path.points[-1][-1] < 0:
-            return ""
-        return (
-            f"no order-{self.order - 1} root is reached from it at this {self.line.parameter} "
-            "(the homotopy in the truncation turns back): a root of the truncated series"
-        )
-
-    def rows(self, u: np.ndarray, lam: np.ndarray):
-        values, eps = zip(*(self.line.at(float(v)) for v in lam), strict=True)
-        params, eps = np.array(values).reshape(len(lam), -1), np.array(eps, dtype=float)
-        return np.hstack((np.atleast_2d(u), params, eps[:, None])), params, eps
-
-    def lower_order_along(self, u, lam) -> list[str]:
-        """:meth:`lower_order` along consecutive points of a curve: Newton at each point; a run of
-        points where Newton does not decide is decided by the homotopy at its ends and middle
-        (the answer changes along a curve only where the lower order's root ends)."""
-        if self.lower is None:
-            return [""] * len(lam)
-        out: list[str | None] = []
-        for v, w in zip(u, lam, strict=True):
-            x = np.append(np.asarray(v, dtype=float), float(self.line.mu(w)))
-            near = newton_fixed(self.lower, x)
-            size = max(float(np.max(np.abs(x[:-1]))), 1e-12)
-            ok = near.converged and float(np.max(np.abs(near.x - x))) <= LOWER_LEAP * size
-            out.append("" if ok else None)
-        k = 0
-        while k < len(out):
-            if out[k] is not None:
-                k += 1
-                continue
-            end = k
-            while end + 1 < len(out) and out[end + 1] is None:
-                end += 1
-            probes = sorted({k, (k + end) // 2, end})
-            answers = [self.lower_order(u[i], lam[i]) for i in probes]
-            for i, why in zip(probes, answers, strict=True):
-                out[i] = why
-            fill = answers[len(answers) // 2]
-            for i in range(k, end + 1):
-                if out[i] is None:
-                    out[i] = fill
-            k = end + 1
-        return out
-
-    def evaluate(self, u, lam, check_lower: bool | str = True) -> dict:
-        u = np.atleast_2d(np.asarray(u, dtype=float))
-        lam = np.atleast_1d(np.asarray(lam, dtype=float))
-        if len(lam) == 0:
-            return {"peak": {}, "first-harmonic": {}, "initial": {}, "stability": None}
-        x, params, eps = self.rows(u, lam)
-        _, cos, sin = self.series.evaluate(x)
-        coords = self.equations.coordinates
-        measures = {"peak": {}, "first-harmonic": {}, "initial": {}}
-        for k, (name, i) in enumerate(zip(coords, self.resonant, strict=True)):
-            m = self.equations.harmonics[k]
-            measures["peak"][name] = peak_abs(cos[:, i], sin[:, i])
-            measures["first-harmonic"][name] = np.hypot(cos[:, i, m], sin[:, i, m])
-            measures["initial"][name] = np.hypot(u[:, 2 * k], u[:, 2 * k + 1])
-        sizes = self.terms.sizes(x)[:, self.resonant]
-        estimates = [series_estimate(s) for s in sizes]
-        if check_lower:
-            lower = self.lower_order_along(u, lam) if check_lower == "along" else [
-                self.lower_order(v, w) for v, w in zip(u, lam, strict=True)
-            ]  # fmt: skip
-            estimates = [
-                (e, [*r, *filter(None, [why])])
-                for (e, r), why in zip(estimates, lower, strict=True)
-            ]
-        stability = stability_along(self.motion, self.series, x, params, eps)
-        return {
-            **measures,
-            "stability": stability,
-            "error": [dict(zip(coords, e, strict=True)) for e, _ in estimates],
-            "reasons": [r for _, r in estimates],
-            "eps": eps,
-        }
-
-
 def _multiplier_tests(evaluator, line):
     """Neimark-Sacker (Π_{i<j} (μᵢμⱼ − 1)) and period-doubling (Π (μᵢ + 1)) test functions on
     the curve, one point's multipliers each, and their batch values from multipliers."""
@@ -288,7 +154,7 @@ def continued_response(equations, order: int, line, grid) -> Continued:
     grid = np.asarray(grid, dtype=float)
     low, high = window_of(line, float(grid[0]), float(grid[-1]))
     traced = trace(equations, order, line, low, high)
-    evaluator = _Evaluator(equations, line)
+    evaluator = PointEvaluator(equations, line)
     coords = equations.coordinates
     names = [s.name for s in equations.amplitudes]
     readings_at = traced.at(grid)

@@ -1,11 +1,11 @@
 """The system's parameter values along one swept parameter: the line a response is continued on.
 
 A problem's user parameter λ (Ω, a forcing level…) moves the values its system is written in (σ,
-F, …) and possibly ε through the problem's own map (``problem.with_parameters(...)``,
-``symbol_values()``, ``epsilon()``; the map itself is the problem's). When that map is affine
-along the sweep — Ω ↦ σ = (Ω − 1)/ε, or a coefficient swept directly — the amplitude equations
-restricted to the line are polynomials in (amplitudes, λ), specialised once; otherwise the values
-are asked of the problem at each λ and differentiated by centred differences. The continuation
+F, …) and possibly ε through the problem's own map (its :class:`~perturb.case.Case`: the point at
+each λ, the exact rate of every symbol and of ε, whether they move affinely). When the map is
+affine along the sweep — Ω ↦ σ = (Ω − 1)/ε, or a coefficient swept directly — the amplitude
+equations restricted to the line are polynomials in (amplitudes, λ), specialised once; otherwise
+the values are asked of the case at each λ and differentiated by centred differences. The continuation
 runs in the scaled variable μ = (λ − λ₀)·scale, scale the largest rate at which a system value
 moves (μ in the units of σ when sweeping Ω): amplitudes and parameter then weigh alike in the
 arclength.
@@ -21,11 +21,8 @@ from attrs import field, frozen
 
 from perturb.errors import InvalidParameterError
 
-__all__ = ["ParameterLine", "line_of_problem", "line_of_values"]
+__all__ = ["ParameterLine", "excitation_frequency", "line_of_problem", "line_of_values"]
 
-#: Relative agreement of the problem's values at a third and fourth point with the straight line
-#: through two others, below which the map is affine: the map's own rounding is ~1e-16 relative.
-AFFINE_TOL = 1e-9
 #: Relative step of the centred differences of a map that is not affine (eps^(1/3)).
 MAP_STEP = 6e-6
 
@@ -94,39 +91,32 @@ def _scale(slope: np.ndarray, eps_slope: float) -> float:
 
 
 def line_of_problem(problem, parameter: str, names, low: float, high: float) -> ParameterLine:
-    """The line of ``problem``'s system values along its parameter ``parameter``, probed on
-    [low, high] (see the module notes)."""
+    """The line of ``problem``'s system values along its parameter ``parameter`` over [low, high]:
+    its :class:`~perturb.case.Case` gives each point, the exact rate of the symbols and ε and
+    whether they move affinely (read from the parameter map, not probed)."""
     names = tuple(names)
+    case = problem.case()
 
     def values_at(lam: float):
-        variant = problem.with_parameters(**{parameter: float(lam)})
-        values = variant.symbol_values()
-        return np.array([float(values[n]) for n in names]), float(variant.epsilon())
+        point = case.at(**{parameter: float(lam)})
+        values = point.symbol_values
+        return np.array([float(values[n]) for n in names]), float(point.epsilon)
 
     def invalid(lam: float) -> str:
         try:
-            problem.with_parameters(**{parameter: float(lam)})
-        except InvalidParameterError as error:
+            case.at(**{parameter: float(lam)})
+        except (InvalidParameterError, ValueError) as error:
             return str(error)
         return ""
 
-    (v0, e0), (v1, e1) = values_at(low), values_at(high)
-    slope, eps_slope = (v1 - v0) / (high - low), (e1 - e0) / (high - low)
-    affine = True
-    for fraction in (0.5, 0.2):
-        lam = low + fraction * (high - low)
-        v, e = values_at(lam)
-        line = np.concatenate((v0 + (lam - low) * slope, [e0 + (lam - low) * eps_slope]))
-        probe = np.concatenate((v, [e]))
-        if np.any(np.abs(probe - line) > AFFINE_TOL * np.maximum(1.0, np.abs(line))):
-            affine = False
-    if not affine:
-        slope, eps_slope = ParameterLine(
-            parameter, names, low, v0, slope, e0, eps_slope, 1.0, False, values_at
-        ).rate(low)
+    v0, e0 = values_at(low)
+    start = case.at(**{parameter: float(low)})
+    rates, eps_rate = start.rate(parameter)
+    slope = np.array([float(rates.get(n, 0.0)) for n in names])
+    affine = bool(case.is_affine_in(parameter))
     return ParameterLine(
-        parameter, names, low, v0, slope, e0, eps_slope, _scale(slope, eps_slope), affine,
-        values_at, invalid,
+        parameter, names, low, v0, slope, e0, float(eps_rate), _scale(slope, float(eps_rate)),
+        affine, values_at, invalid,
     )  # fmt: skip
 
 
@@ -139,3 +129,28 @@ def line_of_values(names, values: dict, eps: float, parameter: str) -> Parameter
     return ParameterLine(
         parameter, names, float(values[parameter]), base, slope, float(eps), 0.0, 1.0, True
     )
+
+
+def excitation_frequency(system, values: dict, eps: float) -> float:
+    """Ω = (p/q) ω_ref + ε σ of the driven ``system`` at ``values`` (by name).
+
+    Raises
+    ------
+    InvalidParameterError
+        When Ω <= 0: a forcing frequency must be positive (one line, with the detuning that
+        gives it).
+    """
+    import sympy as sp
+
+    drive = system.excitation
+    subs = {p: values[p.name] for p in system.parameters if p.name in values}
+    w_ref = sp.sympify(system.frequencies[system.reference_index]).xreplace(subs)
+    sigma = sp.sympify(drive.detuning).xreplace(subs)
+    omega = float(drive.ratio * w_ref + eps * sigma)
+    if not omega > 0:
+        raise InvalidParameterError(
+            f"`{drive.detuning}` = {float(sigma):g} is invalid: it makes the excitation frequency "
+            f"Omega = {float(drive.ratio * w_ref):g} + {eps:g}*{drive.detuning} = {omega:g} <= 0; "
+            f"give {drive.detuning} > {-float(drive.ratio * w_ref) / eps:g} (Omega > 0)"
+        )
+    return omega

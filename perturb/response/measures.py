@@ -8,9 +8,9 @@ Three amplitude measures of a coordinate x(s) = Σ_j c_j cos js + s_j sin js (al
 * ``initial``: |(x(0), ẋ(0)/(mν))|, the norm of the initial values — the generating amplitudes
   √(a² + b²), since every correction starts at zero (the measure drawn before issue 29).
 
-The series' own estimate: the size of each order's term, ε^k Σ_j √(c_kj² + s_kj²) (a bound on
-its largest value), must decrease; the error of the order-N state is estimated from the last two
-as a geometric tail, t_N r/(1 − r) with r = t_N/t_{N−1}.
+The size of each order's term, ε^k Σ_j √(c_kj² + s_kj²) (a bound on its largest value), must
+decrease from the first order on (:func:`series_estimate`); the error estimate of a point is the
+last correction (:mod:`perturb.response.evaluate`).
 """
 
 from __future__ import annotations
@@ -36,6 +36,11 @@ MEASURES = {
 #: the harmonics of an order-12 series of a cubic system (up to 3^12 is not reached: a series'
 #: harmonics grow like the order times the nonlinearity's degree, ~40) with several samples each.
 PEAK_SAMPLES = 256
+#: Terms below this fraction of the largest one do not count in the check that the terms
+#: decrease: far from resonance the detuning makes them comparable (ε σ ~ 0.5 at the forced
+#: Duffing's Ω = 1.46) while each is 1e-5 of the amplitude, a change no figure and no tolerance
+#: sees; a diverging series is flagged as soon as its terms reach it.
+NEGLIGIBLE_TERM = 1e-4
 #: Newton steps polishing an extreme from the nearest sample (quadratic from half a spacing).
 PEAK_NEWTON = 5
 
@@ -73,10 +78,14 @@ class SeriesTerms:
     harmonics: int
     rows: object = field(eq=False)
 
-    def sizes(self, x) -> np.ndarray:
-        values = self.rows.values(np.atleast_2d(x))  # (P, (N+1) n 2 (H+1))
+    def coefficients(self, x) -> np.ndarray:
+        """Each order's cosine and sine coefficients: shape (P, n, N + 1, 2, H + 1)."""
+        values = self.rows.values(np.atleast_2d(x))  # (P, n (N+1) 2 (H+1))
         n, h = len(self.coordinates), self.harmonics + 1
-        terms = values.reshape(-1, n, self.orders + 1, 2, h)
+        return values.reshape(-1, n, self.orders + 1, 2, h)
+
+    def sizes(self, x) -> np.ndarray:
+        terms = self.coefficients(x)
         return np.sum(np.hypot(terms[:, :, :, 0, :], terms[:, :, :, 1, :]), axis=-1)
 
 
@@ -104,16 +113,21 @@ def compiled_terms(equations) -> SeriesTerms:
 
 
 def series_estimate(sizes: np.ndarray) -> tuple[np.ndarray, list[str]]:
-    """From term sizes (n, N + 1) of one point: the estimated error of each coordinate's state
-    (geometric tail of the last two terms; NaN at order 0 or when they do not decrease) and the
-    reasons the series is outside its domain (non-decreasing terms), empty when inside."""
+    """From term sizes (n, N + 1) of one point: the geometric tail of each coordinate's last two
+    terms (NaN at order 0 or when they do not decrease) and the reasons the series is outside
+    its domain, empty when inside: terms of order >= 1 that do not decrease (the order-0 term is
+    the generating solution, whose size the amplitudes set: a small resonant response beside
+    larger forced harmonics, as the superharmonic's, is not a diverging series)."""
     n, depth = sizes.shape
     error = np.full(n, math.nan)
     reasons = []
     for i in range(n):
         kept = [(k, float(v)) for k, v in enumerate(sizes[i]) if v != 0]
+        top = max((v for _, v in kept), default=0.0)
         for (k0, s0), (k1, s1) in zip(kept, kept[1:], strict=False):
-            if not (s1 < s0) or not math.isfinite(s1):
+            if not math.isfinite(s1):
+                reasons.append(f"the order-{k1} term is not finite")
+            elif k0 >= 1 and s1 >= s0 and s1 > NEGLIGIBLE_TERM * top:
                 reasons.append(f"order-{k1} term {s1:.3g} >= order-{k0} term {s0:.3g}")
         if len(kept) >= 2 and kept[-1][1] < kept[-2][1]:
             ratio = kept[-1][1] / kept[-2][1]

@@ -6,11 +6,11 @@ once for the problem's symbolic system, and every order-N branch is continued al
 from the certified first-order census (:mod:`perturb.response.continued`: its folds, branch
 points and Neimark-Sacker points located on the order-N curves, its stability from the Floquet
 multipliers along the order-N series). The backbone is the free engine's frequency of the
-unforced, undamped system, if the problem gives one (``backbone_system``). With ``validate`` > 0
+system's conservative, unforced part (:mod:`perturb.response.backbone`). With ``validate`` > 0
 the true orbit is shot at points of every branch chosen by arclength
 (:mod:`perturb.response.truth`).
 
-The problem is duck-typed: ``system()``, ``symbol_values()``, ``epsilon()``, ``name`` and
+The problem gives ``case()`` (a :class:`perturb.case.Case`), ``name`` and
 ``with_parameters(**values)`` (a :class:`problems.base.Problem` has them all).
 """
 
@@ -20,38 +20,16 @@ import math
 from collections.abc import Sequence
 
 import numpy as np
-import sympy as sp
 from attrs import field, frozen
 
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import amplitude_equations
-from perturb.response.branches import exact_number
+from perturb.response.backbone import Backbone, backbone
 from perturb.response.curve import (
-    Fold,
     FrequencyResponse,
-    _folds,
-    continue_fold,
 )
 
 __all__ = ["Backbone", "ProblemResponse", "TrueResponse", "problem_response"]
-
-
-@frozen
-class Backbone:
-    """The free, undamped system's frequency against its amplitude (the response's spine).
-
-    Attributes
-    ----------
-    coordinate : str
-    amplitudes : tuple of float
-    values : tuple of float
-        The swept parameter's value at which the forced system resonates with the free motion of
-        that amplitude.
-    """
-
-    coordinate: str
-    amplitudes: tuple = field(converter=tuple)
-    values: tuple = field(converter=tuple)
 
 
 @frozen
@@ -99,6 +77,8 @@ class ProblemResponse:
     backbone : Backbone or None
     true : tuple of TrueResponse
         The shot points (empty unless asked).
+    true_curve : perturb.response.true_curve.TrueCurves or None
+        The true periodic orbits continued from the branches (``--true``; None unless asked).
     """
 
     problem: str
@@ -107,6 +87,7 @@ class ProblemResponse:
     branches: tuple = field(converter=tuple)
     backbone: Backbone | None = None
     true: tuple = field(converter=tuple, factory=tuple)
+    true_curve: object = None
 
 
 def parse_sweep(text: str, argument: str = "--sweep") -> tuple[str, np.ndarray]:
@@ -174,13 +155,11 @@ def check_request(problem, parameter: str):
         A problem that is not driven, or an unknown parameter (the closest is suggested).
     """
     system = problem.system()
-    if system.excitation is None:
-        raise bad_value(
-            "problem", problem.name,
-            "it is not driven (its system has no excitation): the frequency response is for "
-            "forced, damped or parametrically excited systems; use `perturb solve`",
-            InvalidParameterError,
-        )  # fmt: skip
+    system.frame.require_driven(
+        "problem", problem.name,
+        "it is not driven (its system has no excitation): the frequency response is for "
+        "forced, damped or parametrically excited systems; use `perturb solve`",
+    )  # fmt: skip
     if parameter not in problem.values:
         from difflib import get_close_matches
 
@@ -196,7 +175,7 @@ def check_request(problem, parameter: str):
 
 def problem_response(
     problem, parameter: str, grid: Sequence[float], order: int = 1, validate: int = 0,
-    measure: str = "peak", tol: float | None = None,
+    measure: str = "peak", tol: float | None = None, true: int = 0,
 ) -> ProblemResponse:  # fmt: skip
     """The frequency response of a driven ``problem`` over ``grid`` values of ``parameter``.
 
@@ -223,6 +202,10 @@ def problem_response(
         ``first-harmonic`` or ``initial`` (:data:`perturb.response.measures.MEASURES`).
     tol : float, optional
         The relative orbit error above which a shot point is marked (default ``DEFAULT_TOL``).
+    true : int
+        Continue the true periodic orbits from the branches, at most this many points per curve
+        (0: not; :func:`perturb.response.true_curve.true_curves`), and mark where the analytic
+        curve parts from them by more than ``tol`` (relative, in ``measure``).
 
     Returns
     -------
@@ -236,7 +219,6 @@ def problem_response(
         validation budget beyond ``MAX_VALIDATE``.
     """
     from perturb._defaults import DEFAULT_TOL
-    from perturb.response.backbone import backbone_of
     from perturb.response.continued import continued_response
     from perturb.response.line import line_of_problem
     from perturb.response.sampled import response_of
@@ -246,8 +228,11 @@ def problem_response(
     check_measure(measure)
     check_validate(validate)
     tol = DEFAULT_TOL if tol is None else check_tol(tol)
+    from perturb.response.line import excitation_frequency
+
     for value in grid:  # the problem's own checks at every grid value (one line, exit 2)
-        problem.with_parameters(**{parameter: float(value)})
+        variant = problem.with_parameters(**{parameter: float(value)})
+        excitation_frequency(system, variant.symbol_values(), float(variant.epsilon()))
     equations = amplitude_equations(system, order)
     names = [p.name for p in system.parameters]
     line = line_of_problem(problem, parameter, names, float(grid[0]), float(grid[-1]))
@@ -258,9 +243,21 @@ def problem_response(
         values={k: float(v) for k, v in problem.values.items() if k != parameter},
         grid=grid, coordinates=equations.coordinates, measure=measure,
     )  # fmt: skip
-    backbone = backbone_of(problem, parameter, response.points, order, measure)
-    true = _true_points(result, response, validate, measure, tol) if validate else ()
-    return ProblemResponse(problem.name, parameter, response, branch_names_, backbone, true)
+    reference = system.coordinates[system.reference_index].name
+    top = max((p.amplitude(reference, measure) for p in response.points), default=math.nan)
+    spine = backbone(problem.case(), parameter, top, order, measure) if response.points else None
+    true_points = _true_points(result, response, validate, measure, tol) if validate else ()
+    curves = None
+    if true:
+        from perturb.response.true_curve import true_curves
+
+        curves = true_curves(
+            problem, parameter, response, branch_names_, order, budget=true, tol=tol,
+            measure=measure,
+        )  # fmt: skip
+    return ProblemResponse(
+        problem.name, parameter, response, branch_names_, spine, true_points, curves
+    )
 
 
 #: Most points ``--validate`` shoots on each branch besides the ones it always shoots (largest
@@ -335,39 +332,3 @@ def _true_points(result, response, count, measure, tol) -> tuple[TrueResponse, .
             )
         )
     return tuple(out)
-
-
-def _problem_folds(equations, problem, parameter, variants, grid) -> list[Fold]:
-    """Folds in the system's parameter that ``parameter`` moves (linearly), mapped back."""
-    first, last = variants[0].symbol_values(), variants[-1].symbol_values()
-    moved = [k for k in first if first[k] != last[k]]
-    if len(moved) != 1:
-        return []
-    name = moved[0]
-    (symbol,) = [p for p in equations.system.parameters if p.name == name]
-    a, b = float(grid[0]), float(grid[-1])
-    s0, s1 = first[name], last[name]
-    slope = (s1 - s0) / (b - a)
-    middle = variants[len(variants) // 2].symbol_values()[name]
-    mid_value = float(grid[len(grid) // 2])
-    if not math.isclose(middle, s0 + slope * (mid_value - a), rel_tol=1e-9, abs_tol=1e-12):
-        return []  # not a linear map: no exact folds in the swept parameter
-    fixed = {
-        p: exact_number(first[p.name])
-        for p in equations.system.parameters
-        if p.name in first and p.name != name
-    }
-    rows = [sp.expand(e.xreplace(fixed)) for e in equations.displacement(0)]
-    low, high = sorted((s0, s1))
-    out = []
-    eps = float(problem.epsilon())
-    for fold in _folds(rows, list(equations.amplitudes), symbol, low, high, equations):
-        fold = continue_fold(fold, equations, equations.order, fixed, symbol, eps)
-
-        def back(value):
-            return a + (value - s0) / slope if slope else a
-
-        out.append(
-            Fold(back(fold.value), fold.amplitudes, fold.norms, back(fold.first_order), fold.note)
-        )
-    return sorted(out, key=lambda f: f.value)

@@ -11,14 +11,18 @@ outside its domain, drawn apart and never silently taken for a motion.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from perturb.errors import InvalidParameterError, bad_value
+from perturb.method.driven import AmplitudeEquations
 from perturb.response.branches import branch_names
 from perturb.response.continued import Continued, continued_response
 from perturb.response.curve import Fold, FrequencyResponse, ResponsePoint
+from perturb.response.exact import exact_number
 
-__all__ = ["frequency_response_on", "name_at", "response_of"]
+__all__ = ["frequency_response", "frequency_response_on", "name_at", "response_of"]
 
 
 def _first_order_folds(result: Continued) -> list[float]:
@@ -118,3 +122,77 @@ def name_at(result: Continued, lam: float, u, measure: str) -> str | None:
         if same_orbit(here[i][0], u, traced.harmonics, traced.group):
             return names[rank]
     return None
+
+
+def frequency_response(
+    equations: AmplitudeEquations,
+    parameter: str,
+    grid: Sequence[float],
+    values: Mapping[str, float],
+    epsilon: float,
+    order: int = 1,
+) -> FrequencyResponse:
+    """Every branch of the steady-state response over ``grid`` values of ``parameter``.
+
+    Parameters
+    ----------
+    equations : AmplitudeEquations
+        Of the driven system, to at least ``order`` (:func:`amplitude_equations`).
+    parameter : str
+        The swept parameter: one of the system's parameters (σ, a forcing level…).
+    grid : sequence of float
+    values : mapping
+        Values of every other parameter of the system.
+    epsilon : float
+        ε (> 0).
+    order : int
+        The order of the state (0: the first-order response equations only).
+
+    Returns
+    -------
+    FrequencyResponse
+
+    Raises
+    ------
+    InvalidParameterError
+        An unknown swept parameter or a missing value.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from problems import get_problem
+    >>> from perturb import amplitude_equations, frequency_response
+    >>> system = get_problem("forced-duffing").system()
+    >>> response = frequency_response(
+    ...     amplitude_equations(system, 0), "sigma", np.linspace(0.0, 2.0, 5),
+    ...     {"zeta": 0.1, "gamma": 1.0, "F": 1.0}, epsilon=0.05, order=0)
+    >>> [len(response.at(value)) for value in response.grid]  # one branch, then three
+    [1, 1, 3, 3, 3]
+    >>> [round(fold.value, 4) for fold in response.folds if fold.inside]
+    [0.8497]
+    """
+    from perturb.response.line import line_of_values
+
+    system = equations.system
+    names = {p.name: p for p in system.parameters}
+    if parameter not in names:
+        raise bad_value(
+            "parameter", parameter, f"sweep one of the system's parameters {sorted(names)}",
+            InvalidParameterError,
+        )  # fmt: skip
+    missing = sorted(set(names) - {parameter} - set(values))
+    if missing:
+        raise bad_value("values", dict(values), f"give values for {missing}", InvalidParameterError)
+    grid = np.asarray(grid, dtype=float)
+    if grid.ndim != 1 or grid.size < 2 or not np.all(np.diff(grid) > 0):
+        raise bad_value(
+            "grid", grid.tolist(), "give at least 2 increasing values", InvalidParameterError
+        )  # fmt: skip
+    fixed = {k: float(exact_number(v)) for k, v in values.items() if k in names and k != parameter}
+    line = line_of_values(list(names), {**fixed, parameter: float(grid[0])}, epsilon, parameter)
+    result = continued_response(equations, order, line, grid)
+    response, _ = response_of(
+        result, system=system.name, parameter=parameter, order=order, epsilon=epsilon,
+        values=fixed, grid=grid, coordinates=equations.coordinates, measure="initial",
+    )  # fmt: skip
+    return response

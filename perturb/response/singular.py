@@ -21,17 +21,10 @@ import math
 import numpy as np
 import sympy as sp
 
+from perturb._defaults import BRANCH_POINT_TOL, SAME_POINT
 from perturb.response.roots import RootStatus, real_roots
 
-__all__ = ["BRANCH_POINT_TOL", "SingularPoints", "singular_points"]
-
-#: A singular point is a branch point when :math:`|w\cdot P_\lambda| \le` this times
-#: :math:`|P_\lambda|` (w of unit length): symmetry makes the product zero exactly, the roots come
-#: from a certified isolation to 2**-128, so their rounding leaves ~1e-15; a fold's is of order 1.
-BRANCH_POINT_TOL = 1e-8
-#: Relative distance below which two singular points are one: the same value and the same
-#: amplitude of every coordinate (a shift by a forcing period rotates the phases, never the norms).
-SAME_POINT = 1e-9
+__all__ = ["SingularPoints", "singular_points"]
 
 
 class SingularPoints(tuple):

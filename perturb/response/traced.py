@@ -27,9 +27,9 @@ from attrs import field, frozen
 
 from perturb._defaults import AMPLITUDE_CAP, LIFT_TRIES
 from perturb.continuation import ContinuationStatus, CurveEquations, continue_both, continue_curve
-from perturb.response.branches import exact_number
 from perturb.response.census import census, distinct_orbits, line_folds, same_orbit
 from perturb.response.compiled import compiled_displacement
+from perturb.response.exact import exact_number
 from perturb.system import EPS
 
 __all__ = ["Branch", "Traced", "line_equations", "trace"]

@@ -35,6 +35,7 @@ import time
 import numpy as np
 import sympy as sp
 
+from perturb._defaults import SINGULAR_SECONDS
 from perturb.errors import InvalidParameterError, PerturbError
 
 __all__ = ["SPECIAL_KINDS", "phase_diagram", "phase_line"]
@@ -43,10 +44,6 @@ __all__ = ["SPECIAL_KINDS", "phase_diagram", "phase_line"]
 SPECIAL_KINDS = ("fold", "branch-point", "neimark-sacker", "period-doubling", "other")
 #: A count that could not be had (the line's response failed there, or its census).
 NOT_COUNTED = -1
-#: Budget of one line's exact first-order singular points (five unknowns for a pair: msolve on
-#: {P1 = 0, det J = 0} takes seconds to tens of seconds; past it the line's boundaries are missing
-#: and said so in ``failures``).
-SINGULAR_SECONDS = 120.0
 #: Orders of the special points: located on a continued order-N curve, or exact first-order ones.
 ORDER_N, FIRST_ORDER = 1, 0
 

@@ -158,3 +158,33 @@ def test_the_domain_the_budget_and_a_start_off_every_curve():
 def test_bad_input_is_one_line_naming_the_argument(options, argument):
     with pytest.raises(InvalidParameterError, match=f"`{argument}`"):
         continue_curve(CIRCLE, [1.0, 0.0], **options)
+
+
+def test_a_start_on_a_fold_is_corrected_by_least_norm_newton():
+    """At a fold G_u is singular (Newton at fixed λ cannot start there); the least-norm step
+    corrects the start with λ free and the curve is followed both ways."""
+    curve = continue_both(CUBIC, [-1 / math.sqrt(3), FOLD_LAMBDA + 1e-3], lam_range=(-1.0, 1.0))
+    assert curve.success
+    assert (
+        np.max(np.abs(curve.points[:, 0] ** 3 - curve.points[:, 0] - curve.points[:, 1]))
+        <= ON_CURVE
+    )
+    assert sorted(p.value for p in curve.of_kind("fold")) == pytest.approx(
+        [-FOLD_LAMBDA, FOLD_LAMBDA], abs=LOCATED
+    )
+
+
+@pytest.mark.parametrize("n", [2, 3, 4])
+def test_the_small_solves_are_lapacks(n):
+    """Cramer's rule for the 2 x 2 and 3 x 3 systems of a step against numpy's LAPACK (another
+    route), on well-conditioned random systems: agreement to 1e-12 relative (a few roundings of
+    O(1) numbers divided by a determinant of O(1))."""
+    from perturb.continuation.newton import _solve
+
+    rng = np.random.default_rng(7)
+    for _ in range(50):
+        a = rng.normal(size=(n, n)) + n * np.eye(n)
+        b = rng.normal(size=n)
+        assert _solve(a, b) == pytest.approx(np.linalg.solve(a, b), rel=1e-12, abs=1e-12)
+    with pytest.raises(np.linalg.LinAlgError):
+        _solve(np.zeros((n, n)), np.ones(n))

@@ -1,5 +1,5 @@
 """Frequency-response plots: every branch (stable solid, unstable dashed), folds, backbone, the
-true motion's points; and the Floquet multipliers along the branches."""
+true motion's points and curves; and the Floquet multipliers along the branches."""
 
 from __future__ import annotations
 
@@ -9,6 +9,7 @@ import numpy as np
 
 from perturb.errors import bad_value
 from perturb.report.plots.style import new_figure, publication_style
+from perturb.report.plots.true_curve import draw_true_curves
 
 __all__ = ["plot_floquet_along_branches", "plot_frequency_response"]
 
@@ -40,6 +41,8 @@ def plot_frequency_response(result, *, coordinate: str | None = None, ax=None, t
         (``perturb response --validate K``) as crosses at their true amplitude, the analytic points
         off the truth by more than ``tol`` ringed. The amplitude is the response's ``measure``
         (max |x| by default), named on the axis.
+        With ``--true``, the true curves in black beside them, their special points and where
+        the two part (:func:`~perturb.report.plots.true_curve.draw_true_curves`).
 
     Raises
     ------
@@ -110,6 +113,7 @@ def plot_frequency_response(result, *, coordinate: str | None = None, ax=None, t
             if off:
                 ax.plot([t.value for t in off], [t.amplitude for t in off], "o", ms=9,
                         mfc="none", color="C1", label="analytic off the truth by > tol")  # fmt: skip
+        draw_true_curves(ax, result.true_curve, coordinate, result.parameter)
         ax.set_xlabel(result.parameter)
         ax.set_ylabel(f"{MEASURES.get(measure, 'amplitude')} of {coordinate}")
         ax.set_xlim(low, high)
