@@ -52,6 +52,7 @@ class CoupledDuffings(DrivenProblem):
         ParameterSpec("F", 1.0, "scaled forcing amplitude on x1", positive),
         ParameterSpec("Omega", 1.05, "excitation frequency", positive_frequency),
     )  # fmt: skip
+    parameter_map = {"sigma": "(Omega - 1)/eps"}  # Omega = 1 + eps*sigma
 
     @classmethod
     def build_system(cls) -> QuasilinearSystem:

@@ -55,7 +55,7 @@ class CoupledParametrons(DrivenProblem):
         ParameterSpec("Omega", 2.0, "pump frequency (the response has half of it)",
                       positive_frequency),
     )  # fmt: skip
-    resonance_frequency = 2.0
+    parameter_map = {"sigma": "(Omega - 2)/eps"}  # Omega = 2 + eps*sigma
 
     @classmethod
     def build_system(cls) -> QuasilinearSystem:

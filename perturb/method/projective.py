@@ -292,7 +292,7 @@ def exact_on(system, generating) -> bool:
     --------
     >>> import sympy as sp
     >>> from perturb import EPS, QuasilinearSystem
-    >>> from perturb.method.steps import GeneratingSolution
+    >>> from perturb.steps import GeneratingSolution
     >>> x, y, u, v = sp.symbols("x y u v")
     >>> pair = QuasilinearSystem([x, y], [u, v], [1, 1], [-EPS*(x - y)**3, EPS*(x - y)**3])
     >>> def on(a, b):
@@ -410,7 +410,7 @@ def exact_modes(system, generating, known: dict, scale, unknowns, eqs, seconds: 
     --------
     >>> import sympy as sp
     >>> from perturb import EPS, QuasilinearSystem
-    >>> from perturb.method.steps import GeneratingSolution
+    >>> from perturb.steps import GeneratingSolution
     >>> x, y, u, v, w, a, b = sp.symbols("x y u v Omega1 a_x0 a_y0")
     >>> pair = QuasilinearSystem([x, y], [u, v], [1, 1], [-EPS*(x - y)**3, EPS*(x - y)**3])
     >>> gen = GeneratingSolution(("x", "y"), (1, 1), (a, b), (0, 0), "x", 1)

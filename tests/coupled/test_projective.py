@@ -15,7 +15,7 @@ from perturb.algebra.msolve import install_advice
 from perturb.method.components import components_or_failed
 from perturb.method.conditions import OrderFailed
 from perturb.method.projective import exact_on, quasi_weights, scaling_degree
-from perturb.method.steps import GeneratingSolution
+from perturb.steps import GeneratingSolution
 from problems.resonant_chain import chain_of, chain_system
 
 A = sp.Symbol("a_x1")
