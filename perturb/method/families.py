@@ -143,6 +143,9 @@ class FamilyList:
         The first order whose conditions select the families (None: the options fixed every
         generating amplitude, so there is one family, the given one).
     families : tuple of Family
+    why : str
+        Empty, or why there is no family when the search could not list them (a driven system's
+        roots not enumerated within the budget: never taken for "none").
 
     Examples
     --------
@@ -160,6 +163,7 @@ class FamilyList:
     order: int
     family_order: int | None
     families: tuple = field(converter=tuple)
+    why: str = ""
 
     def __iter__(self) -> Iterator[Family]:
         return iter(self.families)

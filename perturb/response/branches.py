@@ -362,7 +362,10 @@ class SteadyState:
             )
             for point, name in zip(self.points, self.names, strict=True)
         ]
-        return FamilyList(system=system_name, order=order, family_order=1, families=families)
+        why = self.why or (
+            "" if self.points else "the response equations have no real root here (proved)"
+        )
+        return FamilyList(system_name, order, 1, families, why=why)
 
 
 def steady_state(system, values: Mapping, epsilon: float, order: int = 1) -> SteadyState:

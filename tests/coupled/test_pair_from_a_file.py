@@ -115,3 +115,21 @@ def test_no_true_steady_state_of_the_pair_is_missing(pair_file):
     extra = [o for o in random if add_orbit(found, _Orbit(o), rhs, shift, 1)]
     assert random and not extra
     assert analytic == 5  # five steady states at sigma = 1, as the issue counted by shooting
+
+
+def test_a_response_that_could_not_be_enumerated_is_never_no_root():
+    """A driven problem whose roots were not enumerated says why: the families' table and JSON
+    never read "only the trivial root" then (the issue's false answer)."""
+    from perturb.method.driven import amplitude_equations
+    from perturb.report.families import as_dict, as_table
+    from perturb.response.branches import SteadyState
+    from problems import get_problem
+
+    equations = amplitude_equations(get_problem("coupled-duffings").system(), 1)
+    spent = SteadyState((), (), equations, "the solver ran out of its time budget")
+    families = spent.families("coupled-duffings", 1)
+    assert not families.families and "time budget" in families.why
+    assert "only the trivial root" not in as_table(families, "coupled-duffings")
+    assert as_dict(families, "coupled-duffings")["why"] == families.why
+    proved = SteadyState((), (), equations, "").families("coupled-duffings", 1)
+    assert "no real root" in proved.why
