@@ -86,9 +86,11 @@ MATCH = 1e-4
 ALGORITHM = "ZeroDimPowerSeriesDoublePrecisionTotalDegree"
 
 
-def dump(path: str, sizes) -> None:
+def dump(path: str, sizes, forced: float | None = None) -> None:
     """Write each size's equations (integer coefficients, denominators cleared: the same roots)
-    and msolve's certified real roots to ``path``. Needs perturb (the project's venv)."""
+    and msolve's certified real roots to ``path``. Needs perturb (the project's venv). With
+    ``forced``: the forced chain of n (``problems/forced_chain.py``) at Omega = ``forced``, its
+    first-order response equations (issue 30, ``bench_coupled.py``)."""
     import sympy as sp
 
     sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -98,7 +100,15 @@ def dump(path: str, sizes) -> None:
 
     out = {}
     for n in sizes:
-        eqs, unknowns = amplitude_equations(n)
+        if forced is not None:
+            from bench_coupled import _first_order
+
+            from problems.forced_chain import forced_chain_of
+
+            _, eqs, unknowns = _first_order(forced_chain_of(n).create(Omega=forced))
+            pairs_of = lambda n: ()  # noqa: E731 - a forced system has no frequency correction
+        else:
+            eqs, unknowns = amplitude_equations(n)
         terms = []
         for e in eqs:
             poly = sp.Poly(e, *unknowns)
@@ -242,6 +252,7 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("json", help="the file written by --dump")
     parser.add_argument("--dump", action="store_true", help="write the JSON (project's venv)")
+    parser.add_argument("--forced", type=float, help="--dump the forced chains at this Omega")
     parser.add_argument("--sizes", type=int, nargs="+", default=[3, 4, 6])
     parser.add_argument("--limit", type=float, default=1200.0, help="seconds per size")
     parser.add_argument("--verbose", action="store_true", help="print each real root")
@@ -254,7 +265,7 @@ def main(argv=None) -> None:
     parser.add_argument("--endpoints", help="classify endpoints saved by --save, track nothing")
     args = parser.parse_args(argv)
     if args.dump:
-        dump(args.json, args.sizes)
+        dump(args.json, args.sizes, args.forced)
         return
     data = json.loads(Path(args.json).read_text())
     done = json.loads(Path(args.endpoints).read_text()) if args.endpoints else {}

@@ -37,6 +37,7 @@ _LAZY = {
     "FamilyList": "perturb.method.families",
     "find_families": "perturb.method.families",
     "validate": "perturb.validation",
+    "phase_diagram": "perturb.sweep.phase",
 }
 
 #: Public names that are subpackages called like functions (``perturb.sweep(...)``: the package
@@ -63,6 +64,7 @@ __all__ = [
     "amplitude_equations",
     "find_families",
     "frequency_response",
+    "phase_diagram",
     "solve",
     "sweep",
     "validate",

@@ -505,3 +505,29 @@ MAX_RESTRICTIONS = 4
 #: A standing wave of n coordinates is "localised" when its participation number is at most this
 #: fraction of n + 1: it moves fewer than about half of the coordinates (module notes, rule 4).
 LOCALISED_BELOW = 0.5
+#: A driven response's coordinate is at rest when its amplitude is at most this fraction of the
+#: largest (``response_shape``): far below any amplitude a forcing gives (a symmetry's exact zero
+#: comes out of the certified roots as ~1e-38), far above the roots' rounding.
+AT_REST = 1e-12
+
+# -- perturb.algebra.certified
+#: On the msolve route a leaf's linear pivot is put in only when it raises the largest total
+#: degree by at most this: the frequency correction of a free system (3 -> 4; the chain of 6:
+#: 13 s -> 2 s) is, a driven system's forced amplitude is not (a cubic into cubics, 3 -> 9:
+#: the forced pair's four unknowns took 1.2 s that way against 0.06 s as typed).
+PIVOT_GROWTH = 1
+
+# -- perturb.response.singular
+#: A singular point is a branch point when :math:`|w\cdot P_\lambda| \le` this times
+#: :math:`|P_\lambda|` (w of unit length): symmetry makes the product zero exactly, the roots come
+#: from a certified isolation to 2**-128, so their rounding leaves ~1e-15; a fold's is of order 1.
+BRANCH_POINT_TOL = 1e-8
+#: Relative distance below which two singular points are one: the same value and the same
+#: amplitude of every coordinate (a shift by a forcing period rotates the phases, never the norms).
+SAME_POINT = 1e-9
+
+# -- perturb.sweep.phase
+#: Budget of one line's exact first-order singular points (five unknowns for a pair: msolve on
+#: {P1 = 0, det J = 0} takes seconds to tens of seconds; past it the line's boundaries are missing
+#: and said so in ``failures``).
+SINGULAR_SECONDS = 120.0

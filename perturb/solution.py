@@ -56,8 +56,8 @@ class Status(enum.Enum):
     SOLVER_BUDGET = (
         "the polynomial solver ran out of its time budget before it could decide whether the "
         "amplitude equations have a root (not a proof that none exists): raise `solve_seconds` "
-        "(PoincareMethod(solve_seconds=...), or `solve_seconds` in a problem's method_options) "
-        f"or install the extra roots ({install_hint('roots')})"
+        "(PoincareMethod(solve_seconds=...), or `solve_seconds` in a problem's method_options); "
+        f"without the extra roots only the slower exact route runs ({install_hint('roots')})"
     )
 
     @property

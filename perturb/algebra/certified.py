@@ -7,6 +7,7 @@ import time
 import sympy as sp
 from attrs import evolve
 
+from perturb._defaults import PIVOT_GROWTH
 from perturb.algebra.budget import solve_bounded
 from perturb.algebra.msolve import INSTALL_HINT, msolve_binary, msolve_real_roots
 from perturb.algebra.rootset import RootSet, RootStatus
@@ -51,7 +52,7 @@ def _check(eqs, unknowns) -> None:
 
 
 def certified_real_roots(
-    eqs, unknowns, *, seconds: float, backend: str = "auto", pairs=()
+    eqs, unknowns, *, seconds: float, backend: str = "auto", pairs=(), refine: bool = True
 ) -> RootSet:
     """Every real root of ``eqs = 0``, each certified by an isolating interval, within a budget.
 
@@ -76,6 +77,9 @@ def certified_real_roots(
         Amplitude equations: each coordinate's (cosine, sine) amplitudes, in the coordinates'
         order; the frequency-free combinations they give (:func:`~perturb.algebra.split.
         frequency_eliminants`) are used to cut the system.
+    refine : bool
+        Refine msolve's large roots to the digits a construction needs (default); False keeps
+        the certified boxes' midpoints (for a caller that needs floats: a response's points).
 
     Returns
     -------
@@ -124,7 +128,7 @@ def certified_real_roots(
     answered: set = set()
     for leaf in leaves:
         found, leaf = _solve_leaf(
-            leaf, binary, deadline - time.monotonic(), exact_first=backend == "auto"
+            leaf, binary, deadline - time.monotonic(), exact_first=backend == "auto", refine=refine
         )
         if found.status is RootStatus.BUDGET_EXCEEDED:
             return failed(
@@ -197,11 +201,16 @@ def certified_real_roots(
 
 
 def _solve_leaf(
-    leaf: Piece, binary: str | None, seconds: float, exact_first: bool = False
+    leaf: Piece,
+    binary: str | None,
+    seconds: float,
+    exact_first: bool = False,
+    refine: bool = True,
 ) -> tuple[RootSet, Piece]:
     """The real roots of one piece (its remaining linear pivots put in first, its non-zero
     conditions imposed by one more unknown), and the piece as solved."""
-    polys, eliminated = eliminate_linear(list(leaf.polys), list(leaf.unknowns))
+    growth = PIVOT_GROWTH if binary is not None else None
+    polys, eliminated = eliminate_linear(list(leaf.polys), list(leaf.unknowns), growth)
     nonzero = list(leaf.nonzero)
     for var, value in eliminated:
         nonzero = [sp.expand(q.xreplace({var: value})) for q in nonzero]
@@ -245,19 +254,28 @@ def _solve_leaf(
         )
         return found, leaf
     if binary is not None:
-        if exact_first:  # exact values (radicals) where the exact route is quick
+        if exact_first and _can_bound():  # exact values (radicals) where the route is quick
             try:
                 slice_ = min(EXACT_FIRST_SECONDS, seconds / 4)
                 return solve_bounded(polys, variables, slice_, exact_real_roots), leaf
             except (TimeoutError, NotImplementedError, ValueError):
                 pass
-        return msolve_real_roots(polys, variables, seconds, binary), leaf
+        return msolve_real_roots(polys, variables, seconds, binary, refine=refine), leaf
     try:
         return solve_bounded(polys, variables, seconds, exact_real_roots), leaf
     except TimeoutError:
         return RootSet(
             RootStatus.BUDGET_EXCEEDED, (), variables, size=SystemSize.of(polys, variables)
         ), leaf
+
+
+def _can_bound() -> bool:
+    """Whether a solve can be given a budget here: not in a daemonic process (a Dask worker, a
+    pool's), where :func:`~perturb.algebra.budget.solve_bounded` runs without one — the exact
+    route's first slice would then be unbounded (a phase diagram's census hung on it)."""
+    import multiprocessing
+
+    return not multiprocessing.current_process().daemon
 
 
 def _dimension(leaf: Piece, seconds: float) -> RootSet | None:

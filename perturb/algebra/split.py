@@ -246,8 +246,15 @@ def psd_linear_forms(quadratic, unknowns) -> list | None:
 
 
 def _same_up_to_constant(f, g) -> bool:
-    ratio = sp.cancel(f / g)
-    return ratio.is_number and ratio != 0
+    """Whether ``f = c·g`` for a number c != 0 (same monomials, proportional coefficients)."""
+    gens = sorted(sp.sympify(f).free_symbols | sp.sympify(g).free_symbols, key=str)
+    if not gens:
+        return sp.sympify(g) != 0 and sp.sympify(f) != 0
+    p, q = sp.Poly(f, *gens), sp.Poly(g, *gens)
+    if p.is_zero or q.is_zero or p.monoms() != q.monoms():
+        return False
+    ratio = p.LC() / q.LC()
+    return all(a == ratio * b for a, b in zip(p.coeffs(), q.coeffs(), strict=True))
 
 
 def _real_alternatives(poly, piece: Piece):

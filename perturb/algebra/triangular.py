@@ -43,11 +43,15 @@ class _Undecided(Exception):
     """A component whose lex basis is in shape position under no form tried."""
 
 
-def eliminate_linear(polys: list, unknowns: list) -> tuple[list, list]:
+def eliminate_linear(polys: list, unknowns: list, growth: int | None = None) -> tuple[list, list]:
     """Solve for the unknowns that appear linearly with a constant coefficient; put them in.
 
     Returns the remaining polynomials and ``[(unknown, expression), ...]`` in elimination order
-    (each expression in the unknowns still open when it was solved for).
+    (each expression in the unknowns still open when it was solved for). With ``growth`` an
+    integer, a pivot is put in only when the largest total degree of the others grows by at most
+    that much: the frequency correction of a free system (a cubic put into the products
+    Ω₁·a: 3 -> 4) is, a driven system's forced amplitude (a cubic put into cubics: 3 -> 9,
+    which makes msolve's work larger, not smaller) is not.
 
     Examples
     --------
@@ -68,7 +72,10 @@ def eliminate_linear(polys: list, unknowns: list) -> tuple[list, list]:
                 coefficient = poly.coeff(var, 1)
                 if coefficient.free_symbols & set(open_) or coefficient == 0:
                     continue
-                value = sp.expand(-(poly - coefficient * var) / coefficient)
+                rest = sp.expand(poly - coefficient * var)
+                if growth is not None and _growth(polys, index, var, rest) > growth:
+                    continue
+                value = sp.expand(-rest / coefficient)
                 cost = len(sp.Add.make_args(value))
                 if best is None or cost < best[0]:
                     best = (cost, index, var, value)
@@ -79,6 +86,25 @@ def eliminate_linear(polys: list, unknowns: list) -> tuple[list, list]:
         polys = [p for p in polys if p != 0]
         open_.remove(var)
         eliminated.append((var, value))
+
+
+def _growth(polys: list, index: int, var, value) -> int:
+    """How much ``var = value`` put into the polynomials other than ``polys[index]`` raises
+    their largest total degree (a bound read off the degrees, nothing expanded)."""
+    value_degree = sp.Poly(value, *value.free_symbols).total_degree() if value.free_symbols else 0
+    before = after = 0
+    for i, poly in enumerate(polys):
+        if i == index:
+            continue
+        symbols = sorted(poly.free_symbols, key=str)
+        p = sp.Poly(poly, *symbols)
+        before = max(before, p.total_degree())
+        if var not in symbols:
+            after = max(after, p.total_degree())
+            continue
+        k = symbols.index(var)
+        after = max(after, *(sum(m) - m[k] + m[k] * value_degree for m in p.monoms()))
+    return after - before
 
 
 def ideal_dimension(basis_exprs: list, unknowns: list) -> tuple[int, tuple]:

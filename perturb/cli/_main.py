@@ -95,7 +95,7 @@ def _progress(args) -> Iterator[None]:
 
 #: Commands whose ``--output`` is their own (a folder of report files, a sweep's store): not a
 #: redirection of what they print.
-_FOLDER_OUTPUT = ("reproduce", "report", "sweep")
+_FOLDER_OUTPUT = ("reproduce", "report", "sweep", "phase-diagram")
 
 
 def _output_file(path: str) -> Path:
@@ -153,6 +153,7 @@ _COMMANDS = {
     "response": _command("_cmd_response", "_response"),
     "report": _command("_cmd_report", "_report"),
     "sweep": _command("_cmd_sweep", "_sweep"),
+    "phase-diagram": _command("_cmd_phase", "_phase"),
 }
 
 

@@ -20,6 +20,7 @@ _EPILOG = """examples:
   perturb work-precision duffing --periods 10 --orders 3 --format csv
   perturb report examples/scenes/disk-fast-spin.toml --output disk-report
   perturb sweep duffing --grid eps=0.01:0.2:20 --grid amplitude=0.5:2:16 --validate --output duffing.zarr
+  perturb phase-diagram coupled-parametrons --grid Omega=1.98:2.02:21 --grid h=0.2:3:15 --plot map.png
 """
 
 
@@ -179,8 +180,9 @@ def _build_parser() -> argparse.ArgumentParser:
         "--output", required=True, metavar="DIR", help="the report folder (created if missing)"
     )
     _add_sweep(sub)
+    _add_phase(sub)
     for name, command in sub.choices.items():
-        if name not in ("reproduce", "report", "sweep"):  # theirs is a folder (DIR), or a store
+        if name not in ("reproduce", "report", "sweep", "phase-diagram"):  # a folder, or a store
             command.add_argument(
                 "--output",
                 default=None,
@@ -275,6 +277,53 @@ def _add_family_arguments(sub, solve, validate) -> None:
             metavar="NAME",
             help="follow the family NAME (see `perturb families PROBLEM`) instead of the default",
         )
+
+
+def _add_phase(sub) -> None:
+    """``perturb phase-diagram``: the number of stable steady states over two parameters."""
+    phase = sub.add_parser(
+        "phase-diagram",
+        help="a driven problem's number of stable steady states over two parameters, on Dask",
+        description="Count PROBLEM's steady states, and its stable ones, at every point of a grid "
+        "over two parameters: the order-N response continued along each line of the grid "
+        "(stability from the Floquet multipliers), the certified first-order count at every "
+        "point, the folds, branch points and Neimark-Sacker points where the lines cross them. "
+        "The lines run on a Dask cluster; --output writes a Zarr store, --plot the map with its "
+        "boundaries. Needs the extra perturb[sweep].",
+    )
+    _add_problem_arguments(phase)
+    phase.add_argument(
+        "--grid",
+        dest="grids",
+        action="append",
+        default=[],
+        metavar="NAME=START:STOP:N",
+        help="the two parameters, x first (e.g. --grid Omega=0.98:1.1:41 --grid F=0.5:2:21)",
+    )
+    phase.add_argument(
+        "--rows-only",
+        action="store_true",
+        help="continue along x only (half the work; no second count, no boundary running along x)",
+    )
+    phase.add_argument("--workers", default=None, help="worker processes of the local Dask cluster")
+    phase.add_argument(
+        "--scheduler", default=None, metavar="ADDRESS", help="an existing Dask scheduler"
+    )
+    phase.add_argument(
+        "--output", default=None, metavar="STORE", help="write the maps to this Zarr store"
+    )
+    phase.add_argument(
+        "--plot", default=None, metavar="FILE", help="also save the map (needs matplotlib)"
+    )
+    phase.add_argument(
+        "--map",
+        default="first-order",
+        choices=["first-order", "order-n"],
+        help="the map --plot draws: first-order (default: the certified count at every point, "
+        "slow-flow stability, the exact boundaries) or order-n (the responses continued along x, "
+        "Floquet stability, the special points located on them)",
+    )
+    _add_format(phase, ["table", "json"])
 
 
 def _add_sweep(sub) -> None:

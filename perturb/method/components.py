@@ -22,14 +22,20 @@ import sympy as sp
 from attrs import frozen
 
 from perturb._defaults import NUMERIC_ZERO, PROBE_DIGITS
-from perturb._install import install_hint
 from perturb.algebra.budget import solve_bounded
 from perturb.algebra.certified import certified_real_roots
+from perturb.algebra.msolve import install_advice
 from perturb.algebra.rootset import RootStatus
 from perturb.errors import InvalidSystemError
 from perturb.method.exact import probe_values, rational_form, vanishes
 
-__all__ = ["Component", "ContinuumUnwritten", "components_or_failed", "solution_components"]
+__all__ = [
+    "Component",
+    "ContinuumUnwritten",
+    "components_or_failed",
+    "same_component",
+    "solution_components",
+]
 
 
 @frozen
@@ -149,15 +155,31 @@ def solution_components(
     return _grouped(eqs, unknowns, preference, seconds)
 
 
-def components_or_failed(k, eqs, unknowns, preference, seconds, pairs=()) -> list[Component]:
+def components_or_failed(
+    k, eqs, unknowns, preference, seconds, pairs=(), scale=None, amplitudes=()
+) -> list[Component]:
     """:func:`solution_components` for the order-by-order template: what stops it becomes an
-    :class:`~perturb.method.conditions.OrderFailed` whose status says what happened."""
+    :class:`~perturb.method.conditions.OrderFailed` whose status says what happened.
+
+    ``scale``: an amplitude known not to vanish on the roots wanted (the phase amplitude of a
+    pass), ``amplitudes`` the generating amplitudes: weighted-homogeneous equations are then
+    solved with ``scale`` = 1 and every root is a continuum in it
+    (:func:`perturb.method.projective.projective_components`)."""
     from perturb.algebra.size import SystemSize
     from perturb.method.conditions import OrderFailed
+    from perturb.method.projective import Partial, projective_components
     from perturb.solution import Status
 
     try:
-        return solution_components(eqs, unknowns, preference, seconds, pairs)
+        found = None
+        if scale is not None:
+            found = projective_components(eqs, unknowns, scale, amplitudes, seconds, pairs)
+            if found is not None and not isinstance(found, Partial):
+                return found
+        others = solution_components(eqs, unknowns, preference, seconds, pairs)
+        if not found:
+            return others
+        return [*found, *(c for c in others if not any(same_component(c, f) for f in found))]
     except ContinuumUnwritten as exc:
         raise OrderFailed(
             Status.UNDETERMINED,
@@ -170,8 +192,7 @@ def components_or_failed(k, eqs, unknowns, preference, seconds, pairs=()) -> lis
         raise OrderFailed(
             Status.SOLVER_BUDGET,
             f"order {k}: the amplitude equations ({size}) could not be solved within "
-            f"{seconds:g} s: raise it with solve_seconds=... or install the extra "
-            f"({install_hint('roots')})",
+            f"{seconds:g} s: raise it with solve_seconds=...{install_advice()}",
         ) from None
     except (sp.PolynomialError, NotImplementedError, ValueError) as exc:
         raise OrderFailed(
@@ -179,6 +200,13 @@ def components_or_failed(k, eqs, unknowns, preference, seconds, pairs=()) -> lis
             f"order {k}: the amplitude equations {eqs} could not be split into their "
             f"components ({type(exc).__name__}: {exc})",
         ) from None
+
+
+def same_component(first: Component, second: Component) -> bool:
+    """Whether two components are the same root (the same free amplitudes and values)."""
+    if set(first.free) != set(second.free) or set(first.values) != set(second.values):
+        return False
+    return all(vanishes(sp.expand(first.values[u] - second.values[u])) for u in first.values)
 
 
 def _grouped(eqs, unknowns, preference, seconds) -> list[Component]:

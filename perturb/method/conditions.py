@@ -23,9 +23,9 @@ import sympy as sp
 from attrs import frozen
 
 from perturb._defaults import ROOT_RESIDUAL
-from perturb._install import install_hint
 from perturb.algebra.budget import solve_bounded
 from perturb.algebra.certified import certified_real_roots
+from perturb.algebra.msolve import install_advice
 from perturb.algebra.rootset import RootStatus
 from perturb.algebra.size import SystemSize
 from perturb.errors import InvalidSystemError, bad_value
@@ -176,9 +176,8 @@ class ConditionSolver:
                 Status.SOLVER_BUDGET,
                 f"order {k}: the amplitude equations ({size}) in {unknowns} were not solved "
                 f"within the budget of {self.solve_seconds:g} s{tried} — raise it with "
-                "PoincareMethod(solve_seconds=...) or install the extra "
-                f"({install_hint('roots')}); if you know the root, give its generating amplitudes with "
-                "`branch={name: value}`",
+                f"PoincareMethod(solve_seconds=...){install_advice()}; if you know the root, give "
+                "its generating amplitudes with `branch={name: value}`",
             ) from None
         if not roots:
             raise OrderFailed(Status.NO_ROOT, f"order {k}: amplitude equations {eqs} have no root")

@@ -120,16 +120,19 @@ class _Collecting(DrivenOrderByOrder):
 
     def _solve_conditions(self, k: int, generating: GeneratingSolution) -> tuple[dict, tuple]:
         to_sympy, expand = self.conv.to_sympy, self.conv.ring.expand
-        # the generating amplitudes become the user's symbols, every correction is zero
-        mapping = {}
-        for u in self.unknowns:
-            name = u.name
-            if name[:2] in ("a_", "b_") and name[2:].rstrip("0123456789") in self.names:
-                digits = name[len(name[2:].rstrip("0123456789")) + 2 :]
-                if digits == "0":
-                    mapping[u] = sp.Symbol(name[:-1])
-                else:
-                    mapping[u] = sp.S.Zero
+        # the generating amplitudes become the user's symbols, every correction is zero (the
+        # generating symbols are read off the generating solution, never parsed from names: a
+        # coordinate named x1 has the generating amplitude a_x10, which no name split tells from
+        # the order-10 correction of a coordinate x)
+        given = {}
+        for i, name in enumerate(self.names):
+            for ab, symbol in (
+                ("a", generating.cos_amplitudes[i]),
+                ("b", generating.sin_amplitudes[i]),
+            ):
+                if isinstance(symbol, sp.Symbol) and symbol in self.unknowns:
+                    given[symbol] = sp.Symbol(f"{ab}_{name}")
+        mapping = {u: given.get(u, sp.S.Zero) for u in self.unknowns}
         self.collected.append(
             tuple(sp.expand(to_sympy(expand(e)).xreplace(mapping)) for e in self.pending)
         )

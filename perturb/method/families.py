@@ -44,13 +44,27 @@ from attrs import field, frozen
 
 from perturb._defaults import MAX_RESTRICTIONS, PROBE_ORDERS, SOLVE_SECONDS
 from perturb.errors import InvalidSystemError, UnknownNameError, bad_value
-from perturb.method.components import Component, components_or_failed, solution_components
+from perturb.method.components import (
+    Component,
+    components_or_failed,
+    same_component,
+    solution_components,
+)
 from perturb.method.conditions import ConditionSolver, OrderFailed, amplitude_pairs
 from perturb.method.construction import OrderByOrder
 from perturb.method.exact import is_zero
 from perturb.method.family_names import name_families
 from perturb.method.options import check_system
 from perturb.method.poincare import PoincareMethod
+from perturb.method.projective import (
+    exact_modes,
+    exact_or,
+    is_exact,
+    rescaled,
+    scaling_degree,
+)
+from perturb.method.shifts import distinct_components
+from perturb.method.straight import straight_orbit
 from perturb.solution import PeriodicSolution, Status
 from perturb.system import QuasilinearSystem
 
@@ -129,6 +143,9 @@ class FamilyList:
         The first order whose conditions select the families (None: the options fixed every
         generating amplitude, so there is one family, the given one).
     families : tuple of Family
+    why : str
+        Empty, or why there is no family when the search could not list them (a driven system's
+        roots not enumerated within the budget: never taken for "none").
 
     Examples
     --------
@@ -146,6 +163,7 @@ class FamilyList:
     order: int
     family_order: int | None
     families: tuple = field(converter=tuple)
+    why: str = ""
 
     def __iter__(self) -> Iterator[Family]:
         return iter(self.families)
@@ -205,6 +223,7 @@ class _FamilySolver:
     seconds: float
     target: Component | None = None
     family_order: int | None = None
+    system: object = None
     renames: dict = attrs.Factory(dict)
 
     def solve(self, k, eqs, open_unknowns, generating, solved):
@@ -229,9 +248,14 @@ class _FamilySolver:
         unknowns = sorted(involved, key=str)
         preference = _preference(generating, involved)
         found = components_or_failed(
-            k, eqs, unknowns, preference, self.seconds, amplitude_pairs(generating)
-        )
-        components = [c for c in found if self._admissible(c, generating, {**solved, **extra})]
+            k, eqs, unknowns, preference, self.seconds, amplitude_pairs(generating),
+            scale=self.phase_amplitude, amplitudes=_amplitude_symbols(generating),
+        )  # fmt: skip
+        known = {**solved, **extra}
+        modes = exact_modes(self.system, generating, known, self.phase_amplitude, unknowns, eqs,
+                            self.seconds) if self.system is not None else []  # fmt: skip
+        found = [*found, *(m for m in modes if not any(same_component(m, c) for c in found))]
+        components = [c for c in found if self._admissible(c, generating, known)]
         if not components:
             raise OrderFailed(
                 Status.NO_ROOT,
@@ -239,7 +263,7 @@ class _FamilySolver:
             )
         if len(components) == 1 and _passive(components[0], amplitudes & involved):
             return {**extra, **components[0].values}, ()
-        raise _Found(k, _distinct(components, generating, {**solved, **extra}))
+        raise _Found(k, distinct_components(components, generating, {**solved, **extra}))
 
     def _admissible(self, component, generating, solved) -> bool:
         def value(a):
@@ -249,51 +273,6 @@ class _FamilySolver:
         if all(is_zero(a) for a in amplitudes):
             return False  # the trivial equilibrium
         return self.phase_amplitude is None or not is_zero(value(self.phase_amplitude))
-
-
-def _distinct(components: list, generating, solved: dict) -> list:
-    """Drop components that are another one shifted by half a period.
-
-    ``s -> s + pi`` changes the sign of every amplitude of odd harmonic: van der Pol's roots
-    ``a_x = 2`` and ``a_x = -2`` are one limit cycle. On a continuum the free amplitudes change sign
-    with their harmonic, which is a change of parameter. Of two such components the one whose
-    phase amplitude is positive (else: whose amplitudes read first) is kept.
-    """
-    symbols = (*generating.cos_amplitudes, *generating.sin_amplitudes)
-    signs = [(-1) ** (m or 0) for m in generating.harmonics] * 2
-
-    def amplitudes(component, shift):
-        flip = {}
-        if shift:
-            flip = {
-                f: -f
-                for f in component.free
-                for sym, sign in zip(symbols, signs, strict=True)
-                if sym == f and sign < 0
-            }
-        values = []
-        for sym, sign in zip(symbols, signs, strict=True):
-            value = sp.sympify(sym).xreplace(solved).xreplace(component.values).xreplace(flip)
-            values.append(sign * value if shift else value)
-        return values
-
-    def same(first, second):
-        return all(is_zero(a - b) for a, b in zip(first, second, strict=True))
-
-    phase = generating.coordinates.index(generating.phase_coordinate)
-
-    def key(component):
-        lead = amplitudes(component, False)[phase]
-        negative = lead.is_number and bool(lead < 0)
-        return (negative, str(amplitudes(component, False)))
-
-    ordered = sorted(components, key=key)
-    kept: list = []
-    for component in ordered:
-        shifted = amplitudes(component, True)
-        if not any(same(shifted, amplitudes(other, False)) for other in kept):
-            kept.append(component)
-    return kept
 
 
 def _passive(component: Component, amplitudes: set) -> bool:
@@ -336,6 +315,7 @@ def _runner(
         zeros=zeros,
         phase_amplitude=phase_amplitude,
         seconds=method.solve_seconds,
+        system=system,
         **solver_options,
     )
     return runner
@@ -389,8 +369,29 @@ def _describe(solution: PeriodicSolution, free_names: tuple, members: dict) -> t
 
 
 def _carry(system, order, options, phase, k, component, members) -> tuple:
-    """The family of ``component`` carried to ``order``: (amplitudes, free, solution, failure)."""
+    """The family of ``component`` carried to ``order``: (amplitudes, free, solution, failure).
+
+    A continuum in the phase amplitude alone of a system that scales with its amplitude
+    (:func:`perturb.method.projective.scaling_degree`) is carried at amplitude 1 and rescaled:
+    the same series, exactly, at the cost of one numeric amplitude."""
     passes = phase is not None
+    degree = scaling_degree(system) if passes else None
+    if degree is not None and len(component.free) == 1:
+        scale = component.free[0]
+        user = sp.Symbol(_user_name(scale))
+        if scale == sp.Symbol(f"{user.name}0") and user.name == f"a_{phase}":
+            at_one = {u: sp.sympify(v).xreplace({scale: 1}) for u, v in component.values.items()}
+            fixed = {**options, "amplitudes": {phase: 1}}
+            runner = _runner(
+                _method(order, fixed, phase), system, passes, target=Component(at_one, ()),
+                family_order=k,
+            )  # fmt: skip
+            note = (
+                f"derived at {user} = 1 and scaled (the system is homogeneous of degree {degree})"
+            )
+            solution = rescaled(exact_or(runner.run(), system, order), user, degree, note)
+            amplitudes, free = _describe(solution, (user.name,), members)
+            return amplitudes, free, solution, runner.failure
     renames = {s: sp.Symbol(_user_name(s)) for s in component.free}
     carried_system = attrs.evolve(system, parameters=(*system.parameters, *renames.values()))
     runner = _runner(
@@ -401,7 +402,7 @@ def _carry(system, order, options, phase, k, component, members) -> tuple:
         family_order=k,
         renames=renames,
     )
-    solution = runner.run()
+    solution = exact_or(runner.run(), system, order)
     names = tuple(s.name for s in renames.values())
     amplitudes, free = _describe(solution, names, members)
     return amplitudes, free, solution, runner.failure
@@ -537,10 +538,15 @@ def find_families(system: QuasilinearSystem, order: int = 1, **options) -> Famil
             found.append((amplitudes, free, solution))
     families = []
     described = [(a, f, straight_orbit(solution)) for a, f, solution in found]
+    state = system.state_symbols
+    nonlinear = any(
+        not sp.sympify(f).is_polynomial(*state) or sp.Poly(f, *state).total_degree() > 1
+        for f in system.rhs
+    )
     for name, (amplitudes, free, solution) in zip(name_families(described), found, strict=True):
         families.append(
             Family(
-                name=name,
+                name=f"{name}-exact" if nonlinear and is_exact(solution) else name,
                 kind=CONTINUUM if free else ISOLATED,
                 amplitudes=amplitudes,
                 free=free,
@@ -555,39 +561,6 @@ def find_families(system: QuasilinearSystem, order: int = 1, **options) -> Famil
         family_order=family_order,
         families=tuple(families),
     )
-
-
-def straight_orbit(solution: PeriodicSolution) -> bool | None:
-    """Whether the orbit stays on the line of its generating amplitudes at every order computed.
-
-    The generating solution of a line has cosine amplitudes only (a direction ``d`` in the
-    coordinates); the orbit is straight when every term of every order and harmonic is parallel
-    to ``d`` (exact zero tests of the 2 x 2 minors). None when the generating solution is not a
-    line (sine amplitudes, non-resonant coordinates) or the solution failed.
-    """
-    if not solution.success:
-        return None
-    generating = solution.generating
-    if any(m is None for m in generating.harmonics):
-        return None
-    if any(not is_zero(b) for b in generating.sin_amplitudes):
-        return None
-    direction = [sp.sympify(a) for a in generating.cos_amplitudes]
-    rows = solution.terms
-    top = max(len(row) for row in rows)
-    for k in range(top):
-        terms = [row[k] if k < len(row) else None for row in rows]
-        harmonics = {j for t in terms if t is not None for j in t.terms}
-        for j in harmonics:
-            for part in (0, 1):
-                values = [t.coefficient(j)[part] if t is not None else 0 for t in terms]
-                for i in range(len(values)):
-                    for m in range(i + 1, len(values)):
-                        if not is_zero(
-                            sp.expand(direction[m] * values[i] - direction[i] * values[m])
-                        ):
-                            return False
-    return True
 
 
 def _canonical_key(family: Family) -> tuple:

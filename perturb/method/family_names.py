@@ -50,6 +50,12 @@ coordinate's generating amplitudes are not identically zero on the family.
      largest amplitude (a chain of 4's ``(1, -6.03, 6.03, -1)`` is ``anti-phase-localised-x2``).
 
    The chain of 3's five branches: ``in-phase``, ``shape-p0n`` and three ``anti-phase-k``.
+   A motion that is not a standing wave (sine amplitudes): ``travelling-right`` or
+   ``travelling-left`` when every coordinate has the same amplitude and lags its neighbour by the
+   same angle, else ``phase-shifted`` (``-localised-c`` as above). A continuum of a homogeneous
+   system in its one free amplitude (every amplitude a number times it) is named as the root at
+   amplitude 1; :func:`perturb.find_families` adds ``-exact`` to a family that solves the system
+   exactly (its nonlinearity vanishes on it).
 
 5. Anything else: ``family-1``, ``family-2``, … in canonical order.
 
@@ -61,16 +67,17 @@ amplitudes (``str`` of the items), which is deterministic.
 
 from __future__ import annotations
 
+import cmath
 import math
 from collections import Counter
 from itertools import pairwise
 
 import sympy as sp
 
-from perturb._defaults import LOCALISED_BELOW
+from perturb._defaults import AT_REST, LOCALISED_BELOW
 from perturb.method.exact import is_zero, probe_values
 
-__all__ = ["name_families"]
+__all__ = ["name_families", "response_shape"]
 
 
 def _sign(expr: sp.Expr) -> int:
@@ -129,14 +136,56 @@ def _mode_shape(coords: list, value) -> str | None:
     return name
 
 
+def _unit(amplitudes: dict, free: tuple) -> dict | None:
+    """The amplitudes at the free amplitude 1 when there is one and every amplitude is a number
+    times it (a family of a homogeneous system, scaled out); None otherwise."""
+    if len(free) != 1:
+        return None
+    scale = sp.Symbol(free[0])
+    out = {}
+    for key, v in amplitudes.items():
+        ratio = sp.simplify(sp.sympify(v) / scale)
+        if not ratio.is_number:
+            return None
+        out[key] = ratio
+    return out
+
+
+def _wave(coords: list, value) -> str | None:
+    """The name of a motion of three or more coordinates that is not a standing wave: every
+    coordinate moves with the same amplitude and its phase lags its neighbour's by the same
+    angle (not 0 or 180 degrees): ``travelling-right`` (the lag grows with the index) or
+    ``travelling-left``; else ``phase-shifted`` (with ``-localised-c`` as rule 4)."""
+    parts = [(value(f"a_{c}"), value(f"b_{c}")) for c in coords]
+    if not all(a.is_number and b.is_number for a, b in parts):
+        return None
+    z = [complex(sp.N(a, 30)) - 1j * complex(sp.N(b, 30)) for a, b in parts]
+    sizes = [abs(w) for w in z]
+    top = max(sizes)
+    steps = [cmath.phase(w / v) for v, w in pairwise(z)] if min(sizes) > 0 else []
+    same_size = all(abs(size - top) <= 1e-9 * top for size in sizes)
+    if same_size and steps and all(abs(cmath.exp(1j * (t - steps[0])) - 1) < 1e-9 for t in steps):
+        if min(abs(steps[0]), abs(abs(steps[0]) - math.pi)) > 1e-9:
+            return "travelling-right" if steps[0] < 0 else "travelling-left"
+    squares = [size**2 for size in sizes]
+    name = "phase-shifted"
+    if sum(squares) ** 2 / sum(q * q for q in squares) < LOCALISED_BELOW * (len(coords) + 1):
+        name += f"-localised-{coords[sizes.index(top)]}"
+    return name
+
+
 def _structural(amplitudes: dict, free: tuple, straight: bool | None = None) -> str | None:
     coords = _coordinates(amplitudes)
+    if len(coords) >= 3 and free:
+        unit = _unit(amplitudes, free)
+        if unit is not None:  # a line through the origin: named by its shape at amplitude 1
+            return _structural(unit, (), straight)
 
     def value(key):
         return sp.sympify(amplitudes.get(key, 0))
 
     if len(coords) >= 3 and not free:
-        shape = _mode_shape(coords, value)
+        shape = _mode_shape(coords, value) or _wave(coords, value)
         if shape is not None:
             return shape
 
@@ -199,3 +248,49 @@ def name_families(described: list[tuple]) -> list[str]:
         else:
             names[i] = raw[i]
     return names
+
+
+def response_shape(amplitudes: dict) -> str:
+    r"""The mode shape of a driven response of two or more resonant coordinates.
+
+    ``amplitudes`` maps each coordinate to its complex amplitude :math:`z = a - ib` (the response
+    :math:`x = \mathrm{Re}(z e^{is}) = a\cos s + b\sin s`). Each coordinate is compared with the
+    one of largest amplitude r: ``p`` when :math:`\mathrm{Re}(z\bar z_r) > 0` (within a quarter
+    period of it), ``n`` otherwise, ``0`` at rest (:data:`AT_REST`). As for the free families
+    (rule 4): all ``p``: ``in-phase``; neighbours of opposite signs: ``anti-phase``; else
+    ``shape-`` and the signs read from the first moving coordinate, counted positive; followed
+    by ``-localised-c`` when the participation number is below ``LOCALISED_BELOW`` · (n + 1).
+
+    Examples
+    --------
+    >>> response_shape({"x1": 1 - 0.2j, "x2": 0.9 - 0.1j})
+    'in-phase'
+    >>> response_shape({"x1": 1.0 + 0j, "x2": -0.05 + 0.01j})
+    'anti-phase-localised-x1'
+    >>> response_shape({"x1": 0j, "x2": 0j})
+    'trivial'
+    """
+    coords = list(amplitudes)
+    values = [complex(amplitudes[c]) for c in coords]
+    sizes = [abs(z) for z in values]
+    top = max(sizes, default=0.0)
+    if top == 0.0:
+        return "trivial"
+    reference = values[sizes.index(top)]
+    signs = [
+        0 if size <= AT_REST * top else (1 if (z * reference.conjugate()).real > 0 else -1)
+        for z, size in zip(values, sizes, strict=True)
+    ]
+    lead = next(s for s in signs if s)
+    signs = [s * lead for s in signs]
+    if 0 not in signs and len(set(signs)) == 1:
+        name = "in-phase"
+    elif 0 not in signs and all(a != b for a, b in pairwise(signs)):
+        name = "anti-phase"
+    else:
+        name = "shape-" + "".join({1: "p", -1: "n", 0: "0"}[s] for s in signs)
+    squares = [size**2 for size in sizes]
+    participation = sum(squares) ** 2 / sum(q * q for q in squares)
+    if participation < LOCALISED_BELOW * (len(coords) + 1):
+        name += f"-localised-{coords[sizes.index(top)]}"
+    return name

@@ -7,7 +7,8 @@ JSON contract (``perturb families PROBLEM --format json``)::
                    "amplitudes": {"a_x": value, "b_y": value, ...},
                    "frequency": [Ω0, Ω1, ...],
                    "status": "SUCCESS" | "INCONSISTENT" | "UNDETERMINED" | ...,
-                   "message": str}]}
+                   "message": str}],
+     "why": str}   # only when there is no family and the search could not list them
 
 A value (amplitude or frequency coefficient) is a JSON number when it is a number (exact integers
 stay integers, other exact numbers such as 3/8 or √3/3 are given as the nearest double), else the
@@ -43,6 +44,7 @@ def as_dict(families, problem: str) -> dict:
     return {
         "problem": problem,
         "order": families.order,
+        **({"why": families.why} if families.why else {}),
         "families": [
             {
                 "name": f.name,
@@ -66,7 +68,8 @@ def as_table(families, problem: str) -> str:
         head += f" (selected by the conditions of order {families.family_order})"
     lines = [head]
     if not families.families:
-        lines.append("no family: the amplitude equations have only the trivial root")
+        why = families.why or "the amplitude equations have only the trivial root"
+        lines.append(f"no family: {why}")
     for f in families:
         kind = f.kind + (f" in {', '.join(f.free)}" if f.free else "")
         amplitudes = ", ".join(f"{k} = {v}" for k, v in f.amplitudes.items())

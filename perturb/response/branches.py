@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import cmath
 import math
+import re
 from collections.abc import Mapping
 
 import attrs
@@ -20,6 +21,7 @@ import sympy as sp
 
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import AmplitudeEquations
+from perturb.method.family_names import response_shape
 from perturb.response.exact import exact_number
 from perturb.solution import PeriodicSolution, Status
 
@@ -185,11 +187,21 @@ SINGLE_POINT_SHARE = 0.5
 
 
 def count_name(name: str) -> bool:
-    """Whether ``name`` is one of the names :func:`branch_names` gives by count."""
+    """Whether ``name`` is one of the names :func:`branch_names` gives by count (or by mode shape
+    and count)."""
     if name in ("trivial", "response", "lower", "middle", "upper"):
+        return True
+    if _SHAPE_NAME.fullmatch(name):
         return True
     head, _, tail = name.rpartition("-")
     return head in ("branch", "beyond-series") and tail.isdigit()
+
+
+#: A many-mode branch's name: its mode shape (:func:`perturb.method.family_names.response_shape`)
+#: and its rank among the branches of that shape.
+_SHAPE_NAME = re.compile(
+    r"(in-phase|anti-phase|shape-[pn0]+)(-localised-[^\s]+?)?(-(lower|middle|upper|\d+))?"
+)
 
 
 def branch_names(points: list[BranchPoint]) -> list[str]:
@@ -197,16 +209,38 @@ def branch_names(points: list[BranchPoint]) -> list[str]:
     ``response`` (one), ``lower``/``upper`` (two), ``lower``/``middle``/``upper`` (three),
     else ``branch-1``, ``branch-2``, …; a root where the series is outside its domain
     (``series_ok`` False: no lower-order counterpart, terms not decreasing) is ``beyond-series-1``,
-    … and not counted, so that it never renames the others."""
+    … and not counted, so that it never renames the others.
+
+    With several resonant coordinates a branch is named by its mode shape first
+    (:func:`perturb.method.family_names.response_shape`: ``in-phase``, ``anti-phase``,
+    ``shape-pnn``, with ``-localised-x1``), and the branches of one shape by amplitude as above:
+    ``in-phase`` alone, ``in-phase-lower`` and ``in-phase-upper``, ``in-phase-1``, …"""
     trivial = [p for p in points if p.trivial]
     beyond = [p for p in points if not p.trivial and not getattr(p, "series_ok", True)]
     others = [p for p in points if not p.trivial and getattr(p, "series_ok", True)]
     labels = {1: ["response"], 2: ["lower", "upper"], 3: ["lower", "middle", "upper"]}
-    names = labels.get(len(others), [f"branch-{k + 1}" for k in range(len(others))])
-    out = {id(p): n for p, n in zip(others, names, strict=True)}
+    if others and len(others[0].norms) > 1:
+        out = {}
+        groups: dict[str, list] = {}
+        for p in others:
+            groups.setdefault(response_shape(_complex(p)), []).append(p)
+        for shape, members in groups.items():
+            ranks = labels.get(len(members), [str(k + 1) for k in range(len(members))])
+            for p, rank in zip(members, ranks, strict=True):
+                out[id(p)] = shape if rank == "response" else f"{shape}-{rank}"
+    else:
+        names = labels.get(len(others), [f"branch-{k + 1}" for k in range(len(others))])
+        out = {id(p): n for p, n in zip(others, names, strict=True)}
     out.update({id(p): f"beyond-series-{k + 1}" for k, p in enumerate(beyond)})
     out.update({id(p): "trivial" for p in trivial})
     return [out[id(p)] for p in points]
+
+
+def _complex(point) -> dict:
+    """``{coordinate: a - ib}`` of a response point (its resonant harmonic's amplitudes)."""
+    return {
+        c: complex(point.amplitudes[f"a_{c}"], -point.amplitudes[f"b_{c}"]) for c in point.norms
+    }
 
 
 def branch_solution(
@@ -328,7 +362,10 @@ class SteadyState:
             )
             for point, name in zip(self.points, self.names, strict=True)
         ]
-        return FamilyList(system=system_name, order=order, family_order=1, families=families)
+        why = self.why or (
+            "" if self.points else "the response equations have no real root here (proved)"
+        )
+        return FamilyList(system_name, order, 1, families, why=why)
 
 
 def steady_state(system, values: Mapping, epsilon: float, order: int = 1) -> SteadyState:

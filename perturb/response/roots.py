@@ -12,6 +12,7 @@ from __future__ import annotations
 import sympy as sp
 
 from perturb.algebra.certified import certified_real_roots
+from perturb.algebra.msolve import msolve_binary
 from perturb.algebra.rootset import RootSet, RootStatus
 
 __all__ = ["RootSet", "RootStatus", "real_roots"]
@@ -21,7 +22,9 @@ __all__ = ["RootSet", "RootStatus", "real_roots"]
 RESPONSE_SECONDS = 60.0
 
 
-def real_roots(eqs, unknowns, *, seconds: float = RESPONSE_SECONDS) -> RootSet:
+def real_roots(
+    eqs, unknowns, *, seconds: float = RESPONSE_SECONDS, floats: bool = False
+) -> RootSet:
     """Every real root of ``eqs = 0`` (exact rational coefficients), each one certified.
 
     Parameters
@@ -31,6 +34,10 @@ def real_roots(eqs, unknowns, *, seconds: float = RESPONSE_SECONDS) -> RootSet:
     unknowns : sequence of sympy.Symbol
     seconds : float, optional
         Time budget (:data:`RESPONSE_SECONDS`).
+    floats : bool, optional
+        The caller needs the roots as floats only (a response's points): with the extra
+        ``roots`` msolve answers at once (no exact radicals tried first) and its certified boxes'
+        midpoints are kept as they are.
 
     Returns
     -------
@@ -47,7 +54,10 @@ def real_roots(eqs, unknowns, *, seconds: float = RESPONSE_SECONDS) -> RootSet:
     ('SOLVED', 2)
     """
     unknowns = list(unknowns)
-    return certified_real_roots([_primitive(e, unknowns) for e in eqs], unknowns, seconds=seconds)
+    eqs = [_primitive(e, unknowns) for e in eqs]
+    if floats and msolve_binary() is not None:
+        return certified_real_roots(eqs, unknowns, seconds=seconds, backend="msolve", refine=False)
+    return certified_real_roots(eqs, unknowns, seconds=seconds)
 
 
 def _primitive(eq, unknowns):

@@ -48,6 +48,7 @@ from perturb.sweep.task import run_chunk
 __all__ = [
     "Cluster",
     "RunStats",
+    "run_calls",
     "chunk_points",
     "pack",
     "pilot_seconds",
@@ -355,6 +356,59 @@ def run_tasks(
         client.cancel(list(futures))
         raise
     return RunStats(tuple(lost), tasks, cpu, writing)
+
+
+def _call_packed(blob: bytes, key: str, function, args: tuple):
+    """A task of :func:`run_calls`: ``function(payload, *args)``, the payload unpacked once per
+    worker process."""
+    payload = _JOBS.get(key)
+    if payload is None:
+        import cloudpickle
+
+        payload = _JOBS[key] = cloudpickle.loads(blob)
+    return function(payload, *args)
+
+
+def run_calls(cluster: Cluster, function, payload, calls: list[tuple], *, label: str) -> list:
+    """``function(payload, *args)`` for each ``args`` of ``calls`` on the cluster, the payload
+    (a problem, a problem from a file travelling by value) sent to every worker once; the results
+    in the order of ``calls``. A call whose worker died again and again gives the exception in its
+    place (the others are kept)."""
+    import cloudpickle
+    from distributed import as_completed
+
+    client = cluster.client
+    module = sys.modules.get(type(payload).__module__)
+    registered = module is not None and not _importable_elsewhere(module.__name__)
+    if registered:
+        cloudpickle.register_pickle_by_value(module)
+    try:
+        blob = client.scatter(cloudpickle.dumps(payload), broadcast=True, hash=False)
+    finally:
+        if registered:
+            cloudpickle.unregister_pickle_by_value(module)
+    key = uuid.uuid4().hex
+    futures = {
+        client.submit(_call_packed, blob, key, function, tuple(args), pure=False): i
+        for i, args in enumerate(calls)
+    }
+    results: list = [None] * len(calls)
+    done = 0
+    notify(label, done, len(calls))
+    try:
+        for future in as_completed(futures, loop=client.loop):
+            index = futures[future]
+            try:
+                results[index] = future.result()
+            except Exception as exc:  # noqa: BLE001 - a call that kept killing its workers
+                results[index] = exc
+            done += 1
+            notify(label, done, len(calls))
+            future.release()
+    except BaseException:
+        client.cancel(list(futures))
+        raise
+    return results
 
 
 def _points(chunking: Chunking, number: int) -> int:

@@ -11,7 +11,17 @@ from perturb.sweep.grid import Chunking
 from perturb.sweep.quantities import check_names, stored_name, variables
 from perturb.sweep.spec import STORE_FORMAT, SweepJob
 
-__all__ = ["MemoryResult"]
+__all__ = ["MemoryResult", "dataset_of"]
+
+
+def dataset_of(coords: dict, data: dict, attrs: dict):
+    """An :class:`xarray.Dataset` of plain arrays: ``data`` maps a name to ``(dims, array,
+    attributes)`` (a phase diagram's maps and special points)."""
+    import xarray as xr
+
+    variables = {name: xr.Variable(dims, values, attributes) for name, (dims, values, attributes)
+                 in data.items()}  # fmt: skip
+    return xr.Dataset(variables, coords=coords, attrs=attrs)
 
 
 class MemoryResult:

@@ -44,8 +44,25 @@ def test_the_localisation_threshold_is_the_named_constant():
 
 
 def test_a_sine_amplitude_is_not_a_standing_wave_and_ties_get_numbers():
+    """A sine amplitude makes a motion phase-shifted, not a standing wave (issue 30: named, no
+    longer ``family-1``)."""
     elliptic = _standing(1, 1, 1)
     elliptic["b_x2"] = sp.Rational(1, 2)
     names = name_families([(elliptic, ()), (_standing(1, -2, 1), ()), (_standing(1, -3, 2), ())])
-    assert names[0] == "family-1"
+    assert names[0] == "phase-shifted"
     assert sorted(names[1:]) == ["anti-phase-1", "anti-phase-2"]
+
+
+def test_a_wave_of_equal_amplitudes_and_equal_lags_travels():
+    """x_j = cos(s - j 2 pi/3) on a ring of three: every coordinate lags its neighbour by 120
+    degrees (travelling-right); the mirror image travels left; unequal amplitudes do not travel."""
+    root3 = sp.sqrt(3) / 2
+    right = {"a_x1": 1, "a_x2": -sp.Rational(1, 2), "b_x2": root3, "a_x3": -sp.Rational(1, 2),
+             "b_x3": -root3}  # fmt: skip
+    left = {**right, "b_x2": -root3, "b_x3": root3}
+    uneven = {**right, "a_x3": -1}
+    assert name_families([(right, ()), (left, ()), (uneven, ())]) == [
+        "travelling-right",
+        "travelling-left",
+        "phase-shifted",
+    ]

@@ -8,11 +8,13 @@ importing this package works without it, and a plot then raises
 Modules: :mod:`.timeseries` (state against time, error, phase portraits), :mod:`.convergence`
 (error against ε), :mod:`.workprecision`, :mod:`.rigid_body` (Euler angles, orientation, GIF),
 :mod:`.response` (frequency responses, Floquet multipliers along the branches),
-:mod:`.validity` (validity maps of a sweep over two parameters), :mod:`.style` (the publication
+:mod:`.validity` (validity maps of a sweep over two parameters), :mod:`.phase` (phase diagrams:
+stable steady states over two parameters, with their boundaries), :mod:`.style` (the publication
 rc context every function uses).
 """
 
 from perturb.report.plots.convergence import plot_convergence
+from perturb.report.plots.phase import plot_phase_diagram
 from perturb.report.plots.response import plot_floquet_along_branches, plot_frequency_response
 from perturb.report.plots.rigid_body import (
     animate_orientation,
@@ -37,6 +39,7 @@ __all__ = [
     "plot_error_map",
     "plot_floquet_along_branches",
     "plot_frequency_response",
+    "plot_phase_diagram",
     "plot_euler_angles",
     "plot_orientation",
     "plot_period_map",
