@@ -12,12 +12,13 @@ import numpy as np
 from perturb._defaults import DEFAULT_SAMPLES
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError
 from perturb.cli._values import (
-    _check_plot_backend,
+    _check_plot,
     _parse_order,
     _parse_output,
     _parse_positive,
     _parse_sets,
     _parse_times,
+    _save_plot,
 )
 from perturb.domain import series_domain
 
@@ -173,7 +174,7 @@ def _cmd_work_precision(args) -> int:
     periods = _parse_positive("--periods", args.periods, float)
     orders = _parse_positive("--orders", args.orders, int)
     repeat = _parse_positive("--repeat", args.repeat, int)
-    _check_plot_backend(args.plot)
+    plot = _check_plot(args)
     result = work_precision(problem, periods=periods, orders=orders, repeat=repeat)
     if args.format == "json":
         print(json.dumps(work_precision_as_dict(result), allow_nan=True))
@@ -185,10 +186,10 @@ def _cmd_work_precision(args) -> int:
         print(work_precision_latex(result), end="")
     else:
         print(work_precision_as_table(result))
-    if args.plot is not None:
+    if plot is not None:
         from perturb.report.plots import plot_work_precision
 
-        plot_work_precision(result).savefig(args.plot)
+        _save_plot(plot_work_precision(result), plot)
     return EXIT_OK
 
 

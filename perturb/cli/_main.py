@@ -11,7 +11,6 @@ import sys
 import time
 import warnings
 from collections.abc import Iterator, Sequence
-from pathlib import Path
 
 from perturb.cli._errors import _INPUT_ERRORS, EXIT_FAILED, EXIT_USAGE, _RunFailed, _UsageError
 from perturb.cli._parser import _build_parser
@@ -98,37 +97,27 @@ def _progress(args) -> Iterator[None]:
 _FOLDER_OUTPUT = ("reproduce", "report", "sweep")
 
 
-def _output_file(path: str) -> Path:
-    """``--output PATH``: checked before the run (its folder exists, it is not a folder)."""
-    target = Path(path)
-    folder = target.parent if str(target.parent) else Path(".")
-    if target.is_dir() or not folder.is_dir() or not os.access(folder, os.W_OK):
-        raise _UsageError(
-            f"--output {path!r}: cannot write a file there (a folder, or a folder that does not "
-            "exist or is not writable); give a file path in a writable folder"
-        )
-    return target
-
-
 @contextlib.contextmanager
 def _to_file(args) -> Iterator[None]:
-    """With ``--output PATH`` (a file), what the command prints goes into PATH instead."""
+    """With ``--output PATH`` (a file), what the command prints goes into PATH instead.
+
+    PATH is checked before the run (:func:`perturb.report.written.check_file`): an existing file
+    perturb did not write is refused unless ``--force``; it is written atomically at the end.
+    """
     path = getattr(args, "output", None)
     if path is None or args.command in _FOLDER_OUTPUT:
         yield
         return
-    target = _output_file(path)
+    from perturb.report.written import check_file, write_file
+
+    target = check_file(path, "--output", force=getattr(args, "force", False))
     buffer = io.StringIO()
     with contextlib.redirect_stdout(buffer):
         try:
             yield
         finally:  # a failed run's output (e.g. its JSON failure record) is written too
-            try:
-                target.write_text(buffer.getvalue(), encoding="utf-8")
-            except OSError as exc:
-                raise _UsageError(
-                    f"--output {path!r}: cannot write ({exc.strerror or exc}); give a writable file"
-                ) from None
+            if buffer.getvalue():
+                write_file(target, buffer.getvalue())
 
 
 def _command(name: str, module: str = "_commands"):

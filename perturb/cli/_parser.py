@@ -178,6 +178,12 @@ def _build_parser() -> argparse.ArgumentParser:
     report.add_argument(
         "--output", required=True, metavar="DIR", help="the report folder (created if missing)"
     )
+    report.add_argument(
+        "--force",
+        action="store_true",
+        help="replace perturb's own files of another scene's report in DIR (a file perturb did "
+        "not write is never overwritten)",
+    )
     _add_sweep(sub)
     for name, command in sub.choices.items():
         if name not in ("reproduce", "report", "sweep"):  # theirs is a folder (DIR), or a store
@@ -186,6 +192,13 @@ def _build_parser() -> argparse.ArgumentParser:
                 default=None,
                 metavar="PATH",
                 help="write the output into the file PATH instead of printing it",
+            )
+        if name not in ("reproduce", "report"):
+            command.add_argument(
+                "--force",
+                action="store_true",
+                help="overwrite an existing --output/--plot file that perturb did not write "
+                "(without it such a file is refused: exit 2)",
             )
         command.add_argument(
             "--quiet",

@@ -60,8 +60,10 @@ def _cmd_report(args) -> int:
             ) from None
     problem = _load(scene)
     check_scene(scene, problem)
-    prepare_folder(args.output)  # an unwritable folder fails now, before the computation
+    # the folder is claimed now, before the computation: unwritable, or holding a file perturb
+    # did not write where the report writes, it is refused (exit 2) with nothing computed
+    folder = prepare_folder(args.output, scene, force=args.force)
     result = run_scene(scene, problem)
-    _, summary = write_report(result, args.output)
+    _, summary = write_report(result, folder)
     print(summary, end="")
     return EXIT_OK if result.success else EXIT_FAILED

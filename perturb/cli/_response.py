@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 
 from perturb.cli._errors import EXIT_OK, _UsageError
-from perturb.cli._values import _check_plot_backend, _parse_order, _parse_sets
+from perturb.cli._values import _check_plot, _parse_order, _parse_sets, _save_plot
 
 
 def _parse_sweep(text: str):
@@ -34,7 +34,7 @@ def _cmd_response(args) -> int:
         raise _UsageError(f"--validate {args.validate!r}: give a whole number >= 0") from None
     if count < 0:
         raise _UsageError(f"--validate {count}: give a whole number >= 0")
-    _check_plot_backend(args.plot)
+    plot = _check_plot(args)
     result = problem_response(problem, parameter, grid, order=order, validate=count)
     if args.format == "json":
         print(json.dumps(response_as_dict(result), allow_nan=False))
@@ -46,8 +46,8 @@ def _cmd_response(args) -> int:
         print(response_latex(result), end="")
     else:
         print(response_as_table(result))
-    if args.plot is not None:
+    if plot is not None:
         from perturb.report.plots import plot_frequency_response
 
-        plot_frequency_response(result).savefig(args.plot)
+        _save_plot(plot_frequency_response(result), plot)
     return EXIT_OK

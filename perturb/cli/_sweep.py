@@ -10,7 +10,6 @@ from __future__ import annotations
 import json
 import sys
 from collections import Counter
-from pathlib import Path
 
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError
 from perturb.cli._values import _parse_order, _parse_positive, _parse_sets, _parse_times
@@ -37,16 +36,14 @@ def _check_output(args) -> None:
             "--output: name the Zarr store to write, e.g. --output sweep.zarr (or ask for "
             "--format csv or json)"
         )
+    if args.output is not None and not args.output.strip():
+        raise _UsageError(f"--output {args.output!r}: name the store, e.g. --output sweep.zarr")
     if args.resume and args.format != "zarr":
         raise _UsageError("--resume continues a Zarr store: drop --format or --resume")
     if args.format != "zarr" and args.output is not None:
-        target = Path(args.output)
-        folder = target.parent if str(target.parent) else Path(".")
-        if target.exists() or not folder.is_dir():
-            raise _UsageError(
-                f"--output {args.output!r}: give a new file in an existing folder (a sweep never "
-                "overwrites a file)"
-            )
+        from perturb.report.written import check_file
+
+        check_file(args.output, "--output", force=args.force)
 
 
 def _summary(ds, label: str, store: str | None) -> str:
@@ -150,7 +147,9 @@ def _cmd_sweep(args) -> int:
         sweep_as_csv(ds) if args.format == "csv" else json.dumps(sweep_as_dict(ds), allow_nan=True)
     )
     if args.output is not None:
-        Path(args.output).write_text(text + "\n", encoding="utf-8")
+        from perturb.report.written import write_file
+
+        write_file(args.output, text + "\n")
     else:
         print(text)
     return EXIT_OK if ds.attrs.get("complete", True) else EXIT_FAILED

@@ -118,13 +118,30 @@ def _parse_output(flag: str, text: str | None) -> Path | None:
     return path
 
 
-def _check_plot_backend(plot: str | None) -> None:
-    """A usage error when ``--plot`` is given and matplotlib is not installed."""
+def _check_plot(args) -> Path | None:
+    """``--plot FILE``, checked before any work: matplotlib installed, the path writable and not
+    a file perturb did not write (unless ``--force``), its extension a known format."""
+    plot = getattr(args, "plot", None)
     if plot is None:
-        return
+        return None
+    from perturb.report.written import check_file
+
+    target = check_file(plot, "--plot", force=getattr(args, "force", False), plot=True)
     try:
         import matplotlib  # noqa: F401
     except ImportError:
         raise _UsageError(
             "--plot needs matplotlib: pip install 'perturb[plot]', or drop --plot"
         ) from None
+    return target
+
+
+def _save_plot(figure, target: Path) -> None:
+    """Save ``figure`` into ``target`` (checked by :func:`_check_plot`) in its extension's format."""
+    import io
+
+    from perturb.report.written import write_file
+
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format=target.suffix[1:].lower())
+    write_file(target, buffer.getvalue())

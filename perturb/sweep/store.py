@@ -29,7 +29,7 @@ from perturb.sweep.grid import Chunking
 from perturb.sweep.quantities import TIMINGS, check_names, stored_name, variables
 from perturb.sweep.spec import STORE_FORMAT, SweepJob
 
-__all__ = ["SweepStore", "open_dataset", "remove_store", "write_dataset"]
+__all__ = ["SweepStore", "open_dataset", "write_dataset"]
 
 #: The group attribute that marks a perturb sweep store (its value: the store format).
 MARK = "perturb_sweep"
@@ -263,36 +263,24 @@ def _difference(attrs: dict, spec, version: str) -> str:
     return f"holds another sweep ({what} differ), so --resume cannot continue it there"
 
 
-def write_dataset(dataset, path) -> None:
-    """Write a sweep's Dataset (kept in memory) as a store at ``path``, replacing only a perturb
-    sweep store already there (a report folder's own ``sweep.zarr``).
+def write_dataset(dataset, path, attrs: dict | None = None) -> None:
+    """Write a sweep's Dataset (kept in memory) as a new store at ``path`` (a report folder's
+    ``sweep.zarr``), with ``attrs`` added to its attributes (the report's mark of its store).
 
     Raises
     ------
     perturb.errors.InvalidParameterError
-        ``path`` holds something else.
+        ``path`` exists (nothing is ever written over it).
     """
-    import shutil
-
     path = Path(path)
-    if path.exists():
-        if not (path.is_dir() and _attrs_of(path) is not None):
-            raise _refuse(path, "exists and is not a perturb sweep store", "move it away")
-        shutil.rmtree(path)
+    if path.exists() or path.is_symlink():
+        raise _refuse(path, "exists", "move it away (a store is never overwritten)")
+    if attrs:
+        dataset = dataset.copy()
+        dataset.attrs.update(attrs)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # consolidated metadata in Zarr format 3 (see above)
         dataset.to_zarr(str(path), mode="w-", consolidated=True)
-
-
-def remove_store(path) -> bool:
-    """Remove the perturb sweep store at ``path`` (nothing else); returns whether it did."""
-    import shutil
-
-    path = Path(path)
-    if path.is_dir() and _attrs_of(path) is not None:
-        shutil.rmtree(path)
-        return True
-    return False
 
 
 def open_dataset(path):
