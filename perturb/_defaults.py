@@ -260,6 +260,12 @@ SWEEP_DOMAIN_MARGIN = 1e-9
 #: visibly separates; pass a smaller ``tol`` to demand more.
 DEFAULT_TOL = 0.1
 
+#: A series whose next term is estimated (perturb.domain.next_term) at more than this fraction of
+#: its leading term is flagged as beyond its validity (a response point, a family, a sweep point):
+#: the default accuracy tolerance, where the analytic and the true curves visibly separate. Forced
+#: Duffing swept to eps = 10 has an estimate of 0.5 and amplitudes 8-20 % off the true motion.
+VALIDITY_ESTIMATE_LIMIT = DEFAULT_TOL
+
 #: The former name of :data:`DEFAULT_TOL` (kept: tests and user code import it).
 MAX_RELATIVE_ERROR = DEFAULT_TOL
 

@@ -223,15 +223,44 @@ def _cmd_families(args) -> int:
     cls = load_problem(args.problem)
     problem = cls.create(**_parse_sets(args.sets))
     families = problem.families(_parse_order(args.order))
+    flags = [_family_domain(problem, f) for f in families]
     if args.format == "json":
-        print(json.dumps(as_dict(families, args.problem)))
+        print(json.dumps(as_dict(families, args.problem, flags)))
     elif args.format == "latex":
         from perturb.report.latex import families_latex
 
         print(families_latex(families, args.problem), end="")
     else:
-        print(as_table(families, args.problem))
-    return EXIT_OK if len(families) else EXIT_FAILED
+        print(as_table(families, args.problem, flags))
+    if not len(families):
+        return EXIT_FAILED
+    built = [(f, o) for f, (o, _) in zip(families, flags, strict=True) if f.solution.success]
+    if built and all(outside for _, outside in built):
+        print(
+            f"perturb: {args.problem}: the series of every family is outside its domain at "
+            f"these values (e.g. {built[0][0].name}: {built[0][1]})",
+            file=sys.stderr,
+        )
+        return EXIT_FAILED
+    return EXIT_OK
+
+
+def _family_domain(problem, family) -> tuple[str, str]:
+    """``(outside, beyond)`` of one family at the problem's values (``perturb solve``'s check)."""
+    own = {p.name for p in problem.system().parameters}
+    if not family.solution.success or any(
+        p.name not in own for p in family.solution.system.parameters
+    ):  # a continuum in an amplitude the problem does not fix: no values to check it at
+        return "", ""
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("ignore")
+        try:
+            check = series_domain(
+                family.solution, problem.parameter_value(), problem.symbol_values()
+            )
+        except (ArithmeticError, ValueError, TypeError) as exc:
+            return f"the series cannot be evaluated at these values ({exc})", ""
+    return "; ".join(check.reasons), check.validity_note()
 
 
 def _non_finite(value) -> bool:

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import json
+import sys
 
-from perturb.cli._errors import EXIT_OK, _UsageError
+from perturb.cli._errors import EXIT_OK, _RunFailed, _UsageError
 from perturb.cli._values import _check_plot, _parse_order, _parse_sets, _save_plot
 
 
@@ -17,6 +18,18 @@ def _parse_sweep(text: str):
         return parse_sweep(text)
     except InvalidParameterError as exc:
         raise _UsageError(str(exc)) from None
+
+
+def _check_domain(result) -> None:
+    """Every steady state outside its series' domain: a failed run (``perturb solve``'s rule)."""
+    points, outside = result.response.points, result.outside
+    if points and all(outside):
+        first = points[0]
+        raise _RunFailed(
+            f"the series is outside its domain at every steady state of the sweep (e.g. at "
+            f"{result.parameter} = {first.value:.6g}: {outside[0]}); sweep closer to the "
+            "resonance or at a smaller eps"
+        )
 
 
 def _cmd_response(args) -> int:
@@ -36,6 +49,12 @@ def _cmd_response(args) -> int:
         raise _UsageError(f"--validate {count}: give a whole number >= 0")
     plot = _check_plot(args)
     result = problem_response(problem, parameter, grid, order=order, validate=count)
+    _check_domain(result)
+    if args.format != "table":  # the table shows them itself
+        from perturb.report.response import flag_lines
+
+        for line in flag_lines(result):
+            print(f"perturb: warning: {line}", file=sys.stderr)
     if args.format == "json":
         print(json.dumps(response_as_dict(result), allow_nan=False))
     elif args.format == "csv":

@@ -6,7 +6,13 @@ import math
 
 from perturb.report.latex import latex_comment
 
-__all__ = ["response_as_csv", "response_as_dict", "response_as_table", "response_latex"]
+__all__ = [
+    "flag_lines",
+    "response_as_csv",
+    "response_as_dict",
+    "response_as_table",
+    "response_latex",
+]
 
 _STABILITY = {True: "stable", False: "unstable", None: "marginal"}
 
@@ -20,14 +26,50 @@ def _complex(z) -> list:
     return [_number(z.real), _number(z.imag)]
 
 
+def _flags(result) -> list[tuple[str, str]]:
+    """``(outside, beyond)`` of each point (``""`` each for a result made without them)."""
+    n = len(result.response.points)
+    outside = tuple(getattr(result, "outside", ())) or ("",) * n
+    beyond = tuple(getattr(result, "beyond", ())) or ("",) * n
+    return list(zip(outside, beyond, strict=True))
+
+
+def _flag(outside: str, beyond: str) -> str:
+    """The CSV's ``flag`` column: ``outside`` (its domain), ``beyond`` (its validity) or empty."""
+    return "outside" if outside else "beyond" if beyond else ""
+
+
+def flag_lines(result) -> list[str]:
+    """Sentences about the points outside the series' domain or beyond its validity."""
+    parameter = result.parameter
+    flags = _flags(result)
+    lines = []
+    for kind, index, what, meaning in (
+        ("outside", 0, "outside the series' domain", "are not the motion's"),
+        ("beyond", 1, "beyond the series' estimated validity", "may be far from the motion's"),
+    ):
+        marked = [(p, f[index]) for p, f in zip(result.response.points, flags, strict=True)
+                  if f[index]]  # fmt: skip
+        if marked:
+            point, reason = marked[0]
+            lines.append(
+                f"{len(marked)} of {len(flags)} steady states are {what} (flag {kind}): their "
+                f"amplitudes {meaning}; e.g. at {parameter} = {point.value:.6g}: {reason}"
+            )
+    return lines
+
+
 def response_as_dict(result) -> dict:
     """The JSON contract of ``perturb response --format json``.
 
     ``{"problem", "parameter", "order", "epsilon", "parameters", "points": [{"value", "branch",
-    "amplitudes", "norms", "stable", "eigenvalues", "multipliers", "note"}], "folds": [{"value",
+    "amplitudes", "norms", "stable", "eigenvalues", "multipliers", "note", "outside",
+    "beyond"}], "folds": [{"value",
     "norms"}], "backbone": {"coordinate", "amplitudes", "values"} | null, "true": [{"value",
     "branch", "success", "amplitude", "amplitude_error", "floquet_max", "stable_true",
-    "stable_analytic", "message"}], "failures": [str]}``; complex numbers are ``[re, im]``.
+    "stable_analytic", "message"}], "failures": [str]}``; complex numbers are ``[re, im]``;
+    ``outside`` says why a point's series is outside its domain, ``beyond`` why it is beyond its
+    estimated validity (each empty when it is not).
     """
     response = result.response
     points = [
@@ -40,8 +82,12 @@ def response_as_dict(result) -> dict:
             "eigenvalues": [_complex(z) for z in p.eigenvalues],
             "multipliers": [_complex(z) for z in p.multipliers],
             "note": p.note,
+            "outside": outside,
+            "beyond": beyond,
         }
-        for p, name in zip(response.points, result.branches, strict=True)
+        for p, name, (outside, beyond) in zip(
+            response.points, result.branches, _flags(result), strict=True
+        )
     ]
     backbone = None
     if result.backbone is not None:
@@ -79,14 +125,15 @@ def response_as_dict(result) -> dict:
 
 
 def response_as_csv(result) -> str:
-    """One row per branch point: ``PARAMETER,branch,<coordinate> amplitude...,stable``."""
+    """One row per branch point: ``PARAMETER,branch,<coordinate> amplitude...,stable,flag``
+    (``flag``: ``outside`` its series' domain, ``beyond`` its estimated validity, or empty)."""
     response = result.response
     coords = list(response.coordinates)
-    header = [result.parameter, "branch", *(f"{c}_amplitude" for c in coords), "stable"]
+    header = [result.parameter, "branch", *(f"{c}_amplitude" for c in coords), "stable", "flag"]
     rows = [",".join(header)]
-    for p, name in zip(response.points, result.branches, strict=True):
+    for p, name, flags in zip(response.points, result.branches, _flags(result), strict=True):
         cells = [f"{p.value:.12g}", name, *(f"{p.norms[c]:.12g}" for c in coords)]
-        rows.append(",".join([*cells, _STABILITY[p.stable]]))
+        rows.append(",".join([*cells, _STABILITY[p.stable], _flag(*flags)]))
     return "\n".join(rows)
 
 
@@ -102,14 +149,17 @@ def response_as_table(result) -> str:
         + " ".join(f"{'|' + c + '|':>12s}" for c in coords)
         + f" {'stability':>10s} {'max|lambda|':>12s}",
     ]
-    for p, name in zip(response.points, result.branches, strict=True):
+    for p, name, flags in zip(response.points, result.branches, _flags(result), strict=True):
         largest = max((abs(z) for z in p.multipliers), default=math.nan)
+        flag = _flag(*flags)
         lines.append(
             f"{p.value:12.6g} {name:>9s} "
             + " ".join(f"{p.norms[c]:12.6g}" for c in coords)
             + f" {_STABILITY[p.stable]:>10s} {largest:12.6f}"
+            + (f"  [{flag}]" if flag else "")
             + (f"  ({p.note})" if p.note else "")
         )
+    lines += flag_lines(result)
     if response.folds:
         lines.append("folds (saddle-node: the response jumps here in a slow sweep):")
         for f in response.folds:

@@ -292,6 +292,9 @@ def _response_lines(result) -> list[str]:
         lines.append(f"- fold at {response.parameter} = {fold.value:.6g}")
     for failure in response.failures:
         lines.append(f"- not solved: {failure}")
+    from perturb.report.response import flag_lines
+
+    lines += [f"- {line}" for line in flag_lines(result.response)]
     for shot in result.response.true:
         agree = "agree" if shot.stable_true == shot.stable_analytic else "DISAGREE"
         lines.append(

@@ -33,6 +33,7 @@ from perturb.response.curve import (
     _folds,
     continue_fold,
 )
+from perturb.response.domain import branch_domains
 
 __all__ = ["Backbone", "ProblemResponse", "TrueResponse", "problem_response"]
 
@@ -90,6 +91,12 @@ class ProblemResponse:
     backbone : Backbone or None
     true : tuple of TrueResponse
         The shot points (empty unless asked).
+    outside : tuple of str
+        Aligned with ``response.points``: ``""`` where the point's series is inside its domain,
+        else why not (``perturb solve``'s check, :mod:`perturb.response.domain`).
+    beyond : tuple of str
+        Aligned with ``response.points``: ``""``, or why the point is beyond the series'
+        estimated validity.
     """
 
     problem: str
@@ -98,6 +105,8 @@ class ProblemResponse:
     branches: tuple = field(converter=tuple)
     backbone: Backbone | None = None
     true: tuple = field(converter=tuple, factory=tuple)
+    outside: tuple = field(converter=tuple, factory=tuple)
+    beyond: tuple = field(converter=tuple, factory=tuple)
 
 
 def parse_sweep(text: str, argument: str = "--sweep") -> tuple[str, np.ndarray]:
@@ -216,7 +225,7 @@ def problem_response(
     system = check_request(problem, parameter)
     grid = _check_grid(parameter, grid)
     equations = amplitude_equations(system, order)
-    points, names, failures, variants = [], [], [], []
+    points, names, failures, variants, flags = [], [], [], [], []
     for value in grid:
         variant = problem.with_parameters(**{parameter: float(value)})
         variants.append(variant)
@@ -225,6 +234,7 @@ def problem_response(
             failures.append(f"{parameter} = {value:g}: {why}")
         names.extend(branch_names(found))
         points.extend(ResponsePoint.of(float(value), branch) for branch in found)
+        flags.extend(branch_domains(equations, found, variant))
     folds = _problem_folds(equations, problem, parameter, variants, grid)
     response = FrequencyResponse(
         system=problem.name,
@@ -240,7 +250,10 @@ def problem_response(
     )
     backbone = _backbone(problem, parameter, variants, grid, points, order)
     true = _shoot(problem, parameter, response, names, order, validate) if validate else ()
-    return ProblemResponse(problem.name, parameter, response, names, backbone, true)
+    return ProblemResponse(
+        problem.name, parameter, response, names, backbone, true,
+        outside=[f[0] for f in flags], beyond=[f[1] for f in flags],
+    )  # fmt: skip
 
 
 def _problem_folds(equations, problem, parameter, variants, grid) -> list[Fold]:

@@ -87,8 +87,9 @@ PROBLEM_FILES: dict[str, tuple[str, str]] = {
     # a right-hand side that makes the engine recurse without end
     "recursive.py": (
         _variant(
-            "\nclass Deep(sp.Function):\n    @classmethod\n    def eval(cls, x):\n"
-            "        return Deep(x + 1) if x.is_Number else None\n"
+            "\nclass Deep(sp.Function):\n    def _eval_subs(self, old, new):\n"
+            "        return self.subs(old, new)\n\n"
+            "    def _eval_expand_basic(self, **hints):\n        return sp.expand(self)\n"
             + _GOOD.replace("-EPS * X**3", "-EPS * Deep(X)")
         ),
         "usage",
@@ -99,7 +100,25 @@ PROBLEM_FILES: dict[str, tuple[str, str]] = {
         "usage",
     ),
     # a pole on the generating orbit: 1/x
-    "pole.py": (_variant(_GOOD.replace("-EPS * X**3", "-EPS / X")), "failed"),
+    "pole.py": (_variant(_GOOD.replace("-EPS * X**3", "-EPS / X")), "usage"),
+    # parameters of the system that no ParameterSpec gives a value
+    "no_values.py": (
+        _variant(
+            _GOOD.replace("-EPS * X**3", "-EPS * K * X**3 + EPS * MU * XDOT").replace(
+                "parameters=[A]", "parameters=[A, K, MU]"
+            )
+        ),
+        "usage",
+    ),
+    # a function of the state with no parameter in it: the numeric quadrature expands it
+    "sine.py": (
+        _variant(
+            _GOOD.replace("-EPS * X**3", "-EPS * sp.sin(X)").replace(
+                'return {"amplitudes": {"x": A}}', 'return {"amplitudes": {"x": 1}}'
+            )
+        ),
+        "ok",
+    ),
     # the rhs is a list in a list
     "nested_rhs.py": (_variant(_GOOD.replace("[-EPS * X**3]", "[[-EPS * X**3]]")), "usage"),
     # the rhs is a string

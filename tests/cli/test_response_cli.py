@@ -17,6 +17,8 @@ POINT_KEYS = {
     "eigenvalues",
     "multipliers",
     "note",
+    "outside",
+    "beyond",
 }
 
 
@@ -41,6 +43,7 @@ def test_response_json_contract(capsys):
     at_105 = [p for p in data["points"] if p["value"] == pytest.approx(1.05)]
     assert [p["branch"] for p in at_105] == ["lower", "middle", "upper"]
     assert [p["stable"] for p in at_105] == [True, False, True]
+    assert all(p["outside"] == p["beyond"] == "" for p in data["points"])  # near the resonance
     (fold,) = data["folds"]
     assert 1.0 < fold["value"] < 1.05
     assert data["backbone"]["values"][0] == pytest.approx(1.0)  # the free frequency at rest
@@ -55,7 +58,7 @@ def test_response_csv_and_plot(capsys, tmp_path):
     )  # fmt: skip
     assert code == 0, err
     lines = out.splitlines()
-    assert lines[0] == "Omega,branch,x_amplitude,stable"
+    assert lines[0] == "Omega,branch,x_amplitude,stable,flag"
     assert any(",trivial,0," in line for line in lines)
     assert plot.stat().st_size > 0
 
