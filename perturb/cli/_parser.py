@@ -179,6 +179,12 @@ def _build_parser() -> argparse.ArgumentParser:
         "--output", required=True, metavar="DIR", help="the report folder (created if missing)"
     )
     report.add_argument(
+        "--yes",
+        action="store_true",
+        help="confirm a scene whose [response] or [sweep] is estimated at more than an hour of "
+        "work",
+    )
+    report.add_argument(
         "--force",
         action="store_true",
         help="replace perturb's own files of another scene's report in DIR (a file perturb did "
@@ -231,6 +237,11 @@ def _add_response(sub) -> None:
     response.add_argument(
         "--plot", default=None, metavar="FILE",
         help="also save the frequency-response plot (needs matplotlib)",
+    )  # fmt: skip
+    response.add_argument(
+        "--yes", action="store_true",
+        help="confirm a request estimated at more than an hour of work (many values, a high "
+        "order, many shots)",
     )  # fmt: skip
     _add_format(response, ["table", "csv", "json", "latex"])
 
@@ -345,5 +356,6 @@ def _add_sweep(sub) -> None:
     sweep.add_argument(
         "--yes",
         action="store_true",
-        help=f"confirm a grid of more than {10**7:,} points",
+        help=f"confirm a grid of more than {10**7:,} points, or estimated at more than an hour "
+        "of work",
     )

@@ -20,6 +20,11 @@ def _parse_sweep(text: str):
         raise _UsageError(str(exc)) from None
 
 
+def args_set_names(args) -> set[str]:
+    """The parameter names given with ``--set``."""
+    return set(_parse_sets(args.sets))
+
+
 def _check_domain(result) -> None:
     """Every steady state outside its series' domain: a failed run (``perturb solve``'s rule)."""
     points, outside = result.response.points, result.outside
@@ -47,6 +52,19 @@ def _cmd_response(args) -> int:
         raise _UsageError(f"--validate {args.validate!r}: give a whole number >= 0") from None
     if count < 0:
         raise _UsageError(f"--validate {count}: give a whole number >= 0")
+    if count > len(grid):
+        raise _UsageError(
+            f"--validate {count}: more points than the sweep has ({len(grid)} values); give at "
+            f"most {len(grid)}"
+        )
+    if parameter in args_set_names(args):
+        raise _UsageError(
+            f"--sweep {args.sweep!r}: {parameter!r} is also set with --set; sweep it or set it, "
+            "not both"
+        )
+    from perturb.cost import check_cost, response_cost
+
+    check_cost(response_cost(len(grid), order, count), args.yes)
     plot = _check_plot(args)
     result = problem_response(problem, parameter, grid, order=order, validate=count)
     _check_domain(result)

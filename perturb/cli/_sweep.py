@@ -98,11 +98,14 @@ def _cmd_sweep(args) -> int:
     overrides = _parse_sets(args.sets)
     problem = cls.create(**overrides)
     order = _parse_order(args.order)
-    if args.family is not None:
-        problem.families(order).get(args.family)  # an unknown name exits 2 with the list
-        problem = problem.with_family(args.family)
     axes = axes_of(args.grids)
     check_names(axes, [spec.name for spec in cls.parameter_specs], cls.name, fixed=set(overrides))
+    if args.family is not None:  # looked for along the grid; an unknown name exits 2 with the list
+        from perturb.sweep.grid import Grid, check_size
+        from perturb.sweep.spec import check_family
+
+        check_size(Grid(axes).size, args.yes)
+        problem = check_family(problem, args.family, Grid(axes), order)
     times = _parse_times(args.times)
     tol = DEFAULT_TOL if args.tol is None else _parse_positive("--tol", args.tol, float)
     store = args.output if args.format == "zarr" else None

@@ -25,6 +25,7 @@ from attrs import field, frozen
 
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import amplitude_equations
+from perturb.progress import track
 from perturb.response.branches import branch_names, branches_at, exact_number
 from perturb.response.curve import (
     Fold,
@@ -226,7 +227,7 @@ def problem_response(
     grid = _check_grid(parameter, grid)
     equations = amplitude_equations(system, order)
     points, names, failures, variants, flags = [], [], [], [], []
-    for value in grid:
+    for value in track(grid, label=f"response {problem.name}"):
         variant = problem.with_parameters(**{parameter: float(value)})
         variants.append(variant)
         found, why = branches_at(equations, variant.symbol_values(), variant.epsilon(), order)
@@ -328,7 +329,8 @@ def _shoot(problem, parameter, response, names, order, count) -> tuple[TrueRespo
     out = []
     for branch_name in sorted(set(names)):
         indices = [i for i, n in enumerate(names) if n == branch_name]
-        picks = sorted({indices[round(j)] for j in np.linspace(0, len(indices) - 1, count)})
+        spread = np.linspace(0, len(indices) - 1, min(count, len(indices)))
+        picks = sorted({indices[round(j)] for j in spread})
         for i in picks:
             point = response.points[i]
             variant = problem.with_parameters(**{parameter: point.value})
