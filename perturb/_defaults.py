@@ -277,6 +277,10 @@ SWEEP_TEXT_BYTES = 80
 #: line (exit 2): a scheduler on the network answers in well under a second.
 SWEEP_CONNECT_SECONDS = 10.0
 
+#: Pause between attempts to reach a scheduler that refuses the connection (it may be starting:
+#: ``dask scheduler`` takes a few seconds), within ``--timeout``.
+SWEEP_CONNECT_RETRY = 0.25
+
 #: Longest wait for a scheduler that can be asked for (``--timeout``): a larger value is refused.
 #: Dask's own connection timeout is 30 s; a scheduler that has not answered in a minute is not
 #: starting up, and a run must never wait for ever on a silent port.

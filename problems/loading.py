@@ -33,12 +33,16 @@ from problems._checks import check_usable
 from problems._registry import check_problem_class, did_you_mean, get_problem
 from problems.base import Problem
 
-__all__ = ["load_problem"]
+__all__ = ["LOADED_FILES", "load_problem", "user_frame"]
 
 #: Suffix that marks the part before ``:`` as a file rather than a module.
 _PY_SUFFIX = ".py"
 
 _counter = itertools.count(1)
+
+#: The files of the problems loaded by path or module in this process (resolved paths): an
+#: exception raised in one of them at run time is the user's code failing (:func:`user_frame`).
+LOADED_FILES: set[str] = set()
 
 
 def load_problem(spec: str) -> type[Problem]:
@@ -125,6 +129,7 @@ def _from_file(spec: str, target: str, class_name: str | None) -> type[Problem]:
         if folder in sys.path:
             sys.path.remove(folder)
     cls = _pick_class(module, str(path), class_name)
+    LOADED_FILES.add(str(path))
     check_usable(cls, f"{path}:{cls.__name__}")
     return cls
 
@@ -148,8 +153,19 @@ def _from_module(spec: str, target: str, class_name: str) -> type[Problem]:
     except (Exception, SystemExit) as exc:
         raise _import_failure(exc, target) from None
     cls = _pick_class(module, target, class_name)
+    origin = getattr(module, "__file__", None)
+    if origin and not origin.startswith(str(Path(__file__).resolve().parent)):
+        LOADED_FILES.add(str(Path(origin).resolve()))  # a user's module, not a built-in one
     check_usable(cls, spec)
     return cls
+
+
+def user_frame(exc: BaseException) -> str | None:
+    """``file:line`` of the deepest frame of ``exc``'s traceback in a problem file loaded by
+    path or module (:data:`LOADED_FILES`), or None when the user's code is not on the path."""
+    frames = traceback.extract_tb(exc.__traceback__) if exc.__traceback__ else []
+    mine = [f for f in frames if f.filename in LOADED_FILES]
+    return f"{mine[-1].filename}:{mine[-1].lineno}" if mine else None
 
 
 # ---------------------------------------------------------------------------------- helpers

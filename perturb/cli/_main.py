@@ -173,23 +173,55 @@ def _run(argv: Sequence[str] | None) -> int:
         return EXIT_FAILED
     except BrokenPipeError:
         raise
-    except (OverflowError, FloatingPointError, ZeroDivisionError) as exc:
+    except Exception as exc:  # noqa: BLE001 - a run never ends in a traceback
+        return _failure(exc)
+
+
+def _user_code(exc: BaseException) -> str | None:
+    """The one-line error of an exception the user's problem file caused, if it did: raised in
+    its code, or a recursion without end while a user's problem is in use."""
+    loading = sys.modules.get("problems.loading")
+    if loading is None or not loading.LOADED_FILES:
+        return None
+    where = loading.user_frame(exc)
+    if where is not None:
+        return (
+            f"{where}: the problem's code raised {type(exc).__name__}: {_one_line(exc)}: fix the "
+            "class"
+        )
+    if isinstance(exc, RecursionError):
+        files = ", ".join(sorted(loading.LOADED_FILES))
+        return (
+            f"{files}: the problem's equations make perturb recurse without end "
+            "(RecursionError): fix the expressions (a function that rewrites itself, or one "
+            "nested thousands of levels deep)"
+        )
+    return None
+
+
+def _failure(exc: BaseException) -> int:
+    """The exit code and the line of an exception that ended a run."""
+    if not isinstance(exc, PerturbError) or not _is_input_error(exc):
+        user = _user_code(exc)
+        if user is not None:
+            print(f"perturb: error: {user}", file=sys.stderr)
+            return EXIT_USAGE
+    if isinstance(exc, OverflowError | FloatingPointError | ZeroDivisionError):
         print(
             f"perturb: failed: the computation overflowed or divided by zero at these parameters "
             f"({_one_line(exc)}); try values closer to the problem's defaults",
             file=sys.stderr,
         )
         return EXIT_FAILED
-    except Exception as exc:  # noqa: BLE001 - a run never ends in a traceback
-        if _is_input_error(exc):
-            print(f"perturb: error: {_one_line(exc)}", file=sys.stderr)
-            return EXIT_USAGE
-        print(
-            f"perturb: failed: internal error ({type(exc).__name__}: {_one_line(exc)}); please "
-            "report it with the command line",
-            file=sys.stderr,
-        )
-        return EXIT_FAILED
+    if _is_input_error(exc):
+        print(f"perturb: error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_USAGE
+    print(
+        f"perturb: failed: internal error ({type(exc).__name__}: {_one_line(exc)}); please "
+        "report it with the command line",
+        file=sys.stderr,
+    )
+    return EXIT_FAILED
 
 
 #: Thread-count variables of the BLAS/OpenMP runtimes numpy may load, set to 1 by the command when
@@ -236,7 +268,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             devnull = os.open(os.devnull, os.O_WRONLY)
             os.dup2(devnull, sys.stdout.fileno())
         return EXIT_FAILED
-    except KeyboardInterrupt:  # pragma: no cover
+    except KeyboardInterrupt:  # pragma: no cover - Ctrl-C: said, with the shells' code
+        print("\nperturb: interrupted", file=sys.stderr)
         return 130
 
 

@@ -29,6 +29,7 @@ from attrs import frozen
 
 from perturb._defaults import (
     SWEEP_CHUNKS_PER_WORKER,
+    SWEEP_CONNECT_RETRY,
     SWEEP_CONNECT_SECONDS,
     SWEEP_HANDSHAKE_BYTES,
     SWEEP_MAX_CHUNK_POINTS,
@@ -298,26 +299,42 @@ def _probe(address: str, timeout: float) -> None:
     if not host or port is None:
         raise _refused(address, timeout, "give the host and the port, tcp://HOST:PORT")
     deadline = time.monotonic() + timeout
-    try:
-        with socket.create_connection((host, port), timeout=timeout) as sock:
-            data = b""
-            while len(data) < 8:
-                left = deadline - time.monotonic()
-                if left <= 0:
-                    raise TimeoutError("it accepts connections but says nothing: not Dask")
-                sock.settimeout(left)
-                chunk = sock.recv(8 - len(data))
-                if not chunk:
-                    raise ConnectionError("it closed the connection: not a Dask scheduler")
-                data += chunk
-    except (OSError, TimeoutError, ConnectionError) as exc:
-        reason = " ".join(str(exc).split()) or type(exc).__name__
-        if isinstance(exc, socket.timeout | TimeoutError) and "not Dask" not in reason:
-            reason = "it accepts connections but says nothing: not a Dask scheduler"
-        raise _refused(address, timeout, reason) from None
+    while True:  # a scheduler starting up refuses connections for a moment: retried
+        try:
+            data = _first_bytes(host, port, deadline)
+            break
+        except ConnectionRefusedError as exc:
+            if time.monotonic() + SWEEP_CONNECT_RETRY > deadline:
+                raise _refused(address, timeout, " ".join(str(exc).split())) from None
+            time.sleep(SWEEP_CONNECT_RETRY)
+        except (OSError, TimeoutError, ConnectionError) as exc:
+            reason = " ".join(str(exc).split()) or type(exc).__name__
+            if isinstance(exc, socket.timeout | TimeoutError) and "not Dask" not in reason:
+                reason = "it accepts connections but says nothing: not a Dask scheduler"
+            raise _refused(address, timeout, reason) from None
     (length,) = struct.unpack("<Q", data)
     if not 0 < length <= SWEEP_HANDSHAKE_BYTES:
         raise _refused(address, timeout, "it answers, but not as a Dask scheduler does")
+
+
+def _first_bytes(host: str, port: int, deadline: float) -> bytes:
+    """The first 8 bytes a server at ``host:port`` sends when a connection opens (by
+    ``deadline``, a time of :func:`time.monotonic`)."""
+    import socket
+
+    left = max(deadline - time.monotonic(), 0.01)
+    with socket.create_connection((host, port), timeout=left) as sock:
+        data = b""
+        while len(data) < 8:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                raise TimeoutError("it accepts connections but says nothing: not Dask")
+            sock.settimeout(left)
+            chunk = sock.recv(8 - len(data))
+            if not chunk:
+                raise ConnectionError("it closed the connection: not a Dask scheduler")
+            data += chunk
+    return data
 
 
 def _connect(address: str, timeout: float):
