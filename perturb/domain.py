@@ -17,7 +17,7 @@ import sympy as sp
 from attrs import field, frozen
 
 from perturb._defaults import VALIDITY_ESTIMATE_LIMIT
-from perturb.solution import PeriodicSolution
+from perturb.solution import PeriodicSolution, SolutionFailed
 from perturb.system import Regime
 
 __all__ = ["DomainCheck", "next_term", "series_domain"]
@@ -153,9 +153,13 @@ def series_domain(
         max([0.0, *(own[k] for own in per_coordinate.values() if k < len(own))])
         for k in range(depth)
     ]
-    with np.errstate(all="ignore"):
-        omega = float(np.asarray(solution.coefficients(parameter_value, values)[0]).ravel()[0])
     reasons = []
+    with np.errstate(all="ignore"):
+        try:
+            omega = float(np.asarray(solution.coefficients(parameter_value, values)[0]).ravel()[0])
+        except SolutionFailed as exc:  # coefficients not finite here: no series at all
+            omega = math.nan
+            reasons.append(" ".join(str(exc).split()))
     if not (math.isfinite(omega) and omega > 0):
         period = 2 * math.pi / omega if omega else math.inf
         reasons.append(

@@ -157,7 +157,12 @@ def _cmd_validate(args) -> int:
         print(validation_latex(report), end="")
     else:
         print(validation_as_table(report))
-    return EXIT_OK if report.completed else EXIT_FAILED
+    if not report.completed:  # the report is printed; the reason goes to stderr too
+        reason = " ".join(str(report.message or report.verdict).split())
+        print(f"perturb: {args.problem}: the validation did not complete: {reason}",
+              file=sys.stderr)  # fmt: skip
+        return EXIT_FAILED
+    return EXIT_OK
 
 
 def _cmd_work_precision(args) -> int:

@@ -8,6 +8,8 @@ problem and its parameters, runs the lazy pipeline (:mod:`perturb.scene.run`) an
 
 from __future__ import annotations
 
+import sys
+
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _UsageError
 from perturb.errors import InvalidParameterError, ProblemLoadError, UnknownNameError
 
@@ -80,4 +82,8 @@ def _cmd_report(args) -> int:
     result = run_scene(scene, problem, args.yes)
     _, summary = write_report(result, folder)
     print(summary, end="")
-    return EXIT_OK if result.success else EXIT_FAILED
+    if not result.success:  # the summary says why; stderr too, in one line
+        why = result.failure or (result.validation.message if result.validation else "")
+        print(f"perturb: {args.scene}: {' '.join(str(why).split())}", file=sys.stderr)
+        return EXIT_FAILED
+    return EXIT_OK

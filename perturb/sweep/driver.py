@@ -314,7 +314,7 @@ def _probe(address: str, timeout: float) -> None:
             raise _refused(address, timeout, reason) from None
     (length,) = struct.unpack("<Q", data)
     if not 0 < length <= SWEEP_HANDSHAKE_BYTES:
-        raise _refused(address, timeout, "it answers, but not as a Dask scheduler does")
+        raise _refused(address, timeout, "it answers, but it is not a Dask scheduler")
 
 
 def _first_bytes(host: str, port: int, deadline: float) -> bytes:

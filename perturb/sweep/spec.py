@@ -19,7 +19,9 @@ from perturb._defaults import (
     DEFAULT_PERIODS,
     DEFAULT_TOL,
     MAX_ORDER,
+    MAX_OUTPUT_SAMPLES,
     MAX_TIMES,
+    SAMPLES_PER_PERIOD,
     SWEEP_FAMILY_PROBES,
 )
 from perturb.cost import check_cost, sweep_cost
@@ -230,6 +232,12 @@ def check_spec(
     check_cost(sweep_cost(grid.size, order, bool(validate)), bool(yes))
     tol = _positive("tol", tol, f"pass a positive relative tolerance such as {DEFAULT_TOL}")
     periods = _positive("periods", periods, "pass a positive number of periods, e.g. 10")
+    if validate and periods * SAMPLES_PER_PERIOD > MAX_OUTPUT_SAMPLES:  # validate's own rule
+        raise bad_value(
+            "periods", periods,
+            f"at most {MAX_OUTPUT_SAMPLES // SAMPLES_PER_PERIOD} periods (the validation's "
+            "trajectory horizon)",
+        )  # fmt: skip
     try:
         times = _times(times)
     except (TypeError, ValueError):

@@ -183,7 +183,7 @@ PROBLEM_FILES: dict[str, tuple[str, str]] = {
     ),
     "linear.py": (_variant(_GOOD.replace("-EPS * X**3", "-EPS * X")), "ok"),
     "zero_rhs.py": (_variant(_GOOD.replace("-EPS * X**3", "0 * EPS")), "ok"),
-    "undamped_linear.py": (_variant(_UNDAMPED_LINEAR), "failed"),
+    "undamped_linear.py:Undamped": (_variant(_UNDAMPED_LINEAR), "failed"),
     "two_classes.py": (_variant(_GOOD + _GOOD.replace("class Good", "class Other")), "usage"),
 }
 
