@@ -50,6 +50,16 @@ USER_FILES = {
     "data/solution.csv": "t,x\n0,1\n",
 }
 
+#: What each class of invocation must give: the exit codes allowed, and in words (the table of the
+#: module docstring). Every class must also keep the promises :func:`judge` checks for all.
+CLASSES = {
+    "usage": ({2}, "exit 2, one 'perturb: error:' line, nothing on stdout"),
+    "failed": ({1}, "exit 1 with the reason on stderr"),
+    "refuse": ({1, 2}, "exit 1 with a reason or exit 2 with one line"),
+    "ok": ({0}, "exit 0, its output sane"),
+    "any": ({0, 1, 2}, "any of the above"),
+}
+
 #: Bounds (seconds): a refusal before any work; a small computation; a validated one.
 QUICK, SMALL, HEAVY = 60.0, 180.0, 400.0
 
@@ -67,11 +77,14 @@ class Case:
     says: str = ""
     server: str = ""
     twice: bool = False
-    folders: tuple = ()
+    label: str = ""
 
     @property
     def name(self) -> str:
-        return f"{self.surface}: perturb {' '.join(repr(a) if not a or ' ' in a else a for a in self.argv)}"
+        words = " ".join(repr(a) if not a or " " in a else a for a in self.argv)
+        notes = [n for n in (self.label, self.server and f"{self.server} server",
+                             self.twice and "twice", self.says and "flagged") if n]  # fmt: skip
+        return f"{self.surface}: perturb {words}" + (f" [{', '.join(notes)}]" if notes else "")
 
 
 def _case(surface, argv, expect, **kw) -> Case:
@@ -414,6 +427,7 @@ def _sweep_cases() -> list[Case]:
 # ---------------------------------------------------------------------------------- report
 def _report(surface_scene: str, expect: str, output="rep", extra=(), **kw) -> Case:
     files = (("scene.toml", surface_scene), *kw.pop("files", ()))
+    kw.setdefault("label", "scene " + hashlib.sha256(repr(files).encode()).hexdigest()[:8])
     outputs = kw.pop("outputs", (output,) if expect != "usage" else ())
     return _case("report", ["report", "scene.toml", "--output", output, *extra], expect,
                  files=files, outputs=outputs, seconds=kw.pop("seconds", SMALL), **kw)  # fmt: skip
@@ -491,7 +505,7 @@ def _report_cases() -> list[Case]:
         ),  # fmt: skip
         _report(
             scene(
-                response='sweep = "Omega=0.9:1.1:5000"\nvalidate = 100', outputs="response = true"
+                response='sweep = "Omega=0.9:1.1:9000"\nvalidate = 100', outputs="response = true"
             ),
             "usage",
         ),  # fmt: skip
@@ -607,7 +621,7 @@ def _file_cases() -> list[Case]:
                   "any" if expect in ("ok", "failed") else expect,
                   files=(*texts, ("s.toml", scene(problem=name, parameters="",
                                                   outputs="table = true"))),
-                  outputs=("rep",), seconds=SMALL)
+                  outputs=("rep",), seconds=SMALL, label=name)
         )  # fmt: skip
     for spec in (f"{GOOD_FILE}:Nope", f"{GOOD_FILE}:HEADER", "nofile.py", "data", "data:Good",
                  f"{GOOD_FILE}:", ":Good", "os:getcwd", "os.path:join"):  # fmt: skip
@@ -660,7 +674,7 @@ def _digest(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
-def _snapshot(folder: Path) -> dict[str, str]:
+def snapshot(folder: Path) -> dict[str, str]:
     out = {}
     for path in folder.rglob("*"):
         if path.is_file() and not path.is_symlink():
@@ -674,7 +688,7 @@ def prepare(case: Case, folder: Path) -> dict[str, str]:
         path = folder / name
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text) if isinstance(text, str) else path.write_bytes(text)
-    return _snapshot(folder)
+    return snapshot(folder)
 
 
 class _Server:
@@ -748,7 +762,7 @@ def run_case(case: Case, folder: Path, env: dict | None = None) -> Outcome:
             server.close()
     seconds = time.perf_counter() - clock
     outcome = Outcome(code, out, err, seconds)
-    outcome.broken = judge(case, code, out, err, before, _snapshot(folder))
+    outcome.broken = judge(case, code, out, err, before, snapshot(folder))
     return outcome
 
 
@@ -775,7 +789,7 @@ def judge(case: Case, code, out: str, err: str, before: dict, after: dict) -> li
     if code == 1 and not any(line.startswith("perturb: ") for line in lines):
         broken.append("exit 1 without a reason")
     want = case.expect
-    allowed = {"ok": {0}, "usage": {2}, "failed": {1}, "refuse": {1, 2}, "any": {0, 1, 2}}[want]
+    allowed = CLASSES[want][0]
     if code in (0, 1, 2) and code not in allowed:
         broken.append(f"exit {code} where {want} was due ({lines[-1][:120] if lines else ''})")
     if code == 0:
