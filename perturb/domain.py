@@ -20,7 +20,7 @@ from perturb._defaults import VALIDITY_ESTIMATE_LIMIT
 from perturb.solution import PeriodicSolution, SolutionFailed
 from perturb.system import Regime
 
-__all__ = ["DomainCheck", "next_term", "series_domain"]
+__all__ = ["DomainCheck", "next_term", "next_terms", "series_domain"]
 
 
 @frozen
@@ -94,6 +94,32 @@ def next_term(sizes) -> float:
     if len(kept) < 2:
         return 0.0
     return kept[-1] ** 2 / kept[-2] / kept[0]
+
+
+def next_terms(terms) -> np.ndarray:
+    """:func:`next_term` of many series at once: ``terms`` has one row per order, one column per
+    series (a sweep's points); returns one estimate per column.
+
+    Examples
+    --------
+    >>> next_terms(np.array([[1.0, 2.0], [0.1, 0.0], [0.01, 0.5]])).tolist()
+    [0.001, 0.0625]
+    """
+    terms = np.asarray(terms, dtype=float)
+    if terms.ndim != 2 or terms.shape[0] < 2:
+        return np.zeros(terms.shape[-1] if terms.ndim else 1)
+    count, columns = terms.shape
+    index = np.arange(columns)
+    nonzero = terms != 0
+    first = np.argmax(nonzero, axis=0)
+    last = count - 1 - np.argmax(nonzero[::-1], axis=0)
+    before = nonzero.copy()
+    before[last, index] = False
+    second = count - 1 - np.argmax(before[::-1], axis=0)
+    usable = before.any(axis=0)
+    with np.errstate(all="ignore"):
+        estimate = terms[last, index] ** 2 / terms[second, index] / terms[first, index]
+    return np.where(usable, estimate, 0.0)
 
 
 def _numbers(exprs, subs) -> list[float]:

@@ -327,35 +327,36 @@ def _shoot(problem, parameter, response, names, order, count) -> tuple[TrueRespo
     from perturb.validation.forced import forced_orbit_check
 
     out = []
+    shots = []
     for branch_name in sorted(set(names)):
         indices = [i for i, n in enumerate(names) if n == branch_name]
         spread = np.linspace(0, len(indices) - 1, min(count, len(indices)))
-        picks = sorted({indices[round(j)] for j in spread})
-        for i in picks:
-            point = response.points[i]
-            variant = problem.with_parameters(**{parameter: point.value})
-            solution = variant.solve(order, family=branch_name)
-            model = as_model(variant)
-            period = float(model.period(solution))
-            y0 = np.array(
-                [float(v[0]) for v in state_along(solution, [0.0], variant.parameter_value(),
-                                                  variant.symbol_values()).values()]
-            )  # fmt: skip
-            equations = model.original_equations(y0)
-            check = forced_orbit_check(model, solution, equations, y0, period, None, 1e-12, False)
-            largest = max((abs(z) for z in check.floquet), default=math.nan)
-            amplitude = point.norm()
-            out.append(
-                TrueResponse(
-                    value=point.value,
-                    branch=branch_name,
-                    success=check.success,
-                    amplitude=amplitude,
-                    amplitude_error=check.orbit_error,
-                    floquet_max=largest,
-                    stable_true=(largest < 1) if check.success else None,
-                    stable_analytic=point.stable,
-                    message=check.message,
-                )
+        shots += [(branch_name, i) for i in sorted({indices[round(j)] for j in spread})]
+    for branch_name, i in track(shots, label=f"response {problem.name}: true orbits"):
+        point = response.points[i]
+        variant = problem.with_parameters(**{parameter: point.value})
+        solution = variant.solve(order, family=branch_name)
+        model = as_model(variant)
+        period = float(model.period(solution))
+        y0 = np.array(
+            [float(v[0]) for v in state_along(solution, [0.0], variant.parameter_value(),
+                                              variant.symbol_values()).values()]
+        )  # fmt: skip
+        equations = model.original_equations(y0)
+        check = forced_orbit_check(model, solution, equations, y0, period, None, 1e-12, False)
+        largest = max((abs(z) for z in check.floquet), default=math.nan)
+        amplitude = point.norm()
+        out.append(
+            TrueResponse(
+                value=point.value,
+                branch=branch_name,
+                success=check.success,
+                amplitude=amplitude,
+                amplitude_error=check.orbit_error,
+                floquet_max=largest,
+                stable_true=(largest < 1) if check.success else None,
+                stable_analytic=point.stable,
+                message=check.message,
             )
+        )
     return tuple(out)
