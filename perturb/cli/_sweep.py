@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import sys
 from collections import Counter
+from pathlib import Path
 
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError
 from perturb.cli._values import _parse_order, _parse_positive, _parse_sets, _parse_times
@@ -148,7 +149,11 @@ def _cmd_sweep(args) -> int:
     except SweepError as exc:
         raise _RunFailed(str(exc)) from None
     except KeyboardInterrupt:
-        where = f"; continue with the same command and --resume (store {store})" if store else ""
+        where = ""
+        if store and Path(store).is_dir():
+            where = f"; continue with the same command and --resume (store {store})"
+        elif store:
+            where = f"; nothing was written to {store}: run the command again"
         print(
             f"\nperturb: interrupted: the points finished so far are written{where}",
             file=sys.stderr,

@@ -101,7 +101,7 @@ class SweepStore:
         ------
         perturb.errors.InvalidParameterError
             ``path`` holds something else than this sweep (another sweep, other data, a file),
-            or a sweep without ``resume``; its folder does not exist.
+            or a sweep without ``resume``, or nothing with ``resume``; its folder does not exist.
         """
         path = Path(path)
         if path.exists() or path.is_symlink():
@@ -133,6 +133,12 @@ class SweepStore:
         parent = path.parent if str(path.parent) else Path(".")
         if not parent.is_dir():
             raise _refuse(path, "its folder does not exist", "create the folder first")
+        if resume:  # a path mistyped must not start a sweep afresh unasked
+            raise _refuse(
+                path,
+                "holds no sweep to continue (--resume)",
+                "check the path, or drop --resume (resume=False) to start the sweep",
+            )
         return False
 
     @classmethod
