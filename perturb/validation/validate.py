@@ -23,9 +23,9 @@ from perturb._defaults import (
     STIFFNESS_SAMPLES,
 )
 from perturb.domain import DomainCheck, series_domain
-from perturb.progress import track
 from perturb.errors import PerturbError, bad_value
 from perturb.oracle import Integrator, Trajectory
+from perturb.progress import track
 from perturb.validation.checks import (
     analytic_states,
     component_errors,
