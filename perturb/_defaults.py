@@ -413,3 +413,128 @@ INVALID_MAX_STEPS = ESTIMATE_FAILED_MAX_STEPS
 #: A velocity component counts as zero at the start (candidate Poincaré section) below this fraction
 #: of the state scale.
 SECTION_ZERO = 1e-8
+
+#: A root of a parameter map's inverse (a fold's σ mapped back to Ω, the user values at another ε)
+#: counts as real when its imaginary part is below this, relative to its size: sympy evaluates the
+#: closed-form root in floating point, which can leave a round-off imaginary part of ~1e-16.
+REAL_ROOT_TOL = 1e-12
+
+#: Singular values below this fraction of the largest count as zero in the rank of the shooting's
+#: Newton matrix (its columns are O(1) near the identity; 1e-9 keeps directions resolved to
+#: ~1e-7 of the state, well above what an integration at 1e-12 can blur).
+SHOOTING_RANK_RTOL = 1e-9
+
+#: Relative size (to the largest) below which a slow-flow eigenvalue's real part counts as zero.
+SLOW_FLOW_ZERO = 1e-9
+
+#: Amplitudes at which the backbone is drawn (the backbone is drawn through the region the
+#: response occupies: from 0 to BACKBONE_REACH times the largest response amplitude).
+BACKBONE_SAMPLES = 41
+#: The backbone is drawn up to this multiple of the largest response amplitude.
+BACKBONE_REACH = 1.05
+# --------------------------------------------------------------------------------------------------
+# Pseudo-arclength continuation (perturb.continuation)
+# --------------------------------------------------------------------------------------------------
+#: The corrector (Newton on {G = 0, t.(x - x_pred) = 0}) has converged when its step is below this
+#: fraction of max(1, |x|): Newton's error after such a step is of its square, ~1e-20, at the
+#: rounding of float64.
+CORRECTOR_TOL = 1e-10
+#: Newton iterations the corrector may take: from a predictor inside its basin it needs 2-4; one
+#: that needs more is on a step too long (it is rejected and the step halved).
+CORRECTOR_MAX_ITER = 8
+#: Iterations of a comfortable step: fewer and the step grows, more and it shrinks.
+CORRECTOR_NOMINAL_ITER = 3
+#: Growth of the step after a corrector that needed at most 2 iterations, and after a nominal one;
+#: shrink after a slower one. Halving on a rejected step.
+STEP_GROWTH_FAST = 1.6
+STEP_GROWTH_NOMINAL = 1.2
+STEP_SHRINK = 0.7
+#: Largest angle (radians) between the tangents at two consecutive points: a longer step across
+#: a bend risks landing on a neighbouring branch or stepping over two sign changes of a test
+#: function (which cancel); 0.3 rad (17 degrees) keeps a bend's chord within 1 % of its arc.
+MAX_TURN = 0.3
+#: The default initial and largest step as fractions of the parameter range's width: at least 50
+#: steps across the range, so values read off the curve start inside Newton's basin.
+INITIAL_STEP_FRACTION = 0.005
+MAX_STEP_FRACTION = 0.02
+#: The floor of the step, a fraction of the initial step: below it the corrector fails where no
+#: step would succeed (a singular point not passed, a curve that ends): a failed status says where.
+MIN_STEP_FRACTION = 1e-9
+#: Most points of one continuation: 50 steps per range and the growth above leave 10^4 as room for
+#: a curve that winds many times through the range; past it the budget is spent and says so.
+CONTINUATION_MAX_POINTS = 10_000
+#: A sign change of a test function is located on its segment to this fraction of the segment's
+#: arclength (the secant's bracket), with at most EVENT_MAX_ITER corrections: Illinois' secant
+#: gains about 1.4 digits an iteration, bisection one bit, so 80 covers the worst case.
+EVENT_TOL = 1e-13
+EVENT_MAX_ITER = 80
+#: A curve that comes back within this fraction of a step of its first point, running the same
+#: way, is closed (a loop): its continuation stops there.
+CLOSURE_FRACTION = 0.5
+#: Newton iterations of a value read off the curve at a given parameter (from the cubic Hermite
+#: interpolant of its segment): more and the reading falls back to the secant along the segment.
+READ_MAX_ITER = 6
+
+# --------------------------------------------------------------------------------------------------
+# The order-N response (perturb.response): continuation, stability, measures
+# --------------------------------------------------------------------------------------------------
+#: Magnus steps over one period of the variational equation along the order-N series (sixth
+#: order, three Gauss nodes a step): its error falls like S^-6 (a factor 64 a doubling, measured)
+#: and at S = 128 the multipliers agree with DOP853 on the same equation (rtol 1e-12) to 4e-10 at
+#: the forced Duffing's largest amplitude (|x| = 3.5 at Omega = 1.2, eps = 0.05; 2e-8 at S = 64),
+#: far below the series' own O(eps^(N+1)) (tests/response/test_floquet.py); the product of the
+#: multipliers is exp of the divergence's quadrature exactly, whatever S.
+MAGNUS_STEPS = 128
+#: The same along the drawn curves (every continuation point), where the multipliers only colour
+#: the curve and bracket the Neimark-Sacker test's sign changes (each then located with
+#: MAGNUS_STEPS): at 32 steps their error is ~2e-6 at the largest amplitude, and Liouville's
+#: product is exact all the same.
+MAGNUS_DRAW_STEPS = 32
+#: A largest multiplier within this distance of the unit circle is marginal (stable = None): a
+#: fold of the curve, or an undamped system whose multipliers lie on the circle (Liouville makes
+#: their product exactly 1 there: a pair on the circle is at 1 to rounding, 1e-15).
+MARGINAL_MULTIPLIER = 1e-9
+#: A response curve is followed while its amplitudes stay below this many times the largest one
+#: of the first-order census at the window's ends (and 1): beyond it ε a² is no longer small in
+#: any problem the series is meant for, and the curve leaves the domain with that said.
+AMPLITUDE_CAP = 10.0
+#: The first-order points of a curve tried for the lift to order N (the homotopy in the
+#: truncation), best-conditioned first: one suffices unless the homotopy turns back from it.
+LIFT_TRIES = 6
+#: The window of a response beyond its grid on each side, as a fraction of the grid's width: the
+#: folds, branch points and Neimark-Sacker points just outside the sweep are found and reported
+#: (marked outside), and a branch that turns just beyond an end is followed back into it.
+WINDOW_MARGIN = 0.1
+
+# --------------------------------------------------------------------------------------------------
+# The true curve past the series (perturb.oracle.driven_family, perturb.response.true_curve)
+# --------------------------------------------------------------------------------------------------
+#: heyoka compiles a driven family's augmented field (state, parameters, monodromy, sensitivity:
+#: 19 equations for one oscillator with 5 parameters) in compact mode: measured on the forced
+#: Duffing, 1.1 s to compile and 0.7 ms a shot against 2.8 s and 0.37 ms unrolled; a true curve
+#: takes a few hundred to a few thousand shots, so compact mode is the faster at every size met.
+FAMILY_COMPACT_MODE = True
+#: The most points of one true curve by default (``perturb response --true``; half each way from its
+#: seed), and the most a user may ask for: a curve across a sweep takes 150-650 points on the
+#: shipped problems (steps of 0.5-2 % of the range's width in scaled units, shorter at bends and
+#: folds; benchmarks/bench_true_curve.md), each a Newton correction of 3-5 shots of ~1 ms of CPU;
+#: 10^4 points is a few minutes of the oracle, the budget's ceiling.
+TRUE_CURVE_POINTS = 1000
+TRUE_CURVE_MAX_POINTS = 10_000
+#: The true curves are followed this fraction of the sweep's width past each end, so that a
+#: special point just outside the sweep is reported (as outside).
+TRUE_CURVE_MARGIN = 0.05
+#: Samples of a true orbit per response period for its peak |x| (refined by a parabola through the
+#: largest three: relative error ~(pi/n)^4 m^4, 1e-7 for the resonant harmonic m = 1) and its
+#: resonant harmonic's amplitude (the trapezoid rule on a periodic orbit: spectrally accurate).
+TRUE_CURVE_SAMPLES = 128
+#: A largest |Floquet multiplier| within this of 1 is marginal (None: a conservative orbit, whose
+#: multipliers lie on the circle to the integration's accuracy, ~1e-13); a Neimark-Sacker test
+#: below it is round-off (a conservative map's pairs all have product 1), and the square root of
+#: it is how close to the circle a located pair must lie (an eigenvalue of a double root moves
+#: like the square root of the perturbation).
+TRUE_CURVE_MULTIPLIER_TOL = 1e-9
+#: Two scaled points (state / its scale, parameter / the sweep's width) closer than this are one
+#: orbit: a seed on a curve already followed. The corrector converges to 1e-10; distinct branches
+#: lie orders of magnitude further apart.
+TRUE_CURVE_SAME_ORBIT = 1e-6

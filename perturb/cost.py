@@ -75,9 +75,10 @@ def _growth(order: int) -> float:
     return RESPONSE_ORDER_GROWTH ** (max(int(order), 1) - 1)
 
 
-def response_cost(values: int, order: int, shots: int) -> Cost:
+def response_cost(values: int, order: int, shots: int, true: int = 0) -> Cost:
     """A frequency response over ``values`` values at ``order``, ``shots`` points of each
-    branch shot against the true motion (:func:`perturb.response.model.problem_response`)."""
+    branch shot against the true motion, true curves of at most ``true`` points
+    (:func:`perturb.response.model.problem_response`)."""
     growth = _growth(order)
     seconds = RESPONSE_DERIVE_SECONDS * growth + values * RESPONSE_SECONDS_PER_VALUE * growth
     seconds += shots * RESPONSE_TYPICAL_BRANCHES * SHOT_SECONDS

@@ -10,6 +10,7 @@ from __future__ import annotations
 __all__ = [
     "AccuracyWarning",
     "CacheWarning",
+    "ContinuationError",
     "IntegrationError",
     "InvalidParameterError",
     "InvalidSystemError",
@@ -206,3 +207,8 @@ class OutputError(PerturbError, ValueError):
     """An output path perturb must not or cannot write: a file or a report folder's file that
     perturb did not write (never overwritten without ``--force``, a folder's never), an empty
     path, a folder that does not exist or cannot be written, an unknown plot format."""
+
+
+class ContinuationError(PerturbError, RuntimeError):
+    """A continuation that could not follow its curve to the end, raised on request
+    (:meth:`perturb.continuation.Curve.raise_for_status`): the message says where and why."""

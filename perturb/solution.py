@@ -13,9 +13,10 @@ from attrs import field, frozen
 
 from perturb._checks import as_mapping, as_real_array
 from perturb._defaults import NEAR_RESONANCE
+from perturb._install import install_hint
 from perturb._lambdify import numpy_lambdify
 from perturb.errors import AccuracyWarning, InvalidParameterError, PerturbError, bad_value
-from perturb.method.steps import GeneratingSolution, OrderStep, S
+from perturb.steps import GeneratingSolution, OrderStep, S
 from perturb.system import EPS, QuasilinearSystem, Regime
 
 __all__ = ["PeriodicSolution", "SolutionFailed", "Status"]
@@ -56,8 +57,7 @@ class Status(enum.Enum):
         "the polynomial solver ran out of its time budget before it could decide whether the "
         "amplitude equations have a root (not a proof that none exists): raise `solve_seconds` "
         "(PoincareMethod(solve_seconds=...), or `solve_seconds` in a problem's method_options) "
-        "or install the extra "
-        "roots (pip install 'perturb[roots]')"
+        f"or install the extra roots ({install_hint('roots')})"
     )
 
     @property

@@ -24,6 +24,7 @@ from perturb._lambdify import numpy_lambdify
 from perturb.analytic import maclaurin_coefficients, polynomial_coefficients
 from perturb.errors import InvalidSystemError, bad_value
 from perturb.excitation import Excitation
+from perturb.frame import DrivenFrame, Frame, FreeFrame
 
 __all__ = ["QuasilinearSystem", "Regime"]
 
@@ -230,11 +231,7 @@ class QuasilinearSystem:
             (self.parameter.name, "parameter"),
             *((s.name, "parameters") for s in self.parameters),
             *((s.name, "initial_values") for s in self.initial_values),
-            *(
-                [(self.excitation.phase.name, "excitation.phase")]
-                if self.excitation is not None
-                else []
-            ),
+            *((s.name, role) for s, role in self.frame.extra_symbols()),
         ]
         names = [name for name, _ in roles]
         duplicates = sorted({n_ for n_ in names if names.count(n_) > 1})
@@ -281,39 +278,18 @@ class QuasilinearSystem:
                 )
 
     def _check_excitation(self):
-        drive = self.excitation
-        if drive is None:
-            return
-        names = [c.name for c in self.coordinates]
-        if drive.reference is not None and drive.reference not in names:
-            raise bad_value(
-                "excitation.reference", drive.reference, f"name a coordinate, one of {names}",
-                InvalidSystemError,
-            )  # fmt: skip
-        stray = drive.detuning.free_symbols - set(self.parameters)
-        if stray:
-            raise bad_value(
-                "excitation.detuning", drive.detuning,
-                f"it depends on {sorted(map(str, stray))}: declare them in `parameters`",
-                InvalidSystemError,
-            )  # fmt: skip
-        taken = {drive.cos_symbol.name, drive.sin_symbol.name}
-        clash = sorted(taken & {s.name for s in self._all_symbols()})
-        if clash:
-            raise bad_value(
-                "excitation.phase", drive.phase,
-                f"{clash} stand for its cosine and sine inside the engine: rename that symbol",
-                InvalidSystemError,
-            )  # fmt: skip
-        for i, f in enumerate(self.rhs):
-            drive.polynomial_form(f, f"rhs[{i}]")  # refuses a forcing not periodic in t
+        self.frame.check(self)
+
+    @cached_property
+    def frame(self) -> Frame:
+        """:class:`~perturb.frame.FreeFrame`, or :class:`~perturb.frame.DrivenFrame` with an
+        excitation: what free vs driven decides (the one place that tests ``excitation``)."""
+        return FreeFrame() if self.excitation is None else DrivenFrame(self.excitation)
 
     @property
     def reference_index(self) -> int:
         """The coordinate whose frequency the excitation's ratio refers to (driven systems)."""
-        if self.excitation is None or self.excitation.reference is None:
-            return 0
-        return [c.name for c in self.coordinates].index(self.excitation.reference)
+        return self.frame.reference_index(self)
 
     def _check_real(self):
         """A right-hand side holding the imaginary unit must still be real for real arguments."""
@@ -333,8 +309,7 @@ class QuasilinearSystem:
     def _check_symbols(self):
         allowed = set(self.state_symbols) | set(self.parameters) | set(self.initial_values)
         allowed.add(self.parameter)
-        if self.excitation is not None:
-            allowed.add(self.excitation.phase)
+        allowed.update(s for s, _ in self.frame.extra_symbols())
         for i, f in enumerate(self.rhs):
             stray = f.free_symbols - allowed
             if stray:
@@ -377,9 +352,7 @@ class QuasilinearSystem:
         """The right-hand sides written in the engine's small parameter ε (ε = 1/μ when LARGE);
         a driven system's excitation as a polynomial in cos θ and sin θ
         (:meth:`Excitation.polynomial_form`)."""
-        rhs = self.rhs
-        if self.excitation is not None:
-            rhs = tuple(self.excitation.polynomial_form(f) for f in rhs)
+        rhs = tuple(self.frame.polynomial_rhs(f) for f in self.rhs)
         if self.regime is Regime.LARGE:
             return tuple(sp.expand(f.subs(self.parameter, 1 / EPS)) for f in rhs)
         return tuple(f.subs(self.parameter, EPS) for f in rhs)
@@ -486,16 +459,13 @@ class QuasilinearSystem:
             self._symbol(k): real_number(f"values[{k!r}]", v, InvalidSystemError)
             for k, v in values.items()
         }
-        drive = self.excitation
-        if drive is not None:
-            drive = attrs.evolve(drive, detuning=drive.detuning.subs(subs))
         return attrs.evolve(
             self,
             frequencies=tuple(w.subs(subs) for w in self.frequencies),
             rhs=tuple(f.subs(subs) for f in self.rhs),
             parameters=tuple(p for p in self.parameters if p not in subs),
             first_integrals=tuple(h.subs(subs) for h in self.first_integrals),
-            excitation=drive,
+            excitation=self.frame.excitation_with(subs),
         )
 
     def _symbol(self, key) -> sp.Symbol:

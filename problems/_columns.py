@@ -1,10 +1,10 @@
 """A problem's sweep points as columns: the body of :meth:`problems.Problem.parameter_columns`.
 
-A sweep makes 10⁵ points a second only if it does not make 10⁵ problems. For a problem whose
-numbers come from :class:`~problems.Problem`'s own methods (ε the parameter ``eps``, the symbols'
-values its parameters of the same names) and whose method options do not read the parameters
-that change from point to point, every point's numbers are columns of the grid and every valid
-point's solution is the same: :func:`problem_columns` gives them, validated exactly as
+A sweep makes 10⁵ points a second only if it does not make 10⁵ problems. A problem's numbers
+are its declared :class:`~perturb.case.ParameterMap` (ε and the symbols' values as expressions
+in its parameters), so every point's numbers are columns of the grid
+(:meth:`perturb.case.Case.columns`); when its method options do not read the parameters that
+change from point to point, every valid point's solution is the same too: :func:`problem_columns` gives them, validated exactly as
 :meth:`~problems.Problem.create` validates each point (the same checks, in the same order, the
 same messages). Any other problem gets None, and the sweep makes its points one by one.
 """
@@ -32,6 +32,7 @@ OWN_METHODS = (
     "epsilon",
     "symbol_values",
     "parameter_value",
+    "case",
     "solve",
     "family_options",
     "__attrs_post_init__",
@@ -115,11 +116,9 @@ def _message(exc: BaseException) -> str:
     return str(exc) or type(exc).__name__
 
 
-def _validated(problem, columns: dict[str, np.ndarray], size: int):
+def _validated(problem, columns: dict[str, np.ndarray], size: int, base: type):
     """Per point, the error :meth:`Problem.create` raises there and the warnings it gives
     (None: some check raised what ``create`` would not report as bad values)."""
-    from problems.base import Problem
-
     cls = type(problem)
     errors = [""] * size
     notes = [""] * size
@@ -140,7 +139,7 @@ def _validated(problem, columns: dict[str, np.ndarray], size: int):
         for i, k in enumerate(inverse.tolist()):
             if found[k] and not errors[i]:
                 errors[i] = found[k]
-    whole_set = getattr_static(cls, "check_values") is not getattr_static(Problem, "check_values")
+    whole_set = getattr_static(cls, "check_values") is not getattr_static(base, "check_values")
     if whole_set:  # whole-set checks: point by point
         names = [s.name for s in cls.parameter_specs]
         rows = {n: columns[n].tolist() for n in names if n in columns}
@@ -162,15 +161,22 @@ def _validated(problem, columns: dict[str, np.ndarray], size: int):
     return errors, notes
 
 
-def problem_columns(problem, columns: Mapping[str, np.ndarray]) -> ParameterColumns | None:
-    """:meth:`problems.Problem.parameter_columns` (see the module docstring)."""
-    from problems.base import Problem
-
+def problem_columns(
+    problem, columns: Mapping[str, np.ndarray], base: type
+) -> ParameterColumns | None:
+    """:meth:`problems.Problem.parameter_columns` (see the module docstring); ``base`` is
+    :class:`~problems.Problem` itself, whose methods a class may override."""
     cls = type(problem)
-    if any(getattr_static(cls, name) is not getattr_static(Problem, name) for name in OWN_METHODS):
+    if any(getattr_static(cls, name) is not getattr_static(base, name) for name in OWN_METHODS):
         return None
     system = problem.system()
-    if system.excitation is not None or "eps" not in problem.values:
+    if not system.frame.one_solution_for_all_points:  # a driven point has its own steady state
+        return None
+    try:
+        case = problem.case()
+    except PerturbError:  # a map that does not cover the system: the points say it one by one
+        return None
+    if case.map.epsilon is None:
         return None
     known = {s.name for s in cls.parameter_specs}
     columns = {name: np.asarray(c, dtype=float).ravel() for name, c in columns.items()}
@@ -181,7 +187,7 @@ def problem_columns(problem, columns: Mapping[str, np.ndarray]) -> ParameterColu
     read = _options_read(problem)
     if read is None or read & _varying(columns):
         return None
-    validated = _validated(problem, columns, size)
+    validated = _validated(problem, columns, size, base)
     if validated is None:
         return None
     errors, notes = validated
@@ -191,11 +197,12 @@ def problem_columns(problem, columns: Mapping[str, np.ndarray]) -> ParameterColu
         value = columns[name] if name in columns else np.full(size, float(problem.values[name]))
         return np.where(valid, value, np.nan)
 
-    eps = column("eps")
+    computed = case.columns({name: column(name) for name in columns})
+    eps = np.where(valid, computed.epsilon, np.nan)
     parameter_value = reciprocal(eps, valid) if system.regime is Regime.LARGE else eps
     if parameter_value is None:
         return None
-    symbols = {p.name: column(p.name) for p in system.parameters if p.name in problem.values}
+    symbols = {name: np.where(valid, c, np.nan) for name, c in computed.symbols.items()}
     model = None
     if valid.any():
         first = int(np.flatnonzero(valid)[0])

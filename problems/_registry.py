@@ -25,7 +25,7 @@ import importlib
 import importlib.metadata
 import re
 import sys
-from collections.abc import Iterator, MutableMapping
+from collections.abc import Iterator, Mapping, MutableMapping
 from pathlib import Path
 
 from perturb.errors import ProblemLoadError, UnknownNameError
@@ -98,8 +98,9 @@ def check_problem_class(cls: type, label: str | None = None) -> None:
             raise ProblemLoadError(
                 f"`{label}.parameter_specs` = {specs!r} is invalid: give a tuple of ParameterSpec"
             )
-        if cls.epsilon is Problem.epsilon and "eps" not in {s.name for s in specs}:
-            missing.append("epsilon (or a parameter named eps)")
+        declared = isinstance(cls.parameter_map, Mapping) and "epsilon" in cls.parameter_map
+        if cls.epsilon is Problem.epsilon and not declared and "eps" not in {s.name for s in specs}:
+            missing.append("epsilon (or a parameter named eps, or 'epsilon' in parameter_map)")
     if missing:
         raise ProblemLoadError(
             f"`{label}` is incomplete: it does not define {', '.join(missing)}: add them "

@@ -58,7 +58,7 @@ class AutoparametricAbsorber(DrivenProblem):
         ParameterSpec("F", 1.0, "scaled forcing amplitude of the y mode", positive),
         ParameterSpec("Omega", 2.0, "excitation frequency", positive_frequency),
     )  # fmt: skip
-    resonance_frequency = 2.0
+    parameter_map = {"sigma": "(Omega - 2)/eps"}  # Omega = 2 + eps*sigma
 
     @classmethod
     def build_system(cls) -> QuasilinearSystem:

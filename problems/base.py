@@ -9,8 +9,11 @@ A problem turns user-facing parameter values (validated, with defaults) into
 Subclass contract (as scipy's ``OdeSolver`` states its own):
 
 1. set the class attributes ``name`` (the registry key), ``summary`` and ``parameter_specs``;
-2. implement :meth:`Problem.build_system` (symbolic, no numbers) and :meth:`Problem.epsilon`;
-3. optionally override :meth:`Problem.method_options`, :meth:`Problem.symbol_values`,
+2. implement :meth:`Problem.build_system` (symbolic, no numbers);
+3. declare :attr:`Problem.parameter_map` where the system's symbols or ε are not the parameters of
+   the same names (``{"sigma": "(Omega - 1)/eps"}``, ``{"epsilon": "sqrt(M*g*l/C)/r0"}``: a
+   :class:`perturb.case.ParameterMap`, checked once); ε is the parameter ``eps`` by default;
+3a. optionally override :meth:`Problem.method_options`,
    :meth:`Problem.state` (to map the quasilinear state back to physical variables) and
    :meth:`Problem.original_rhs` (the unreduced equations for validation);
 4. optionally override the validation hooks of :class:`perturb.validation.Model` (typed:
@@ -40,15 +43,14 @@ from attrs import field, frozen
 from perturb import (
     FamilyList,
     PeriodicSolution,
-    PerturbError,
     PoincareMethod,
     QuasilinearSystem,
     Status,
 )
-from perturb.errors import InvalidParameterError, UnknownNameError
+from perturb.case import Case, ParameterMap
+from perturb.errors import InvalidParameterError, InvalidSystemError, UnknownNameError
 from perturb.oracle import SymbolicRHS
 from perturb.validation import (
-    KNOB_PROBE,
     Condition,
     Equations,
     Integrals,
@@ -65,6 +67,7 @@ __all__ = ["ParameterSpec", "Problem"]
 _SYSTEM_CACHE: dict[tuple, QuasilinearSystem] = {}
 _SOLUTION_CACHE: dict[tuple, PeriodicSolution] = {}
 _FAMILY_CACHE: dict[tuple, FamilyList] = {}
+_MAP_CACHE: dict[tuple, ParameterMap] = {}
 
 
 _OPTION_KEYS: dict = {}
@@ -211,11 +214,24 @@ class Problem(Model, ABC):
     name: ClassVar[str]
     summary: ClassVar[str]
     parameter_specs: ClassVar[tuple[ParameterSpec, ...]]
+    #: How the parameters become the system's symbols and ε: ``{symbol name: expression in the
+    #: parameters}`` and, under ``"epsilon"``, ε's (strings or sympy expressions). A symbol not
+    #: declared is the parameter of the same name; ε is the parameter ``eps`` unless declared.
+    parameter_map: ClassVar[Mapping[str, object]] = {}
+    #: Whether :meth:`solve` can derive the solution symbolic in the parameters when it would
+    #: otherwise put them in first (the rigid bodies above order 1): a sweep then derives once.
+    offers_symbolic_derivation: ClassVar[bool] = False
 
     values: dict = field(converter=dict)
     #: The family of periodic solutions :meth:`solve` follows, by its name in :meth:`families`
     #: (None: the one :meth:`method_options` selects). Set it with :meth:`with_family`.
     family: str | None = field(default=None, kw_only=True)
+    #: Whether :meth:`solve` derives the solution symbolic in the parameters (one derivation for
+    #: every parameter set) instead of for these values; None: the problem's default. Offered by
+    #: problems that set :attr:`offers_symbolic_derivation`.
+    symbolic: bool | None = field(default=None, kw_only=True)
+    #: This point's :class:`~perturb.case.Case`, made on first use (the map is evaluated once).
+    _case: Case | None = field(default=None, init=False, eq=False, repr=False)
 
     def __attrs_post_init__(self):
         self.check_values(self.values)
@@ -244,20 +260,16 @@ class Problem(Model, ABC):
         """The symbolic quasilinear system (no numbers: derived once per class)."""
 
     def epsilon(self) -> float:
-        """The value of the expansion parameter ε for these parameters (default: parameter ``eps``)."""
-        if "eps" not in self.values:
-            raise NotImplementedError(f"{type(self).__name__} must define epsilon()")
-        return self.values["eps"]
+        """The value of the expansion parameter ε for these parameters (from the map)."""
+        return self.case().epsilon
 
     def method_options(self) -> dict:
         """Options of :class:`perturb.PoincareMethod` (amplitudes, phase coordinate, branch)."""
         return {}
 
     def symbol_values(self) -> dict[str, float]:
-        """Numeric values of the system's free symbols, by name."""
-        return {
-            p.name: self.values[p.name] for p in self.system().parameters if p.name in self.values
-        }
+        """Numeric values of the system's free symbols, by name (from the map)."""
+        return self.case().symbol_values
 
     def parameter_value(self) -> float:
         """The value passed to the solution for its own parameter (ε, or μ if LARGE)."""
@@ -265,6 +277,35 @@ class Problem(Model, ABC):
 
         eps = self.epsilon()
         return 1.0 / eps if self.system().regime is Regime.LARGE else eps
+
+    # ------------------------------------------------------------------ the seam
+    @classmethod
+    def map(cls) -> ParameterMap:
+        """The declared :attr:`parameter_map`, checked against the system once per class.
+
+        Raises
+        ------
+        perturb.errors.InvalidSystemError
+            A system symbol the map does not cover, or an expression in names that are not
+            parameters (one line naming it and the fix).
+        """
+        key = (cls.__module__, cls.__qualname__)
+        if key not in _MAP_CACHE:
+            _MAP_CACHE[key] = ParameterMap.declare(
+                cls.system().parameters, [s.name for s in cls.parameter_specs], cls.parameter_map
+            )
+        return _MAP_CACHE[key]
+
+    def case(self) -> Case:
+        """These values as a :class:`perturb.case.Case`: the system, the map, the point, the
+        family; its other points are checked as :meth:`create` checks them."""
+        if self._case is None:
+            made = Case(self.system(), self.map(), self.values, self.family, check=self._checked)
+            object.__setattr__(self, "_case", made)
+        return self._case
+
+    def _checked(self, values: dict) -> dict:
+        return dict(type(self).create(**values).values)
 
     # ------------------------------------------------------------------ shared machinery
     @classmethod
@@ -277,6 +318,17 @@ class Problem(Model, ABC):
     def with_family(self, name: str | None) -> Problem:
         """This problem following the family ``name`` (see :meth:`families`); checked when solved."""
         return attrs.evolve(self, family=name)
+
+    def symbolic_derivation(self) -> Problem | None:
+        """This problem with its solution derived symbolic in its parameters (the Model hook a
+        sweep derives once with), or None when the class does not offer it."""
+        return attrs.evolve(self, symbolic=True) if self.offers_symbolic_derivation else None
+
+    def _carry(self, problem: Problem) -> Problem:
+        """``problem`` (made at other values) on this one's family and derivation."""
+        if self.family is None and self.symbolic is None:
+            return problem
+        return attrs.evolve(problem, family=self.family, symbolic=self.symbolic)
 
     def family_options(self, order: int) -> tuple[QuasilinearSystem, dict]:
         """The system and the options that define the frame of :meth:`families` at ``order``.
@@ -295,7 +347,7 @@ class Problem(Model, ABC):
         values (``trivial``, ``lower``, ``middle``, ``upper``, …), each with its stability."""
         from perturb import find_families
 
-        if self.system().excitation is not None:
+        if self.system().frame.frequency_given:
             return self._driven_families(order)
         system, options = self.family_options(order)
         key = (type(self).__qualname__, order, system, repr(sorted(options.items())))
@@ -335,7 +387,7 @@ class Problem(Model, ABC):
         amplitude; :meth:`families` lists them all).
         """
         name = family if family is not None else self.family
-        if self.system().excitation is not None:
+        if self.system().frame.frequency_given:
             return self._driven_solution(order, name)
         if name is not None:
             return self.family_solution(order, name)
@@ -357,8 +409,7 @@ class Problem(Model, ABC):
     def with_parameters(self, **values) -> Problem:
         """The same problem with some parameters changed (validated as by :meth:`create`), on the
         same family (the Model hook a sweep makes its points with)."""
-        problem = type(self).create(**{**self.values, **values})
-        return problem if self.family is None else problem.with_family(self.family)
+        return self._carry(type(self).create(**{**self.values, **values}))
 
     # ------------------------------------------------------------------ driven problems
     def steady_state(self, order: int = 1):
@@ -411,16 +462,11 @@ class Problem(Model, ABC):
         return super().original_equations(y0)
 
     def integrals_of_motion(self, y0: np.ndarray | None = None) -> Integrals | None:
-        """``first_integrals_function()`` (names from its ``names`` or ``first_integral_names()``),
-        else an ``integrals(y)`` method, else the system's own (for unreduced problems only)."""
+        """``first_integrals_function()`` (names from its ``names``, else ``I0, I1, ...``), else
+        the system's own (for unreduced problems only)."""
         function = self.first_integrals_function()
         if function is not None:
-            names = tuple(getattr(function, "names", ()))
-            if not names and callable(getattr(self, "first_integral_names", None)):
-                names = tuple(self.first_integral_names())
-            return Integrals(function, names)
-        if callable(getattr(self, "integrals", None)):
-            return Integrals(self.integrals, tuple(getattr(self, "integral_names", ())))
+            return Integrals(function, tuple(getattr(function, "names", ())))
         if self.original_symbolic() is None and type(self).original_rhs is Problem.original_rhs:
             return super().integrals_of_motion(y0)
         return None
@@ -449,26 +495,23 @@ class Problem(Model, ABC):
         )
 
     def with_epsilon(self, eps: float) -> Problem | None:
-        """The problem at expansion parameter ``eps``: through the ``eps`` parameter, else a
-        pure-ε knob (a parameter that changes ε as a power law and nothing the solution depends on,
-        e.g. the disk's ``r0``), else None."""
-        if "eps" in self.values:
-            problem = type(self).create(**{**self.values, "eps": eps})
-        else:
-            knob = self._epsilon_knob()
-            if knob is None:
-                return None
-            name, exponent = knob
-            factor = (eps / float(self.epsilon())) ** (1.0 / exponent)
-            problem = type(self).create(**{**self.values, name: self.values[name] * factor})
+        """The problem at expansion parameter ``eps`` with every system symbol kept, solved from
+        the map (:meth:`perturb.case.Case.with_epsilon`: the disk's ``r0``, a driven problem's
+        ``eps`` with ``Omega`` moved to keep σ), else None."""
+        try:
+            moved = self.case().with_epsilon(eps)
+        except InvalidSystemError:
+            moved = None
+        if moved is None:
+            return None
         # the same family: validate's slope scan re-creates the problem at other eps
-        return problem if self.family is None else problem.with_family(self.family)
+        return self._carry(type(self).create(**moved.values))
 
     def evaluates_solution_directly(self) -> bool:
         """True unless the class maps the solution to its own state or period (``state``,
         ``period`` overridden)."""
         own = type(self).state is Problem.state and type(self).period is Problem.period
-        return own and self.system().excitation is None  # a driven state adds the phase
+        return own and not self.system().frame.frequency_given  # a driven state adds the phase
 
     def parameter_columns(self, columns) -> ParameterColumns | None:
         """Many points at once (the Model hook of a sweep's fast route): offered when ε is the
@@ -476,30 +519,7 @@ class Problem(Model, ABC):
         method options do not read the parameters that change (:mod:`problems._columns`)."""
         from problems._columns import problem_columns
 
-        return problem_columns(self, columns)
-
-    def _epsilon_knob(self) -> tuple[str, float] | None:
-        """``(name, exponent)`` of a parameter with ε ∝ p^exponent that leaves ``symbol_values()``
-        unchanged (preferring |exponent| = 1), or None."""
-        eps = float(self.epsilon())
-        values = self.symbol_values()
-        best = None
-        for name, value in self.values.items():
-            if not (isinstance(value, float | int) and math.isfinite(value) and value != 0):
-                continue
-            try:
-                probe = type(self).create(**{**self.values, name: value * KNOB_PROBE})
-            except (PerturbError, ValueError):
-                continue
-            if probe.symbol_values() != values:
-                continue
-            ratio = float(probe.epsilon()) / eps
-            if not (ratio > 0 and math.isfinite(ratio)) or abs(ratio - 1) < 1e-12:
-                continue
-            exponent = math.log(ratio) / math.log(KNOB_PROBE)
-            if best is None or abs(abs(exponent) - 1) < abs(abs(best[1]) - 1):
-                best = (name, exponent)
-        return best
+        return problem_columns(self, columns, Problem)
 
     # ------------------------------------------------------------------ older duck-typed hooks
     def original_symbolic(self) -> tuple | None:

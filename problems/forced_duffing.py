@@ -31,7 +31,7 @@ class ForcedDuffing(DrivenProblem):
     >>> from problems import get_problem
     >>> duffing = get_problem("forced-duffing").create(Omega=1.05)
     >>> [(f.name, f.solution.message.split("; ")[1]) for f in duffing.families(1)]
-    [('lower', 'stable (slow flow)'), ('middle', 'unstable (slow flow)'), ('upper', 'stable (slow flow)')]
+    [('lower', 'stable (Floquet)'), ('middle', 'unstable (Floquet)'), ('upper', 'stable (Floquet)')]
     """
 
     name = "forced-duffing"
@@ -47,8 +47,7 @@ class ForcedDuffing(DrivenProblem):
         ParameterSpec("F", 1.0, "scaled forcing amplitude (the force is eps*F)", positive),
         ParameterSpec("Omega", 1.0, "excitation frequency", positive_frequency),
     )  # fmt: skip
-
-    unforced = {"F": 0.0, "zeta": 0.0}
+    parameter_map = {"sigma": "(Omega - 1)/eps"}  # Omega = 1 + eps*sigma
 
     def check_values(self, values) -> None:
         super().check_values(values)

@@ -45,8 +45,7 @@ class ParametricDuffing(DrivenProblem):
         ParameterSpec("gamma", 1.0, "scaled cubic stiffness"),
         ParameterSpec("Omega", 2.0, "excitation frequency", positive_frequency),
     )  # fmt: skip
-    resonance_frequency = 2.0
-    unforced = {"h": 0.0, "zeta": 0.0}
+    parameter_map = {"sigma": "(Omega - 2)/eps"}  # Omega = 2 + eps*sigma
 
     @classmethod
     def build_system(cls) -> QuasilinearSystem:

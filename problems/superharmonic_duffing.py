@@ -58,12 +58,12 @@ class SuperharmonicDuffing(DrivenProblem):
         ParameterSpec("F", 1.0, "forcing amplitude (not small: a hard excitation)", positive),
         ParameterSpec("Omega", 1.0 / 3.0, "excitation frequency", positive_frequency),
     )  # fmt: skip
-    resonance_frequency = 1.0 / 3.0
+    parameter_map = {"sigma": "(Omega - 1/3)/eps"}  # Omega = 1/3 + eps*sigma
 
     def check_values(self, values) -> None:
         super().check_values(values)
         # the forced part's amplitude F/(1 - Omega^2), as the system computes it from sigma
-        sigma = (values["Omega"] - self.resonance_frequency) / values["eps"]
+        sigma = (values["Omega"] - 1.0 / 3.0) / values["eps"]  # as parameter_map has it
         omega = 1.0 / 3.0 + values["eps"] * sigma
         if not math.isfinite(sigma) or 1.0 - omega * omega == 0.0:
             raise InvalidParameterError(

@@ -1,4 +1,5 @@
-"""Shared test configuration: hypothesis profiles (scipy's approach) and small helpers."""
+"""Shared test configuration: hypothesis profiles (scipy's approach), the test noise
+(PERTURB_TEST_NOISE) seeded per test, and small helpers."""
 
 import os
 import tempfile
@@ -40,3 +41,31 @@ def cache_folder(tmp_path, monkeypatch):
     monkeypatch.setenv("PERTURB_CACHE_DIR", str(tmp_path))
     monkeypatch.setattr(perturb.cache, "_WARNED", set())
     return tmp_path
+
+
+# PERTURB_TEST_NOISE=K (perturb/oracle/_noise.py): every integration and every shooting step moved
+# by up to K ulps, as another machine would. The noise is seeded per test from its node id, and
+# per fixture from its scope's node id and name (so a module fixture gets the same bits however
+# the tests are selected). One test is one machine: the processes it starts inherit its seed, and
+# the workers of a Dask cluster a fixture started (and their nannies, which restart them) take it.
+def _seed_noise(key: str, clients=()) -> None:
+    from perturb.oracle import _noise
+
+    if not _noise.ULPS:
+        return
+    _noise.seed(key)
+    for client in clients:
+        client.run(_noise.seed, key)
+        client.run(_noise.seed, key, nanny=True)
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_fixture_setup(fixturedef, request):
+    _seed_noise(f"{request.node.nodeid}::{fixturedef.argname}")
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtest_call(item):
+    funcargs = getattr(item, "funcargs", {}).values()
+    clients = [v for v in funcargs if type(v).__module__.startswith("distributed.client")]
+    _seed_noise(item.nodeid, clients)

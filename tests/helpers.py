@@ -9,6 +9,26 @@ from scipy.optimize import fsolve
 #: Tolerances of reference integrations: far below the smallest error the tests resolve (~1e-9).
 REF_RTOL, REF_ATOL = 1e-13, 1e-14
 
+#: The spacing of the doubles at 1 (2.2e-16).
+EPS64 = float(np.finfo(float).eps)
+#: What one float64 operation may be off by, in EPS64, on any IEEE machine: a basic operation is
+#: correctly rounded (1/2), an elementary function (a libm's, numpy's SIMD loops) within 4 ulps.
+ULPS_PER_OPERATION = 4
+
+
+def roundings(operations: int) -> float:
+    """Relative tolerance of a float64 number computed by two routes of ``operations`` each.
+
+    Where nothing cancels (the terms are of the result's size), each route is within
+    ``operations * ULPS_PER_OPERATION`` ulps of the exact value on any IEEE machine, so two routes,
+    or two machines, differ by at most twice that. A result that cancels takes it relative to the
+    terms' size. Never the bits: a tolerance below this is a test of this machine's rounding.
+
+    >>> roundings(8)  # 64 EPS64
+    1.4210854715202004e-14
+    """
+    return 2 * operations * ULPS_PER_OPERATION * EPS64
+
 
 def integrate(rhs, y0, t):
     """Reference trajectory at times ``t`` (DOP853 at REF_RTOL)."""

@@ -85,33 +85,74 @@ def test_the_scan_sees_imports_inside_functions(tmp_path):
     assert "problems.base" in names and "problems" in names and "perturb.report.text" in names
 
 
-@pytest.mark.parametrize(
-    "path", [p for p in _sources() if _module_name(p).startswith("perturb")], ids=_module_name
-)
-def test_perturb_never_imports_problems(path):
-    offending = [(line, name) for line, name in _imports(path) if _is_under(name, "problems")]
-    if _is_under(_module_name(path), "perturb.cli"):  # the CLI is a leaf: it may use problems
-        offending = []
-    assert not offending, f"{path.relative_to(ROOT)} imports problems at {offending}"
+# One test per rule, each listing every offender (a rule x file parametrization made ~590 tests).
+def _relative(path: Path) -> str:
+    try:
+        return str(path.relative_to(ROOT))
+    except ValueError:  # a planted file, outside the tree
+        return path.name
 
 
-@pytest.mark.parametrize("path", list(_sources()), ids=_module_name)
-def test_only_the_cli_imports_the_leaves(path):
-    module = _module_name(path)
-    if any(_is_under(module, leaf) for leaf in LEAF_IMPORTERS):
-        return
-    offending = [
-        (line, name)
-        for line, name in _imports(path)
-        if _is_under(name, "perturb.report") or _is_under(name, "perturb.cli")
+def _imports_of(paths, module=None):
+    """(path, line, imported name) for every import of every file."""
+    for path in paths:
+        for line, name in _imports(path, module):
+            yield path, line, name
+
+
+def problems_importers(paths, module=None) -> list[str]:
+    """Files of ``perturb`` (but the CLI, a leaf) that import ``problems``."""
+    return [
+        f"{_relative(path)}:{line} imports {name}"
+        for path, line, name in _imports_of(paths, module)
+        if _is_under(name, "problems")
+        and not _is_under(module or _module_name(path), "perturb.cli")
     ]
-    assert not offending, f"{path.relative_to(ROOT)} imports a leaf at {offending}"
 
 
-@pytest.mark.parametrize("path", list(_sources()), ids=_module_name)
-def test_no_file_holds_two_rooms(path):
-    n_lines = len(path.read_text(encoding="utf-8").splitlines())
-    assert n_lines <= MAX_LINES, f"{path.relative_to(ROOT)} has {n_lines} lines (limit {MAX_LINES})"
+def leaf_importers(paths, module=None) -> list[str]:
+    """Files other than the CLI that import the leaves ``perturb.report`` or ``perturb.cli``."""
+    return [
+        f"{_relative(path)}:{line} imports {name}"
+        for path, line, name in _imports_of(paths, module)
+        if not any(_is_under(module or _module_name(path), leaf) for leaf in LEAF_IMPORTERS)
+        and (_is_under(name, "perturb.report") or _is_under(name, "perturb.cli"))
+    ]
+
+
+def long_files(paths) -> list[str]:
+    """Files past MAX_LINES lines."""
+    lengths = ((path, len(path.read_text(encoding="utf-8").splitlines())) for path in paths)
+    return [f"{_relative(path)} has {n} lines" for path, n in lengths if n > MAX_LINES]
+
+
+def sweep_extra_importers(paths, module=None) -> list[str]:
+    """Files outside SWEEP_EXTRA_IMPORTERS that import Dask, xarray or Zarr."""
+    return [
+        f"{_relative(path)}:{line} imports {name}"
+        for path, line, name in _imports_of(paths, module)
+        if (module or _module_name(path)) not in SWEEP_EXTRA_IMPORTERS
+        and any(_is_under(name, extra) for extra in SWEEP_EXTRA)
+    ]
+
+
+def _perturb_sources():
+    return [p for p in _sources() if _module_name(p).startswith("perturb")]
+
+
+def test_perturb_never_imports_problems():
+    offenders = problems_importers(_perturb_sources())
+    assert not offenders, "perturb must not import problems:\n" + "\n".join(offenders)
+
+
+def test_only_the_cli_imports_the_leaves():
+    offenders = leaf_importers(_sources())
+    assert not offenders, "only the CLI may import the leaves:\n" + "\n".join(offenders)
+
+
+def test_no_file_holds_two_rooms():
+    offenders = long_files(_sources())
+    assert not offenders, f"files past {MAX_LINES} lines:\n" + "\n".join(offenders)
 
 
 #: The extra ``perturb[sweep]``: imported by the sweep room only (docs/architecture.md).
@@ -120,17 +161,32 @@ SWEEP_EXTRA = ("dask", "distributed", "xarray", "zarr", "cloudpickle")
 SWEEP_EXTRA_IMPORTERS = ("perturb.sweep.driver", "perturb.sweep.store", "perturb.sweep.memory")
 
 
-@pytest.mark.parametrize("path", list(_sources()), ids=_module_name)
-def test_only_the_sweep_room_imports_dask_xarray_zarr(path):
-    module = _module_name(path)
-    offending = [
-        (line, name)
-        for line, name in _imports(path)
-        if any(_is_under(name, extra) for extra in SWEEP_EXTRA)
+def test_only_the_sweep_room_imports_dask_xarray_zarr():
+    offenders = sweep_extra_importers(_sources())
+    assert not offenders, "only the sweep room imports its extra:\n" + "\n".join(offenders)
+
+
+def test_every_rule_lists_every_offender_it_is_shown(tmp_path):
+    """Each rule, given planted offenders, names each of them (a rule that finds nothing finds
+    nothing wrong either)."""
+    first, second = tmp_path / "first.py", tmp_path / "second.py"
+    first.write_text("import problems\nimport xarray\n" + "x = 1\n" * MAX_LINES)
+    second.write_text("def f():\n    from perturb.report import text\n    import dask.array\n")
+    planted = [first, second]
+    module = "perturb.oracle.sample"
+    assert problems_importers(planted, module) == ["first.py:1 imports problems"]
+    assert leaf_importers(planted, module) == [
+        "second.py:2 imports perturb.report",
+        "second.py:2 imports perturb.report.text",
     ]
-    if module in SWEEP_EXTRA_IMPORTERS:
-        offending = []
-    assert not offending, f"{path.relative_to(ROOT)} imports the sweep extra at {offending}"
+    assert long_files(planted) == [f"first.py has {MAX_LINES + 2} lines"]
+    assert sweep_extra_importers(planted, module) == [
+        "first.py:2 imports xarray",
+        "second.py:3 imports dask.array",
+    ]
+    # the exemptions: the CLI may use problems, the sweep driver its extra
+    assert problems_importers(planted, "perturb.cli.main") == []
+    assert sweep_extra_importers(planted, "perturb.sweep.driver") == []
 
 
 @pytest.mark.parametrize("argv", [["--help"], ["sweep", "--help"], ["list"]])

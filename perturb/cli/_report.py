@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import sys
 
+from perturb._install import install_hint
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _UsageError
 from perturb.errors import InvalidParameterError, ProblemLoadError, UnknownNameError
 
@@ -71,7 +72,7 @@ def _cmd_report(args) -> int:
             import matplotlib  # noqa: F401
         except ImportError:
             raise _UsageError(
-                f"{args.scene}: [outputs] plots need matplotlib: pip install 'perturb[plot]', or "
+                f"{args.scene}: [outputs] plots need matplotlib: {install_hint('plot')}, or "
                 "remove the plots"
             ) from None
     problem = _load(scene)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import sys
 
 from perturb.cli._errors import EXIT_OK, _RunFailed, _UsageError
@@ -20,53 +21,85 @@ def _parse_sweep(text: str):
         raise _UsageError(str(exc)) from None
 
 
-def args_set_names(args) -> set[str]:
-    """The parameter names given with ``--set``."""
-    return set(_parse_sets(args.sets))
+def _parse_true(points: str | None) -> int:
+    """``--true [POINTS]``: the most points of each true curve (0 without --true), or a usage
+    error (exit 2)."""
+    from perturb._defaults import TRUE_CURVE_MAX_POINTS, TRUE_CURVE_POINTS
+
+    if points is None:
+        return 0
+    if points == "default":
+        return TRUE_CURVE_POINTS
+    try:
+        count = int(points)
+    except ValueError:
+        raise _UsageError(
+            f"--true {points!r}: give the most points of each true curve, a whole number from 2 "
+            f"to {TRUE_CURVE_MAX_POINTS}"
+        ) from None
+    if not 2 <= count <= TRUE_CURVE_MAX_POINTS:
+        raise _UsageError(
+            f"--true {count}: the most points of each true curve must be from 2 to "
+            f"{TRUE_CURVE_MAX_POINTS} (the budget's maximum)"
+        )
+    return count
 
 
 def _check_domain(result) -> None:
     """Every steady state outside its series' domain: a failed run (``perturb solve``'s rule)."""
-    points, outside = result.response.points, result.outside
-    if points and all(outside):
+    points = result.response.points
+    if points and not any(p.series_ok for p in points):
         first = points[0]
         raise _RunFailed(
             f"the series is outside its domain at every steady state of the sweep (e.g. at "
-            f"{result.parameter} = {first.value:.6g}: {outside[0]}); sweep closer to the "
+            f"{result.parameter} = {first.value:.6g}: {first.note}); sweep closer to the "
             "resonance or at a smaller eps"
         )
 
 
 def _cmd_response(args) -> int:
     from perturb.report import response_as_csv, response_as_dict, response_as_table
-    from perturb.response.model import problem_response
+    from perturb.response.model import MAX_VALIDATE, problem_response
     from problems import load_problem
 
     cls = load_problem(args.problem)
-    problem = cls.create(**_parse_sets(args.sets))
+    overrides = _parse_sets(args.sets)
+    problem = cls.create(**overrides)
     order = _parse_order(args.order)
     parameter, grid = _parse_sweep(args.sweep)
+    if parameter in overrides:
+        raise _UsageError(
+            f"--sweep {args.sweep!r}: {parameter!r} is also set with --set; sweep it or set it, "
+            "not both"
+        )
     try:
         count = int(args.validate)
     except ValueError:
         raise _UsageError(f"--validate {args.validate!r}: give a whole number >= 0") from None
     if count < 0:
         raise _UsageError(f"--validate {count}: give a whole number >= 0")
-    if count > len(grid):
+    if count > MAX_VALIDATE:
         raise _UsageError(
-            f"--validate {count}: more points than the sweep has ({len(grid)} values); give at "
-            f"most {len(grid)}"
+            f"--validate {count}: at most {MAX_VALIDATE} points a branch (each is a shooting; the "
+            "largest amplitude, both sides of each fold and the ends are shot besides)"
         )
-    if parameter in args_set_names(args):
-        raise _UsageError(
-            f"--sweep {args.sweep!r}: {parameter!r} is also set with --set; sweep it or set it, "
-            "not both"
-        )
+    tol = None
+    if args.tol is not None:
+        try:
+            tol = float(args.tol)
+        except ValueError:
+            raise _UsageError(f"--tol {args.tol!r}: give a number > 0, e.g. --tol 0.01") from None
+        if not (math.isfinite(tol) and tol > 0):
+            raise _UsageError(f"--tol {args.tol}: give a finite number > 0, e.g. --tol 0.01")
+    true = _parse_true(args.true_curve)
     from perturb.cost import check_cost, response_cost
 
-    check_cost(response_cost(len(grid), order, count), args.yes)
+    check_cost(response_cost(len(grid), order, count, true), args.yes)
     plot = _check_plot(args)
-    result = problem_response(problem, parameter, grid, order=order, validate=count)
+    result = problem_response(
+        problem, parameter, grid, order=order, validate=count, measure=args.measure, tol=tol,
+        true=true,
+    )  # fmt: skip
     _check_domain(result)
     if args.format != "table":  # the table shows them itself
         from perturb.report.response import flag_lines

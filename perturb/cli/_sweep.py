@@ -12,6 +12,7 @@ import sys
 from collections import Counter
 from pathlib import Path
 
+from perturb._install import install_hint
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError
 from perturb.cli._values import _parse_order, _parse_positive, _parse_sets, _parse_times
 from perturb.errors import MissingDependencyError, SweepError
@@ -103,7 +104,7 @@ def _cmd_sweep(args) -> int:
         require_extra()
     except (ImportError, MissingDependencyError) as exc:
         raise _UsageError(
-            f"{exc}" if str(exc) else "sweeps need pip install 'perturb[sweep]'"
+            f"{exc}" if str(exc) else f"sweeps need {install_hint('sweep')}"
         ) from None
     if not args.grids:
         raise _UsageError("--grid: give at least one, e.g. --grid eps=0.01:0.2:20")

@@ -7,6 +7,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from perturb._defaults import MAX_TIMES
+from perturb._install import install_hint
 from perturb.cli._errors import _UsageError
 
 
@@ -131,7 +132,7 @@ def _check_plot(args) -> Path | None:
         import matplotlib  # noqa: F401
     except ImportError:
         raise _UsageError(
-            "--plot needs matplotlib: pip install 'perturb[plot]', or drop --plot"
+            f"--plot needs matplotlib: {install_hint('plot')}, or drop --plot"
         ) from None
     return target
 

@@ -3,7 +3,7 @@
 * :mod:`perturb.method.poincare` — :class:`PoincareMethod` (options) and the order-by-order template;
 * :mod:`perturb.method.expansion` — the forcing of each order, the given initial values in ε;
 * :mod:`perturb.method.conditions` — solving the periodicity conditions, choosing a branch;
-* :mod:`perturb.method.steps` — :class:`GeneratingSolution`, :class:`OrderStep`,
+* :mod:`perturb.steps` — :class:`GeneratingSolution`, :class:`OrderStep`,
   :class:`PeriodicityCondition` (printable, LaTeX);
 * :mod:`perturb.method.exact` — zero tests and exact roots.
 """
@@ -12,15 +12,15 @@ from __future__ import annotations
 
 import importlib
 
-#: Public name -> defining module, imported on first access (PEP 562): ``perturb.method.steps`` can
+#: Public name -> defining module, imported on first access (PEP 562): ``perturb.steps`` can
 #: then be imported (by :mod:`perturb.solution`) without loading the construction.
 _LAZY = {
     "PoincareMethod": "perturb.method.poincare",
     "solve": "perturb.method.poincare",
-    "Condition": "perturb.method.steps",
-    "GeneratingSolution": "perturb.method.steps",
-    "OrderStep": "perturb.method.steps",
-    "PeriodicityCondition": "perturb.method.steps",
+    "Condition": "perturb.steps",
+    "GeneratingSolution": "perturb.steps",
+    "OrderStep": "perturb.steps",
+    "PeriodicityCondition": "perturb.steps",
 }
 
 __all__ = [

@@ -22,6 +22,7 @@ import sympy as sp
 from attrs import frozen
 
 from perturb._defaults import NUMERIC_ZERO, PROBE_DIGITS
+from perturb._install import install_hint
 from perturb.algebra.budget import solve_bounded
 from perturb.algebra.certified import certified_real_roots
 from perturb.algebra.rootset import RootStatus
@@ -170,7 +171,7 @@ def components_or_failed(k, eqs, unknowns, preference, seconds, pairs=()) -> lis
             Status.SOLVER_BUDGET,
             f"order {k}: the amplitude equations ({size}) could not be solved within "
             f"{seconds:g} s: raise it with solve_seconds=... or install the extra "
-            "(pip install 'perturb[roots]')",
+            f"({install_hint('roots')})",
         ) from None
     except (sp.PolynomialError, NotImplementedError, ValueError) as exc:
         raise OrderFailed(

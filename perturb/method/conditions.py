@@ -23,14 +23,15 @@ import sympy as sp
 from attrs import frozen
 
 from perturb._defaults import ROOT_RESIDUAL
+from perturb._install import install_hint
 from perturb.algebra.budget import solve_bounded
 from perturb.algebra.certified import certified_real_roots
 from perturb.algebra.rootset import RootStatus
 from perturb.algebra.size import SystemSize
 from perturb.errors import InvalidSystemError, bad_value
 from perturb.method.exact import exact_if_close, is_zero, probe_values, rational_form, vanishes
-from perturb.method.steps import GeneratingSolution
 from perturb.solution import Status
+from perturb.steps import GeneratingSolution
 
 __all__ = [
     "ConditionSolver",
@@ -175,8 +176,8 @@ class ConditionSolver:
                 Status.SOLVER_BUDGET,
                 f"order {k}: the amplitude equations ({size}) in {unknowns} were not solved "
                 f"within the budget of {self.solve_seconds:g} s{tried} — raise it with "
-                "PoincareMethod(solve_seconds=...) or install the extra (pip install "
-                "'perturb[roots]'); if you know the root, give its generating amplitudes with "
+                "PoincareMethod(solve_seconds=...) or install the extra "
+                f"({install_hint('roots')}); if you know the root, give its generating amplitudes with "
                 "`branch={name: value}`",
             ) from None
         if not roots:

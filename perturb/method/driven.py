@@ -45,67 +45,16 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._defaults import SLOW_FLOW_ZERO
 from perturb.cache import cached
 from perturb.errors import InvalidSystemError, bad_value
-from perturb.method.conditions import ConditionSolver
-from perturb.method.poincare import PoincareMethod, _OrderByOrder
-from perturb.method.steps import GeneratingSolution
+from perturb.method.given_period import DrivenOrderByOrder
+from perturb.method.poincare import PoincareMethod
 from perturb.solution import PeriodicSolution, Status
+from perturb.steps import GeneratingSolution
 from perturb.system import EPS, QuasilinearSystem
 
 __all__ = ["AmplitudeEquations", "SlowFlow", "amplitude_equations", "slow_flow"]
-
-
-class _DrivenOrderByOrder(_OrderByOrder):
-    """The order-by-order template for a driven system (see the module docstring)."""
-
-    def _setup_phase_and_harmonics(self):
-        method, system = self.method, self.system
-        drive = system.excitation
-        if method.amplitudes:
-            raise bad_value(
-                "amplitudes", method.amplitudes,
-                "a driven system's response amplitudes are fixed by its forcing: drop them "
-                "(choose a branch with `branch` or `find_families`)",
-                InvalidSystemError,
-            )  # fmt: skip
-        if method.phase_coordinate is not None:
-            raise bad_value(
-                "phase_coordinate", method.phase_coordinate,
-                "the forcing fixes the time origin of a driven system: drop it",
-                InvalidSystemError,
-            )  # fmt: skip
-        if method.dependent_condition == "phase-sine":
-            raise bad_value(
-                "dependent_condition", method.dependent_condition,
-                "a driven system has no redundant periodicity condition: use 'auto' or 'none'",
-                InvalidSystemError,
-            )  # fmt: skip
-        self.phase = system.reference_index
-        self.drop_phase_sine = False
-        self.w_ref = system.frequencies[self.phase] / drive.q
-        self.harmonics = []
-        for w in system.frequencies:
-            ratio = sp.nsimplify(sp.simplify(w / self.w_ref))
-            self.harmonics.append(int(ratio) if ratio.is_Integer and ratio > 0 else None)
-
-    def _phase_fixed_by(self, i: int) -> bool:
-        return False
-
-    def _frequency_coefficient(self, k: int):
-        drive = self.system.excitation
-        value = drive.detuning / drive.p if k == 1 else sp.S.Zero
-        return self.conv.to_native(sp.sympify(value))
-
-    def _make_solver(self) -> ConditionSolver:
-        return ConditionSolver(
-            self.method.branch, self.method.solve_seconds, self.phase, driven=True
-        )
-
-
-def construct_driven(method: PoincareMethod, system: QuasilinearSystem, ring=None):
-    """One order-by-order run on a driven system (called by :meth:`PoincareMethod.solve`)."""
-    return _DrivenOrderByOrder(method, system, ring).run()
 
 
 # ------------------------------------------------------------------------ amplitude equations
@@ -161,7 +110,7 @@ class AmplitudeEquations:
         return tuple(rows)
 
 
-class _Collecting(_DrivenOrderByOrder):
+class _Collecting(DrivenOrderByOrder):
     """The driven template with the initial values fixed to symbolic amplitudes: the conditions
     of every order are collected, none solved (:func:`amplitude_equations`)."""
 
@@ -225,11 +174,10 @@ def amplitude_equations(system: QuasilinearSystem, order: int = 1) -> AmplitudeE
     >>> eqs.amplitudes
     (a_x, b_x)
     """
-    if system.excitation is None:
-        raise bad_value(
-            "system", system.name, "it has no excitation: give a driven system (excitation=...)",
-            InvalidSystemError,
-        )  # fmt: skip
+    system.frame.require_driven(
+        "system", system.name, "it has no excitation: give a driven system (excitation=...)",
+        InvalidSystemError,
+    )  # fmt: skip
     if isinstance(order, bool) or not isinstance(order, int) or order < 0:
         raise bad_value("order", order, "give an integer >= 0", InvalidSystemError)
     method = PoincareMethod(order=max(order, 1), cache=False)
@@ -269,9 +217,7 @@ def _collect(runner: _Collecting, order: int) -> PeriodicSolution:
     runner.expansion = runner.system.expansion(order + 1)
     generating = runner._generating()
     for k in range(1, order + 2):
-        forcing_k = runner._forcing(k)
-        runner._quadratures(k, forcing_k)
-        runner._solve_conditions(k, generating)
+        runner.step(k, generating)
     return runner._result(generating, Status.SUCCESS, "")
 
 
@@ -308,10 +254,6 @@ class SlowFlow:
     def fold(self) -> bool:
         """A real eigenvalue at zero: the branch turns (saddle-node) or another one crosses."""
         return self.stable is None
-
-
-#: Relative size (to the largest) below which a slow-flow eigenvalue's real part counts as zero.
-SLOW_FLOW_ZERO = 1e-9
 
 
 def slow_flow(

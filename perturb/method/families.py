@@ -46,10 +46,11 @@ from perturb._defaults import SOLVE_SECONDS
 from perturb.errors import InvalidSystemError, UnknownNameError, bad_value
 from perturb.method.components import Component, components_or_failed, solution_components
 from perturb.method.conditions import ConditionSolver, OrderFailed, amplitude_pairs
+from perturb.method.construction import OrderByOrder
 from perturb.method.exact import is_zero
 from perturb.method.family_names import name_families
 from perturb.method.options import check_system
-from perturb.method.poincare import PoincareMethod, _OrderByOrder
+from perturb.method.poincare import PoincareMethod
 from perturb.solution import PeriodicSolution, Status
 from perturb.system import QuasilinearSystem
 
@@ -334,8 +335,8 @@ def _method(order: int, options: Mapping, phase: str | None) -> PoincareMethod:
 
 def _runner(
     method: PoincareMethod, system: QuasilinearSystem, passes: bool, **solver_options
-) -> _OrderByOrder:
-    runner = _OrderByOrder(method, system)
+) -> OrderByOrder:
+    runner = OrderByOrder(method, system)
     zeros, phase_amplitude = _frame(runner, passes)
     runner.solver = _FamilySolver(
         inner=runner.solver,
@@ -347,7 +348,7 @@ def _runner(
     return runner
 
 
-def _frame(runner: _OrderByOrder, passes: bool) -> tuple[dict, object]:
+def _frame(runner: OrderByOrder, passes: bool) -> tuple[dict, object]:
     """Generating amplitudes forced to zero (resonant coordinates before the phase coordinate,
     in a pass over the phase coordinates) and the phase amplitude's symbol (None when given)."""
     zeros = {}

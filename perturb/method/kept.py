@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import sympy as sp
 
-from perturb.method.steps import GeneratingSolution
 from perturb.solution import PeriodicSolution, Status
+from perturb.steps import GeneratingSolution
 
 __all__ = ["KeptSeries"]
 

@@ -7,12 +7,23 @@ Layout: :mod:`~perturb.oracle.base` (the result, its status and the template eve
 follows), one module per backend (:mod:`~perturb.oracle.rk4`, :mod:`~perturb.oracle.scipy`,
 :mod:`~perturb.oracle.heyoka`), :mod:`~perturb.oracle.registry` (names and :func:`choose`),
 :mod:`~perturb.oracle.symbolic` (sympy rhs and the heyoka translation),
-:mod:`~perturb.oracle.orbit`, :mod:`~perturb.oracle.shooting` (periodic orbits) and
-:mod:`~perturb.oracle.forced` (the periodic responses of driven systems, period given).  Code outside
+:mod:`~perturb.oracle.orbit`, :mod:`~perturb.oracle.shooting` (periodic orbits),
+:mod:`~perturb.oracle.forced` (the periodic responses of driven systems, period given),
+:mod:`~perturb.oracle.driven_family` (those responses along a parameter: the fixed-period shooting
+map with its monodromy and sensitivity, for continuation) and :mod:`~perturb.oracle.bifurcation`
+(the Floquet test functions: fold, period doubling, Neimark–Sacker).  Code outside
 the oracle imports from this package only.
 """
 
 from perturb.oracle.base import Integrator, IntegratorBase, Trajectory, TrajectoryStatus
+from perturb.oracle.bifurcation import (
+    critical_multiplier,
+    fold_test,
+    is_neimark_sacker,
+    neimark_sacker_test,
+    period_doubling_test,
+)
+from perturb.oracle.driven_family import DrivenFamily, Shot
 from perturb.oracle.floquet import expected_trivial_multipliers
 from perturb.oracle.forced import find_forced_orbit
 from perturb.oracle.heyoka import Heyoka, heyoka_available
@@ -27,23 +38,30 @@ from perturb.oracle.translate import to_heyoka
 __all__ = [
     "INTEGRATORS",
     "RK4",
+    "DrivenFamily",
     "Heyoka",
     "Integrator",
     "IntegratorBase",
     "OrbitStatus",
     "PeriodicOrbit",
     "Scipy",
+    "Shot",
     "SymbolicRHS",
     "Trajectory",
     "TrajectoryStatus",
     "choose",
+    "critical_multiplier",
     "default_integrator",
     "expected_trivial_multipliers",
     "find_forced_orbit",
     "find_periodic_orbit",
     "finite_difference_jacobian",
+    "fold_test",
     "get_integrator",
     "heyoka_available",
+    "is_neimark_sacker",
+    "neimark_sacker_test",
+    "period_doubling_test",
     "scaled_atol",
     "to_heyoka",
 ]

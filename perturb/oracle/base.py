@@ -20,6 +20,7 @@ import numpy as np
 from attrs import field, frozen
 
 from perturb.errors import IntegrationError, bad_value
+from perturb.oracle._noise import integration_noise
 from perturb.oracle.symbolic import SymbolicRHS
 
 __all__ = [
@@ -322,6 +323,7 @@ class IntegratorBase(abc.ABC):
         run = self._integrate_impl(rhs, t0, t1, y0_array, grid, jac)
         n, n_t = y0_array.size, len(run.t)
         y = np.asarray(run.states).T.reshape(n, n_t) if n_t else np.empty((n, 0))
+        y = integration_noise(y, run.t, t0, y0_array, self.name)  # off unless PERTURB_TEST_NOISE
         return Trajectory(
             t=np.asarray(run.t, dtype=float),
             y=y,

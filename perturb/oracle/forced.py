@@ -11,8 +11,8 @@ multiplier**. The residual and Newton matrix are
 
 on the state block of the variational equations; the Floquet multipliers are the eigenvalues of
 that block of :math:`\\Phi(T)` (asymptotically stable when all lie inside the unit circle). The
-stopping rule is the autonomous shooting's: the tolerance or the precision floor measured at the
-orbit (:mod:`perturb.oracle.shooting`).
+iteration is the autonomous shooting's own (:func:`perturb.oracle.newton.damped_newton`): the
+tolerance or the precision floor measured at the orbit.
 """
 
 from __future__ import annotations
@@ -24,20 +24,15 @@ import numpy as np
 
 from perturb._defaults import (
     FLOOR_SAFETY,
-    SHOOTING_MAX_HALVINGS,
     SHOOTING_MAX_ITER,
+    SHOOTING_STALL_STEP,
     SHOOTING_TOL,
 )
 from perturb.errors import bad_value
+from perturb.oracle.newton import NewtonOutcome, PeriodMap, Shot, damped_newton
 from perturb.oracle.orbit import OrbitStatus, PeriodicOrbit, multipliers_of
-from perturb.oracle.shooting import (
-    _integration_noise,
-    _newton_step,
-    _precision_floor,
-    _shooting_integrator,
-    _variational_rhs,
-)
 from perturb.oracle.symbolic import SymbolicRHS
+from perturb.oracle.variational import shooting_integrator, variational_rhs
 
 __all__ = ["find_forced_orbit"]
 
@@ -92,93 +87,86 @@ def find_forced_orbit(
         raise bad_value("y0_guess", y0_guess, f"give {m} finite numbers (the state without theta)")
     if not (isinstance(period, int | float | np.number) and math.isfinite(period) and period > 0):
         raise bad_value("period", period, "give the positive period of the response")
-    aug = _variational_rhs(rhs, None)
-    solver = _shooting_integrator(integrator, aug, rhs.n)
-    identity = np.eye(rhs.n)
-    scale = max(float(np.max(np.abs(y0))), 1.0)
-
-    def shoot(y_state, _period=period, using=solver):
-        start = np.concatenate((y_state, [0.0], identity.ravel()))
-        traj = using.integrate(aug, (0.0, period), start)
-        if not traj.success:
-            return traj, None, None, None
-        z = np.asarray(traj.y_final, dtype=float)
-        phi = z[rhs.n :].reshape(rhs.n, rhs.n)[:m, :m]
-        return traj, z[:m] - y_state, phi, None
-
-    def failed(status, message, iterations, y, residual, phi=None):
-        phi = np.full((m, m), np.nan) if phi is None else phi
-        finite = bool(np.all(np.isfinite(phi)))
-        return PeriodicOrbit(
-            period=period,
-            initial_state=y,
-            floquet_multipliers=multipliers_of(phi) if finite else np.full(m, np.nan, complex),
-            monodromy=phi,
-            residual=residual,
-            iterations=iterations,
-            status=status,
-            message=message,
-            integrator=solver.name,
-        )
-
-    y = y0
-    traj, defect, phi, _ = shoot(y)
-    if defect is None:
-        return failed(
-            OrbitStatus.INTEGRATION_FAILED,
-            f"integration of the initial guess failed: {traj.message}",
-            0, y, math.inf,
-        )  # fmt: skip
-    residual = float(np.max(np.abs(defect))) / scale
-    floor = _precision_floor(y, defect, scale, tol)
-    iterations = 0
-    while residual > max(tol, floor):
-        if iterations >= max_iter:
-            return failed(
-                OrbitStatus.MAX_ITER,
-                f"no convergence in {max_iter} Newton iterations: residual {residual:.3e}",
-                iterations, y, residual, phi,
-            )  # fmt: skip
-        iterations += 1
-        step, _ = _newton_step(phi - np.eye(m), -defect)
-        accepted = None
-        lam = 1.0
-        for _ in range(SHOOTING_MAX_HALVINGS + 1):
-            trial = shoot(y + lam * step)
-            if trial[1] is not None:
-                trial_residual = float(np.max(np.abs(trial[1]))) / scale
-                if trial_residual < residual:
-                    accepted = (y + lam * step, trial, trial_residual)
-                    break
-            lam *= 0.5
-        if accepted is None:
-            noise = _integration_noise(solver, shoot, y, period, defect)
-            floor = _precision_floor(y, defect, scale, tol, noise)
-            if residual <= FLOOR_SAFETY * floor:
-                break
-            return failed(
-                OrbitStatus.STALLED,
-                f"stalled after {iterations} iterations at residual {residual:.3e} > tol = "
-                f"{tol:.1e} and above {FLOOR_SAFETY:g} x the precision floor {floor:.1e}",
-                iterations, y, residual, phi,
-            )  # fmt: skip
-        y, (traj, defect, phi, _), residual = accepted
-        floor = _precision_floor(y, defect, scale, tol)
-    multipliers = multipliers_of(phi)
-    largest = float(np.max(np.abs(multipliers)))
-    where = f"residual {residual:.2e}" + ("" if residual <= tol else f" at the floor {floor:.1e}")
+    aug = variational_rhs(rhs, None)
+    solver = shooting_integrator(integrator, aug, rhs.n)
+    result = damped_newton(_ForcedMap(rhs, aug, solver, period, m, y0, tol, max_iter), y0)
+    phi = result.shot.monodromy
+    if phi is None:
+        phi = np.full((m, m), np.nan)
+    finite = bool(np.all(np.isfinite(phi)))
+    multipliers = multipliers_of(phi) if finite else np.full(m, np.nan, complex)
+    status, message = _outcome(result, tol, max_iter, period, multipliers)
     return PeriodicOrbit(
         period=period,
-        initial_state=y,
+        initial_state=result.x,
         floquet_multipliers=multipliers,
         monodromy=phi,
-        residual=residual,
-        iterations=iterations,
-        status=OrbitStatus.CONVERGED,
-        message=(
-            f"converged in {iterations} iterations: {where}, period {period!r} (given); largest "
-            f"|Floquet multiplier| {largest:.6f} ({'stable' if largest < 1 else 'unstable'})"
-        ),
+        residual=result.residual,
+        iterations=result.iterations,
+        status=status,
+        message=message,
         integrator=solver.name,
-        precision_floor=floor,
+        precision_floor=result.floor,
+    )
+
+
+class _ForcedMap(PeriodMap):
+    """The period map of a driven system (:class:`~perturb.oracle.newton.PeriodMap`): the
+    unknowns are the initial state, θ(0) = 0 and the period fixed."""
+
+    def __init__(self, rhs, aug, solver, period, m, y0, tol, max_iter):
+        self.rhs, self.aug, self.solver, self.period, self.m = rhs, aug, solver, period, m
+        self.identity = np.eye(rhs.n)
+        self.scale = max(float(np.max(np.abs(y0))), 1.0)
+        self.tol, self.max_iter = tol, max_iter
+
+    def shoot(self, x, integrator=None) -> Shot:
+        start = np.concatenate((x, [0.0], self.identity.ravel()))
+        traj = (integrator or self.solver).integrate(self.aug, (0.0, self.period), start)
+        if not traj.success:
+            return Shot(traj, None, None)
+        z = np.asarray(traj.y_final, dtype=float)
+        phi = z[self.rhs.n :].reshape(self.rhs.n, self.rhs.n)[: self.m, : self.m]
+        return Shot(traj, z[: self.m] - x, phi)
+
+    def state(self, x):
+        return x
+
+    def residual(self, x, shot) -> float:
+        return float(np.max(np.abs(shot.defect))) / self.scale
+
+    def linearised(self, x, shot):
+        return shot.monodromy - np.eye(self.m), -shot.defect
+
+    def moved(self, x, step, lam):
+        return x + lam * step
+
+
+def _outcome(result, tol, max_iter, period, multipliers) -> tuple[OrbitStatus, str]:
+    """The orbit's status and message from the loop's outcome."""
+    iterations, residual, floor = result.iterations, result.residual, result.floor
+    if result.outcome is NewtonOutcome.INTEGRATION_FAILED:
+        return OrbitStatus.INTEGRATION_FAILED, (
+            f"integration of the initial guess failed: {result.shot.trajectory.message}"
+        )
+    if result.outcome is NewtonOutcome.MAX_ITER:
+        return OrbitStatus.MAX_ITER, (
+            f"no convergence in max_iter = {max_iter} Newton iterations: residual "
+            f"{residual:.3e} > tol = {tol:.1e}; improve the guess or raise `max_iter`"
+        )
+    if result.outcome in (NewtonOutcome.STALLED, NewtonOutcome.STALLED_STEP):
+        return OrbitStatus.STALLED, (
+            f"stalled after {iterations} iterations at residual {residual:.3e} > tol = "
+            f"{tol:.1e} and above {FLOOR_SAFETY:g} x the precision floor {floor:.1e}: "
+            + (
+                "no damped Newton step reduces it"
+                if result.outcome is NewtonOutcome.STALLED
+                else f"the Newton step is below {SHOOTING_STALL_STEP:g}"
+            )
+        )
+    largest = float(np.max(np.abs(multipliers)))
+    where = f"residual {residual:.2e}" + ("" if residual <= tol else f" at the floor {floor:.1e}")
+    return OrbitStatus.CONVERGED, (
+        f"converged in {iterations} iterations: {where}, period {period!r} (given); largest "
+        f"|Floquet multiplier| {largest:.6f} ({'stable' if largest < 1 else 'unstable'})"
     )

@@ -19,6 +19,7 @@ from attrs import frozen
 
 from perturb._checks import check_bool, check_count
 from perturb._defaults import DEFAULT_HEYOKA_TOL, HEYOKA_COMPACT_MODE_MIN_DIM, MAX_STEPS
+from perturb._install import install_hint
 from perturb.errors import bad_value
 from perturb.oracle.base import IntegratorBase, Run, TrajectoryStatus, check_positive
 from perturb.oracle.symbolic import SymbolicRHS
@@ -198,7 +199,7 @@ class Heyoka(IntegratorBase):
             raise bad_value(
                 "integrator",
                 "heyoka",
-                "heyoka is not installed: `pip install heyoka`, or use 'dop853'",
+                f"heyoka is not installed: {install_hint('fast')}, or use 'dop853'",
             )
         if not isinstance(rhs, SymbolicRHS):
             raise bad_value(

@@ -32,19 +32,13 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 
-import attrs
 import numpy as np
 import sympy as sp
 from attrs import frozen
 
 from perturb._defaults import (
     EQUILIBRIUM_MOTION,
-    FD_REL_STEP,
     FLOOR_SAFETY,
-    NOISE_PROBE_FACTOR,
-    ROUNDING_ULPS,
-    SHOOTING_INTEGRATOR_RTOL,
-    SHOOTING_MAX_HALVINGS,
     SHOOTING_MAX_ITER,
     SHOOTING_STALL_STEP,
     SHOOTING_TOL,
@@ -54,158 +48,16 @@ from perturb._lambdify import numpy_lambdify
 from perturb.errors import bad_value
 from perturb.oracle.base import RHS, Integrator
 from perturb.oracle.floquet import count_near_one, expected_trivial_multipliers
+from perturb.oracle.newton import NewtonOutcome, PeriodMap, Shot, damped_newton
 from perturb.oracle.orbit import OrbitStatus, PeriodicOrbit, multipliers_of
-from perturb.oracle.registry import choose
-from perturb.oracle.scipy import Scipy
 from perturb.oracle.symbolic import SymbolicRHS
+from perturb.oracle.variational import (
+    finite_difference_jacobian,
+    shooting_integrator,
+    variational_rhs,
+)
 
 __all__ = ["find_periodic_orbit", "finite_difference_jacobian"]
-
-
-#: Singular values below this fraction of the largest count as zero in the rank of the Newton matrix.
-_RANK_RTOL = 1e-9
-
-
-def finite_difference_jacobian(rhs: RHS, y: np.ndarray) -> np.ndarray:
-    """Centred finite-difference Jacobian of ``rhs`` at ``y`` (accuracy ~1e-10 relative).
-
-    Parameters
-    ----------
-    rhs : callable
-        ``rhs(y) -> dy/dt``.
-    y : ndarray, shape (n,)
-
-    Returns
-    -------
-    ndarray, shape (n, n)
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from perturb.oracle import finite_difference_jacobian
-    >>> finite_difference_jacobian(lambda y: np.array([y[1], -y[0] ** 3]), np.array([2.0, 0.0])).round(6)
-    array([[  0.,   1.],
-           [-12.,   0.]])
-    """
-    y = np.asarray(y, dtype=float)
-    n = y.size
-    jac = np.empty((n, n))
-    scale = max(1.0, float(np.max(np.abs(y))))
-    for j in range(n):
-        h = FD_REL_STEP * max(abs(y[j]), scale)
-        e = np.zeros(n)
-        e[j] = h
-        jac[:, j] = (np.asarray(rhs(y + e)) - np.asarray(rhs(y - e))) / (2.0 * h)
-    return jac
-
-
-def _defect_noise(y_start, defect, noise=None) -> np.ndarray:
-    """The absolute noise of each component of the defect ``y(T) - y(0)``.
-
-    Both states are float64 numbers however precisely they were integrated, so each component of
-    the difference carries :data:`ROUNDING_ULPS` of their spacing, plus the integration error
-    ``noise`` when it was measured (:func:`_integration_noise`, absolute).
-    """
-    size = np.maximum(np.abs(y_start), np.abs(y_start + defect))
-    rounding = ROUNDING_ULPS * np.spacing(size)
-    return rounding if noise is None else rounding + noise
-
-
-def _precision_floor(y_start, defect, scale: float, tol: float, noise=None) -> float:
-    """The smallest residual the working precision can show at ``y_start``, relative to ``scale``.
-
-    The largest :func:`_defect_noise` among the components whose defect is still above ``tol``: a
-    large component that returns exactly (a constant, a pinned coordinate) limits nothing. Far
-    below ``tol`` for states of the size of ``scale``; not for a conditioned state whose origin is
-    off the orbit (``|u| >> 1``).
-    """
-    floor = _defect_noise(y_start, defect, noise) / scale
-    limiting = np.abs(defect) / scale > tol
-    return float(np.max(floor[limiting], initial=0.0))
-
-
-def _integration_noise(solver, shoot, y, period, defect):
-    """The integration error of each component of the defect at ``(y, period)`` (absolute).
-
-    The same shot with an integrator whose error is :data:`NOISE_PROBE_FACTOR` times larger
-    (:meth:`~perturb.oracle.base.IntegratorBase.loosened`) differs by about ``factor - 1`` times
-    this integrator's error (both errors are proportional to the tolerance). None when the
-    integrator cannot be loosened or the probe fails: the floor is then round-off alone.
-    """
-    # an Integrator given by the user need not derive from IntegratorBase: no loosened() then
-    loosen = getattr(solver, "loosened", None)
-    probe = loosen(NOISE_PROBE_FACTOR) if loosen is not None else None
-    if probe is None:
-        return None
-    _, probe_defect, _, _ = shoot(y, period, probe)
-    if probe_defect is None or not np.all(np.isfinite(probe_defect)):
-        return None
-    return np.abs(probe_defect - defect) / (NOISE_PROBE_FACTOR - 1.0)
-
-
-def _newton_step(newton: np.ndarray, target: np.ndarray, noise=None):
-    """The least-squares Newton step and the rank of the Newton matrix.
-
-    Without ``noise``: the minimum-norm least-squares step (singular values below
-    ``_RANK_RTOL`` of the largest cut). With ``noise`` (the absolute noise of each row of
-    ``target``), a truncated-SVD step that also leaves out every direction whose component of the
-    target is within the noise (a discrepancy rule): near a rank-deficient matrix those directions
-    carry only noise, amplified by a small singular value, and a step along them wrecks the
-    directions that can still converge.
-    """
-    if noise is None:
-        step, _, rank, _ = np.linalg.lstsq(newton, target, rcond=_RANK_RTOL)
-        return step, int(rank)
-    u, sv, vt = np.linalg.svd(newton, full_matrices=False)
-    components = u.T @ target
-    kept = sv > _RANK_RTOL * sv[0]
-    keep = kept & (np.abs(components) > float(np.linalg.norm(noise)))
-    step = vt[keep].T @ (components[keep] / sv[keep])
-    return step, int(np.count_nonzero(kept))
-
-
-def _variational_rhs(rhs, jac):
-    """The rhs of (y, Phi) with Phi' = J(y) Phi; symbolic if ``rhs`` is symbolic."""
-    if isinstance(rhs, SymbolicRHS) and jac is None:
-        return rhs.variational
-    n_holder = {}
-
-    def jacobian(y):
-        if jac is not None:
-            return np.asarray(jac(y), dtype=float)
-        if isinstance(rhs, SymbolicRHS):
-            return rhs.jacobian(y)
-        return finite_difference_jacobian(rhs, y)
-
-    def augmented(z):
-        n = n_holder.get("n")
-        if n is None:
-            n = int(round((math.sqrt(1 + 4 * z.size) - 1) / 2))  # z.size = n + n**2
-            n_holder["n"] = n
-        y = z[:n]
-        phi = z[n:].reshape(n, n)
-        return np.concatenate((np.asarray(rhs(y), dtype=float), (jacobian(y) @ phi).ravel()))
-
-    return augmented
-
-
-def _shooting_integrator(integrator, aug_rhs, n: int) -> Integrator:
-    """Resolve the integrator argument and adapt per-component tolerances to the augmented state."""
-    symbolic = isinstance(aug_rhs, SymbolicRHS)
-    if integrator is None:
-        return choose(None, rtol=SHOOTING_INTEGRATOR_RTOL, symbolic=symbolic)
-    integrator = choose(integrator, symbolic=symbolic)
-    if isinstance(integrator, Scipy):
-        # per-component options given for the n-dimensional state: extend them to the n + n**2
-        # augmented state (Phi entries are O(1) near the identity)
-        if integrator.atol is not None and np.ndim(integrator.atol) == 1:
-            if np.size(integrator.atol) == n:
-                atol = np.concatenate((integrator.atol, np.full(n * n, integrator.rtol)))
-                integrator = attrs.evolve(integrator, atol=atol)
-        if integrator.y_scale is not None and np.size(integrator.y_scale) == n:
-            y_scale = np.concatenate((np.abs(integrator.y_scale), np.ones(n * n)))
-            integrator = attrs.evolve(integrator, y_scale=y_scale)
-    return integrator
 
 
 @frozen
@@ -262,6 +114,76 @@ def _integral_conditions(integrals, rhs, n: int) -> list[_Integral]:
                 "integrals", g, "pass callables g(y) -> float or sympy expressions of the state"
             )
     return conditions
+
+
+class _AutonomousMap(PeriodMap):
+    """The period map of an autonomous system on a section (:class:`~perturb.oracle.newton.PeriodMap`):
+    the unknowns are the free components of the initial state and the period; pinned first
+    integrals add rows to the Newton system and to the residual."""
+
+    def __init__(self, rhs, aug, solver, free, conditions, targets, scale, tol, max_iter):
+        self.rhs, self.aug, self.solver, self.free = rhs, aug, solver, list(free)
+        self.conditions, self.targets = conditions, targets
+        self.scale, self.tol, self.max_iter = scale, tol, max_iter
+        self.identity = None
+
+    def _split(self, x):
+        return x[:-1], float(x[-1])
+
+    def shoot(self, x, integrator=None) -> Shot:
+        """State + variational equations over one period: (F, Phi, f(y(T))) or a failed shot."""
+        y_start, period = self._split(x)
+        n = y_start.size
+        if self.identity is None or self.identity.shape[0] != n:
+            self.identity = np.eye(n)
+        start = np.concatenate((y_start, self.identity.ravel()))
+        traj = (integrator or self.solver).integrate(self.aug, (0.0, period), start)
+        if not traj.success:
+            return Shot(traj, None, None)
+        z = np.asarray(traj.y_final, dtype=float)
+        y_end, phi = z[:n], z[n:].reshape(n, n)
+        return Shot(traj, y_end - y_start, phi, np.asarray(self.rhs(y_end), dtype=float))
+
+    def state(self, x):
+        return x[:-1]
+
+    def residual(self, x, shot) -> float:
+        """Relative periodicity defect, and relative defect of each pinned integral."""
+        y_now = x[:-1]
+        residual = float(np.max(np.abs(shot.defect))) / self.scale
+        for condition, (value, size) in zip(self.conditions, self.targets, strict=True):
+            residual = max(residual, abs(condition.value(y_now) - value) / size)
+        return residual
+
+    def linearised(self, x, shot):
+        # d(phi_T(y0) - y0)/d(free y0, T) = [(Phi - I)[:, free], f(y(T))]
+        y = x[:-1]
+        newton = np.column_stack(((shot.monodromy - self.identity)[:, self.free], shot.velocity))
+        target = -shot.defect
+        if self.conditions:
+            # one row per pinned integral, scaled to state units: (scale / s) grad g . dy0 = ...
+            pairs = list(zip(self.conditions, self.targets, strict=True))
+            rows = [
+                np.append(condition.gradient(y)[self.free] * (self.scale / size), 0.0)
+                for condition, (_, size) in pairs
+            ]
+            misses = [
+                -(condition.value(y) - value) * (self.scale / size)
+                for condition, (value, size) in pairs
+            ]
+            newton = np.vstack((newton, rows))
+            target = np.concatenate((target, misses))
+        return newton, target
+
+    def moved(self, x, step, lam):
+        y_try = x[:-1].copy()
+        y_try[self.free] += lam * step[:-1]
+        period_try = x[-1] + lam * step[-1]
+        return np.append(y_try, period_try) if period_try > 0 else None
+
+    def step_size(self, x, step) -> float:
+        size = float(np.max(np.abs(step[:-1]), initial=0.0)) / self.scale
+        return max(size, abs(step[-1]) / x[-1])
 
 
 def _as_index_tuple(name: str, value, n: int) -> tuple[int, ...]:
@@ -411,39 +333,40 @@ def find_periodic_orbit(
                 "an integral must be finite and not stationary at the guess to pin a family",
             )
         targets.append((value, size))
-    aug_rhs = _variational_rhs(rhs, jac)
-    solver = _shooting_integrator(integrator, aug_rhs, n)
-    identity = np.eye(n)
+    aug_rhs = variational_rhs(rhs, jac)
+    solver = shooting_integrator(integrator, aug_rhs, n)
+    period_map = _AutonomousMap(
+        rhs, aug_rhs, solver, free, conditions, targets, scale, tol, max_iter
+    )
+    result = damped_newton(period_map, np.append(y0, float(period_guess)))
+    y, period = result.x[:n], float(result.x[n])
+    phi, residual, iterations, floor = (
+        result.shot.monodromy,
+        result.residual,
+        result.iterations,
+        result.floor,
+    )
+    rank_note = ""
+    if result.rank is not None and result.rank < result.columns:
+        rank_note = (
+            f" The Newton matrix has rank {result.rank} < {result.columns} unknowns: the steps "
+            "are the least-squares ones of minimum norm (what the matrix does not determine "
+            "is left alone); if the orbit is a member of a family, pin it with "
+            "`fixed_indices` or `integrals`."
+        )
 
-    def shoot(y_start, period, integrator=solver):
-        """Integrate state + variational equations over one period: (F, Phi, f(y(T))) or error."""
-        start = np.concatenate((y_start, identity.ravel()))
-        traj = integrator.integrate(aug_rhs, (0.0, period), start)
-        if not traj.success:
-            return traj, None, None, None
-        z = np.asarray(traj.y_final, dtype=float)
-        y_end, phi = z[:n], z[n:].reshape(n, n)
-        return traj, y_end - y_start, phi, np.asarray(rhs(y_end), dtype=float)
-
-    def residual_of(y_now, defect) -> float:
-        """Relative periodicity defect, and relative defect of each pinned integral."""
-        residual_now = float(np.max(np.abs(defect))) / scale
-        for condition, (value, size) in zip(conditions, targets, strict=True):
-            residual_now = max(residual_now, abs(condition.value(y_now) - value) / size)
-        return residual_now
-
-    def failed(status, message, iterations, y_now, period, residual, phi=None):
-        phi = np.full((n, n), np.nan) if phi is None else phi
-        finite = bool(np.all(np.isfinite(phi)))
+    def failed(status, message):
+        matrix = np.full((n, n), np.nan) if phi is None else phi
+        finite = bool(np.all(np.isfinite(matrix)))
         return PeriodicOrbit(
             n_trivial_expected=n_trivial,
-            n_trivial_found=count_near_one(multipliers_of(phi)) if finite else 0,
+            n_trivial_found=count_near_one(multipliers_of(matrix)) if finite else 0,
             period=period,
-            initial_state=y_now,
-            floquet_multipliers=multipliers_of(phi)
+            initial_state=y,
+            floquet_multipliers=multipliers_of(matrix)
             if finite
             else np.full(n, np.nan, dtype=complex),
-            monodromy=phi,
+            monodromy=matrix,
             residual=residual,
             iterations=iterations,
             status=status,
@@ -451,126 +374,34 @@ def find_periodic_orbit(
             integrator=solver.name,
         )
 
-    y, period = y0, float(period_guess)
-    traj, defect, phi, f_end = shoot(y, period)
-    if defect is None:
+    if result.outcome is NewtonOutcome.INTEGRATION_FAILED:
+        traj = result.shot.trajectory
         return failed(
             OrbitStatus.INTEGRATION_FAILED,
             f"integration of the initial guess failed: {traj.message} (t = {traj.t_reached})",
-            0,
-            y,
-            period,
-            math.inf,
         )
-    residual = residual_of(y, defect)
-    iterations = 0
-    rank_note = ""
-    floor = _precision_floor(y, defect, scale, tol)
-    measured = None  # the integration noise, once measured at the current point
-
-    def at_floor() -> bool:
-        """Whether the residual is at the precision floor, measured now that Newton stopped."""
-        nonlocal floor, measured
-        measured = _integration_noise(solver, shoot, y, period, defect)
-        floor = _precision_floor(y, defect, scale, tol, measured)
-        return residual <= FLOOR_SAFETY * floor
-
-    def line_search(step):
-        """The first damped step that reduces the residual: (y, period, shot, residual) or None."""
-        lam = 1.0
-        for _ in range(SHOOTING_MAX_HALVINGS + 1):
-            y_try = y.copy()
-            y_try[free] += lam * step[:-1]
-            period_try = period + lam * step[-1]
-            if period_try > 0:
-                trial = shoot(y_try, period_try)
-                if trial[1] is not None:
-                    residual_try = residual_of(y_try, trial[1])
-                    if residual_try < residual:
-                        return y_try, period_try, trial, residual_try
-            lam *= 0.5
-        return None
-
-    while residual > max(tol, floor):
-        if iterations >= max_iter:
-            if at_floor():
-                break
-            return failed(
-                OrbitStatus.MAX_ITER,
-                f"no convergence in max_iter = {max_iter} Newton iterations: residual "
-                f"{residual:.3e} > tol = {tol:.1e}; improve the guess or raise `max_iter`",
-                iterations,
-                y,
-                period,
-                residual,
-                phi,
-            )
-        iterations += 1
-        # Newton matrix: d(phi_T(y0) - y0)/d(free y0, T) = [(Phi - I)[:, free], f(y(T))]
-        newton = np.column_stack(((phi - identity)[:, free], f_end))
-        target = -defect
-        if conditions:
-            # one row per pinned integral, scaled to state units: (scale / s) grad g . dy0 = ...
-            rows = [
-                np.append(condition.gradient(y)[free] * (scale / size), 0.0)
-                for condition, (_, size) in zip(conditions, targets, strict=True)
-            ]
-            misses = [
-                -(condition.value(y) - value) * (scale / size)
-                for condition, (value, size) in zip(conditions, targets, strict=True)
-            ]
-            newton = np.vstack((newton, rows))
-            target = np.concatenate((target, misses))
-        step, rank = _newton_step(newton, target)
-        if rank < newton.shape[1]:
-            rank_note = (
-                f" The Newton matrix has rank {rank} < {newton.shape[1]} unknowns: the steps "
-                "are the least-squares ones of minimum norm (what the matrix does not determine "
-                "is left alone); if the orbit is a member of a family, pin it with "
-                "`fixed_indices` or `integrals`."
-            )
-        found = line_search(step)
-        if found is None and not at_floor():
-            # near the floor, the directions whose target is within the noise carry only noise:
-            # a step along them (amplified by a small singular value) wrecks the others
-            rows = _defect_noise(y, defect, measured)
-            noise = np.concatenate((rows, np.zeros(len(target) - len(rows))))
-            step, _ = _newton_step(newton, target, noise)
-            found = line_search(step)
-        step_size = float(np.max(np.abs(step[:-1]), initial=0.0)) / scale
-        step_size = max(step_size, abs(step[-1]) / period)
-        accepted = found is not None
-        if not accepted:
-            if residual <= FLOOR_SAFETY * floor:  # at_floor() measured it above
-                break
-            return failed(
-                OrbitStatus.STALLED,
-                f"stalled after {iterations} iterations at residual {residual:.3e} > tol = "
-                f"{tol:.1e}: no damped Newton step reduces it (relative step {step_size:.1e}), "
-                f"and it is above {FLOOR_SAFETY:g} x the precision floor {floor:.1e} measured "
-                "there; improve the guess, or tighten the integrator." + rank_note,
-                iterations,
-                y,
-                period,
-                residual,
-                phi,
-            )
-        y, period, (traj, defect, phi, f_end), residual = found
-        floor = _precision_floor(y, defect, scale, tol)
-        if step_size < SHOOTING_STALL_STEP and residual > max(tol, floor):
-            if at_floor():
-                break
-            return failed(
-                OrbitStatus.STALLED,
-                f"stalled after {iterations} iterations at residual {residual:.3e} > tol = "
-                f"{tol:.1e} and above {FLOOR_SAFETY:g} x the precision floor {floor:.1e}: the "
-                f"Newton step is below {SHOOTING_STALL_STEP:g}." + rank_note,
-                iterations,
-                y,
-                period,
-                residual,
-                phi,
-            )
+    if result.outcome is NewtonOutcome.MAX_ITER:
+        return failed(
+            OrbitStatus.MAX_ITER,
+            f"no convergence in max_iter = {max_iter} Newton iterations: residual "
+            f"{residual:.3e} > tol = {tol:.1e}; improve the guess or raise `max_iter`",
+        )
+    if result.outcome is NewtonOutcome.STALLED:
+        return failed(
+            OrbitStatus.STALLED,
+            f"stalled after {iterations} iterations at residual {residual:.3e} > tol = "
+            f"{tol:.1e}: no damped Newton step reduces it (relative step "
+            f"{result.step_size:.1e}), and it is above {FLOOR_SAFETY:g} x the precision floor "
+            f"{floor:.1e} measured there; improve the guess, or tighten the integrator."
+            + rank_note,
+        )
+    if result.outcome is NewtonOutcome.STALLED_STEP:
+        return failed(
+            OrbitStatus.STALLED,
+            f"stalled after {iterations} iterations at residual {residual:.3e} > tol = "
+            f"{tol:.1e} and above {FLOOR_SAFETY:g} x the precision floor {floor:.1e}: the "
+            f"Newton step is below {SHOOTING_STALL_STEP:g}." + rank_note,
+        )
 
     multipliers = multipliers_of(phi)
     distances = np.sort(np.abs(multipliers - 1.0))

@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 
 from perturb.report.latex import latex_comment
+from perturb.report.true_curve import true_curve_as_dict, true_curve_latex, true_curve_lines
+from perturb.response.measures import MEASURES
 
 __all__ = [
     "flag_lines",
@@ -26,50 +28,23 @@ def _complex(z) -> list:
     return [_number(z.real), _number(z.imag)]
 
 
-def _flags(result) -> list[tuple[str, str]]:
-    """``(outside, beyond)`` of each point (``""`` each for a result made without them)."""
-    n = len(result.response.points)
-    outside = tuple(getattr(result, "outside", ())) or ("",) * n
-    beyond = tuple(getattr(result, "beyond", ())) or ("",) * n
-    return list(zip(outside, beyond, strict=True))
-
-
-def _flag(outside: str, beyond: str) -> str:
-    """The CSV's ``flag`` column: ``outside`` (its domain), ``beyond`` (its validity) or empty."""
-    return "outside" if outside else "beyond" if beyond else ""
-
-
-def flag_lines(result) -> list[str]:
-    """Sentences about the points outside the series' domain or beyond its validity."""
-    parameter = result.parameter
-    flags = _flags(result)
-    lines = []
-    for kind, index, what, meaning in (
-        ("outside", 0, "outside the series' domain", "are not the motion's"),
-        ("beyond", 1, "beyond the series' estimated validity", "may be far from the motion's"),
-    ):
-        marked = [(p, f[index]) for p, f in zip(result.response.points, flags, strict=True)
-                  if f[index]]  # fmt: skip
-        if marked:
-            point, reason = marked[0]
-            lines.append(
-                f"{len(marked)} of {len(flags)} steady states are {what} (flag {kind}): their "
-                f"amplitudes {meaning}; e.g. at {parameter} = {point.value:.6g}: {reason}"
-            )
-    return lines
-
-
 def response_as_dict(result) -> dict:
     """The JSON contract of ``perturb response --format json``.
 
     ``{"problem", "parameter", "order", "epsilon", "parameters", "points": [{"value", "branch",
-    "amplitudes", "norms", "stable", "eigenvalues", "multipliers", "note", "outside",
-    "beyond"}], "folds": [{"value",
-    "norms"}], "backbone": {"coordinate", "amplitudes", "values"} | null, "true": [{"value",
-    "branch", "success", "amplitude", "amplitude_error", "floquet_max", "stable_true",
-    "stable_analytic", "message"}], "failures": [str]}``; complex numbers are ``[re, im]``;
-    ``outside`` says why a point's series is outside its domain, ``beyond`` why it is beyond its
-    estimated validity (each empty when it is not).
+    "amplitudes", "norms", "stable", "eigenvalues", "multipliers", "note", "peak",
+    "first_harmonic", "error_estimate", "series_ok", "liouville", "curve"}], "folds": [{"value",
+    "norms", "amplitudes", "peak", "first_order", "inside"}], "backbone": {"coordinate",
+    "amplitudes", "values"} | null, "true": [{"value", "branch", "success", "amplitude",
+    "amplitude_error", "floquet_max", "stable_true", "stable_analytic", "message",
+    "true_amplitude", "measure", "within_tol", "reason", "multipliers_true",
+    "multipliers_analytic", "curve"}], "failures": [str], "measure": {"name", "meaning"},
+    "special": [{"kind", "value", "amplitudes", "norms", "peak", "inside", "multipliers"}],
+    "curves": [{"values", "amplitudes": {measure: {coordinate: [...]}}, "stable", "series_ok",
+    "max_multiplier", "status"}], "true_curve": {...} | null}``; complex numbers are
+    ``[re, im]``. ``norms`` is the initial-value norm; ``measure`` names the amplitude the response is drawn by (``amplitude``
+    and ``true_amplitude`` of the shot points are in it). ``true_curve`` (``--true``; null
+    without it) is :func:`~perturb.report.true_curve.true_curve_as_dict`.
     """
     response = result.response
     points = [
@@ -82,12 +57,14 @@ def response_as_dict(result) -> dict:
             "eigenvalues": [_complex(z) for z in p.eigenvalues],
             "multipliers": [_complex(z) for z in p.multipliers],
             "note": p.note,
-            "outside": outside,
-            "beyond": beyond,
+            "peak": _numbers(p.peak),
+            "first_harmonic": _numbers(p.first_harmonic),
+            "error_estimate": _numbers(p.error),
+            "series_ok": p.series_ok,
+            "liouville": _number(p.liouville),
+            "curve": p.branch,
         }
-        for p, name, (outside, beyond) in zip(
-            response.points, result.branches, _flags(result), strict=True
-        )
+        for p, name in zip(response.points, result.branches, strict=True)
     ]
     backbone = None
     if result.backbone is not None:
@@ -107,6 +84,13 @@ def response_as_dict(result) -> dict:
             "stable_true": t.stable_true,
             "stable_analytic": t.stable_analytic,
             "message": t.message,
+            "true_amplitude": _number(t.true_amplitude),
+            "measure": t.measure,
+            "within_tol": t.within_tol,
+            "reason": t.reason,
+            "multipliers_true": [_complex(z) for z in t.multipliers_true],
+            "multipliers_analytic": [_complex(z) for z in t.multipliers_analytic],
+            "curve": t.curve,
         }
         for t in result.true
     ]
@@ -117,54 +101,120 @@ def response_as_dict(result) -> dict:
         "epsilon": response.epsilon,
         "parameters": response.values,
         "points": points,
-        "folds": [{"value": f.value, "norms": f.norms} for f in response.folds],
+        "folds": [
+            {
+                "value": f.value,
+                "norms": f.norms,
+                "amplitudes": _numbers(f.amplitudes),
+                "peak": _numbers(f.peak),
+                "first_order": _number(f.first_order),
+                "inside": f.inside,
+            }
+            for f in response.folds
+        ],
         "backbone": backbone,
         "true": true,
         "failures": list(response.failures),
+        "measure": {"name": response.measure, "meaning": MEASURES.get(response.measure, "")},
+        "special": [
+            {
+                "kind": sp.kind,
+                "value": sp.value,
+                "amplitudes": _numbers(sp.amplitudes),
+                "norms": _numbers(sp.norms),
+                "peak": _numbers(sp.peak),
+                "inside": sp.inside,
+                "multipliers": [_complex(z) for z in sp.multipliers],
+            }
+            for sp in response.special
+        ],
+        "curves": [
+            {
+                "values": [_number(v) for v in c.values],
+                "amplitudes": {
+                    m: {k: [_number(v) for v in a] for k, a in by.items()}
+                    for m, by in c.measures.items()
+                },
+                "stable": list(c.stable),
+                "series_ok": list(c.series_ok),
+                "max_multiplier": [_number(v) for v in c.largest],
+                "status": c.status,
+            }
+            for c in response.curves
+        ],
+        "true_curve": true_curve_as_dict(result.true_curve),
     }
 
 
+def _numbers(mapping) -> dict:
+    return {k: _number(v) for k, v in mapping.items()}
+
+
 def response_as_csv(result) -> str:
-    """One row per branch point: ``PARAMETER,branch,<coordinate> amplitude...,stable,flag``
-    (``flag``: ``outside`` its series' domain, ``beyond`` its estimated validity, or empty)."""
+    """One row per branch point: ``PARAMETER,branch,<coordinate>_amplitude...,stable`` (the
+    amplitude the initial-value norm, as always), then ``<coordinate>_peak...,
+    <coordinate>_first_harmonic..., max_multiplier, series_ok``."""
     response = result.response
     coords = list(response.coordinates)
-    header = [result.parameter, "branch", *(f"{c}_amplitude" for c in coords), "stable", "flag"]
+    header = [
+        result.parameter, "branch", *(f"{c}_amplitude" for c in coords), "stable",
+        *(f"{c}_peak" for c in coords), *(f"{c}_first_harmonic" for c in coords),
+        "max_multiplier", "series_ok",
+    ]  # fmt: skip
     rows = [",".join(header)]
-    for p, name, flags in zip(response.points, result.branches, _flags(result), strict=True):
+    for p, name in zip(response.points, result.branches, strict=True):
         cells = [f"{p.value:.12g}", name, *(f"{p.norms[c]:.12g}" for c in coords)]
-        rows.append(",".join([*cells, _STABILITY[p.stable], _flag(*flags)]))
+        largest = max((abs(z) for z in p.multipliers), default=math.nan)
+        extra = [
+            *(f"{p.peak.get(c, math.nan):.12g}" for c in coords),
+            *(f"{p.first_harmonic.get(c, math.nan):.12g}" for c in coords),
+            f"{largest:.12g}", str(p.series_ok).lower(),
+        ]  # fmt: skip
+        rows.append(",".join([*cells, _STABILITY[p.stable], *extra]))
     return "\n".join(rows)
 
 
 def response_as_table(result) -> str:
-    """A readable table: the points, the folds, the shot points, what could not be solved."""
+    """A readable table: the points, the special points, the shot points, what failed."""
     response = result.response
     coords = list(response.coordinates)
+    measure = getattr(response, "measure", "initial")
+
+    def size(p, c):
+        if hasattr(p, "amplitude"):
+            return p.amplitude(c, measure)
+        table = {"peak": p.peak, "initial": p.norms}.get(measure) or p.norms
+        return table.get(c, math.nan)
+
     lines = [
         f"# response {result.problem}  sweep {result.parameter}  order {response.order}  "
-        f"epsilon {response.epsilon:g}",
+        f"epsilon {response.epsilon:g}  amplitude: {MEASURES.get(measure, measure)}",
         "# " + "  ".join(f"{k}={v:g}" for k, v in response.values.items()),
         f"{result.parameter:>12s} {'branch':>9s} "
         + " ".join(f"{'|' + c + '|':>12s}" for c in coords)
-        + f" {'stability':>10s} {'max|lambda|':>12s}",
+        + f" {'stability':>10s} {'max|lambda|':>12s} {'prod lambda':>12s}",
     ]
-    for p, name, flags in zip(response.points, result.branches, _flags(result), strict=True):
+    for p, name in zip(response.points, result.branches, strict=True):
         largest = max((abs(z) for z in p.multipliers), default=math.nan)
-        flag = _flag(*flags)
+        product = math.prod(p.multipliers).real if p.multipliers else math.nan
         lines.append(
             f"{p.value:12.6g} {name:>9s} "
-            + " ".join(f"{p.norms[c]:12.6g}" for c in coords)
-            + f" {_STABILITY[p.stable]:>10s} {largest:12.6f}"
-            + (f"  [{flag}]" if flag else "")
+            + " ".join(f"{size(p, c):12.6g}" for c in coords)
+            + f" {_STABILITY[p.stable]:>10s} {largest:12.6f} {product:12.6f}"
             + (f"  ({p.note})" if p.note else "")
         )
-    lines += flag_lines(result)
     if response.folds:
-        lines.append("folds (saddle-node: the response jumps here in a slow sweep):")
+        lines.append("folds (saddle-node: the response jumps here in a slow sweep; * beside it):")
         for f in response.folds:
-            amps = "  ".join(f"|{c}| = {v:.6g}" for c, v in f.norms.items())
-            lines.append(f"  {result.parameter} = {f.value:.8g}   {amps}")
+            amps = "  ".join(f"|{c}| = {size(f, c):.6g}" for c in coords)
+            lines.append(f" {' ' if f.inside else '*'} {result.parameter} = {f.value:.8g}   {amps}")
+    others = [s for s in response.special if s.kind != "fold"]
+    if others:
+        lines.append("branch points, Neimark-Sacker, period doubling (* beside the sweep):")
+        for s in others:
+            amps = "  ".join(f"|{c}| = {s.peak.get(c, math.nan):.6g}" for c in coords)
+            mark = " " if s.inside else "*"
+            lines.append(f" {mark}{s.kind:>15s} at {result.parameter} = {s.value:.8g}   {amps}")
     if result.backbone is not None:
         b = result.backbone
         lines.append(
@@ -175,18 +225,21 @@ def response_as_table(result) -> str:
         lines.append("true motion (forced shooting, Floquet multipliers):")
         for t in result.true:
             agree = "agree" if t.stable_true == t.stable_analytic else "DISAGREE"
+            within = {True: "", False: " > tol", None: ""}[t.within_tol]
             lines.append(
                 f"  {result.parameter} = {t.value:.6g} {t.branch:>9s}: "
                 + (
-                    f"amplitude error {t.amplitude_error:.3g}, max|lambda| {t.floquet_max:.6f} "
-                    f"({_STABILITY[t.stable_true]}; slow flow {_STABILITY[t.stable_analytic]}: "
-                    f"{agree})"
+                    f"amplitude {t.amplitude:.6g} (true {t.true_amplitude:.6g}), orbit error "
+                    f"{t.amplitude_error:.3g}{within}, max|lambda| {t.floquet_max:.6f} "
+                    f"({_STABILITY[t.stable_true]}; analytic {_STABILITY[t.stable_analytic]}: "
+                    f"{agree}) [{t.reason}]"
                     if t.success
                     else f"no true orbit found: {t.message}"
                 )
             )
     for failure in response.failures:
         lines.append(f"not solved: {failure}")
+    lines.extend(true_curve_lines(result.true_curve, result.parameter))
     return "\n".join(lines)
 
 
@@ -203,6 +256,7 @@ def response_latex(result) -> str:
         for p, name in zip(response.points, result.branches, strict=True)
     ]
     folds = "".join(f"% fold at {result.parameter} = {f.value:.8g}\n" for f in response.folds)
+    folds += true_curve_latex(result.true_curve, result.parameter)
     return (
         f"% {latex_comment(result.problem)}: frequency response, order {response.order}\n"
         + folds
@@ -215,3 +269,40 @@ def response_latex(result) -> str:
         + "\n".join(rows)
         + "\n\\bottomrule\n\\end{tabular}\n"
     )
+
+
+def flag_lines(result) -> list[str]:
+    """Sentences about the points whose series is outside its domain (``series_ok`` false) or
+    beyond its validity: the series' own estimate of its error (``error``, per coordinate) more
+    than :data:`perturb._defaults.VALIDITY_ESTIMATE_LIMIT` of the point's amplitude."""
+    from perturb._defaults import VALIDITY_ESTIMATE_LIMIT
+
+    points = result.response.points
+    outside = [p for p in points if not p.series_ok]
+    beyond = []
+    for p in points:
+        if not p.series_ok:
+            continue
+        ratios = [
+            p.error[c] / size
+            for c, size in p.peak.items()
+            if c in p.error and math.isfinite(p.error[c]) and size > 0
+        ]
+        if ratios and max(ratios) > VALIDITY_ESTIMATE_LIMIT:
+            beyond.append((p, max(ratios)))
+    lines = []
+    if outside:
+        lines.append(
+            f"{len(outside)} of {len(points)} steady states are outside the series' domain: their "
+            f"amplitudes are not the motion's (e.g. at {result.parameter} = "
+            f"{outside[0].value:.6g}: {outside[0].note})"
+        )
+    if beyond:
+        point, ratio = max(beyond, key=lambda b: b[1])
+        lines.append(
+            f"{len(beyond)} of {len(points)} steady states are beyond the series' validity: its own "
+            f"estimate of their error is more than {VALIDITY_ESTIMATE_LIMIT:g} of the amplitude "
+            f"(up to {ratio:.2g} at {result.parameter} = {point.value:.6g}); check them with "
+            "--validate"
+        )
+    return lines

@@ -282,14 +282,15 @@ def _response_lines(result) -> list[str]:
         f"{response.parameter} ({response.grid[0]:g} to {response.grid[-1]:g}), "
         f"{len(set(result.response.branches))} branches"
     ]
-    kept = sum(1 for p in response.points if p.note)
-    if kept:
+    outside = sum(1 for p in response.points if not getattr(p, "series_ok", True))
+    if outside:
         lines.append(
-            f"- {kept} steady states kept their first-order amplitudes (the order-{response.order} "
-            "continuation did not converge there: response.json says why, point by point)"
+            f"- {outside} steady states are roots of the order-{response.order} equations where "
+            "the series is outside its domain (response.json says why, point by point)"
         )
     for fold in response.folds:
-        lines.append(f"- fold at {response.parameter} = {fold.value:.6g}")
+        where = "" if getattr(fold, "inside", True) else " (beside the sweep)"
+        lines.append(f"- fold at {response.parameter} = {fold.value:.6g}{where}")
     for failure in response.failures:
         lines.append(f"- not solved: {failure}")
     from perturb.report.response import flag_lines
@@ -299,8 +300,8 @@ def _response_lines(result) -> list[str]:
         agree = "agree" if shot.stable_true == shot.stable_analytic else "DISAGREE"
         lines.append(
             f"- true orbit at {response.parameter} = {shot.value:.6g} ({shot.branch}): amplitude "
-            f"error {shot.amplitude_error:.2e}, stable {shot.stable_true} (slow flow "
-            f"{shot.stable_analytic}: {agree})"
+            f"error {shot.amplitude_error:.2e}, stable {shot.stable_true} (order "
+            f"{response.order}: {shot.stable_analytic}, {agree})"
         )
     return lines
 

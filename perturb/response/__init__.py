@@ -16,10 +16,10 @@ from perturb.response.curve import (
     Fold,
     FrequencyResponse,
     ResponsePoint,
-    frequency_response,
     trace_branches,
 )
 from perturb.response.roots import RootSet, RootStatus, real_roots
+from perturb.response.sampled import frequency_response
 
 __all__ = [
     "BranchPoint",

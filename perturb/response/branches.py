@@ -1,27 +1,27 @@
 """The steady-state branches of a driven system at one parameter point, and their solutions.
 
-:func:`branches_at` finds every real root of the first-order amplitude equations at the given
-values (exact rationals, :func:`~perturb.response.roots.real_roots`), continues each to order N on
-the displacement function, and judges its stability (:func:`perturb.method.driven.slow_flow`);
+:func:`branches_at` finds every order-N branch at the given values: the certified first-order
+census at the point (exact rationals, :func:`~perturb.response.roots.real_roots`) seeds the
+continuation of each branch in the detuning around it (:mod:`perturb.response.traced`), carried
+to order N; stability from the Floquet multipliers along each order-N orbit
+(:mod:`perturb.response.floquet`);
 :func:`branch_solution` is the :class:`~perturb.PeriodicSolution` of one branch (its amplitudes put
 in), which evaluates, validates and exports like any other; :func:`branch_names` names them.
 """
 
 from __future__ import annotations
 
+import cmath
 import math
 from collections.abc import Mapping
 
 import attrs
-import numpy as np
 import sympy as sp
 
-from perturb._lambdify import numpy_lambdify
 from perturb.errors import InvalidParameterError, bad_value
-from perturb.method.driven import AmplitudeEquations, slow_flow
-from perturb.response.roots import real_roots
+from perturb.method.driven import AmplitudeEquations
+from perturb.response.exact import exact_number
 from perturb.solution import PeriodicSolution, Status
-from perturb.system import EPS
 
 __all__ = [
     "BranchPoint",
@@ -33,18 +33,8 @@ __all__ = [
     "steady_state",
 ]
 
-#: Newton iterations of the order-N continuation from a first-order root.
-CONTINUATION_ITERATIONS = 12
-#: Relative residual of D_N at which the continuation has converged.
-CONTINUATION_TOL = 1e-12
-#: A continued root that moves by more than this fraction of its amplitude (plus ε) has left its
-#: first-order root: a spurious root of the truncated series, not that branch.
-CONTINUATION_LEAP = 0.5
 #: A response whose amplitudes are all below this is the trivial one (x = 0).
 TRIVIAL = 1e-12
-#: Two roots this close (relative) are one: far above the isolation width, far below any
-#: distinct branch.
-DUPLICATE = 1e-8
 
 
 @attrs.frozen
@@ -58,14 +48,22 @@ class BranchPoint:
     norms : dict
         ``{coordinate: sqrt(a**2 + b**2)}`` of each resonant coordinate.
     stable : bool or None
-        From the slow flow (None: on a fold, or undamped).
+        From the Floquet multipliers along the order-N orbit (None: the largest on the unit
+        circle, a fold or an undamped system).
     eigenvalues, multipliers : tuple of complex
-        The slow flow's eigenvalues (per unit ε, per period) and the Floquet multipliers they
-        predict.
+        The Floquet multipliers (:mod:`perturb.response.floquet`) and their exponents per unit ε
+        (log μ / ε: the slow flow's eigenvalues they stand for).
     first_order : dict
-        The first-order root it was continued from.
+        Empty: no point keeps first-order amplitudes (kept for the JSON contract).
     note : str
-        Empty, or why the order-N continuation kept the first-order amplitudes.
+        Empty, or what to know: the series' terms not decreasing there, a continuation in the
+        window that failed.
+    peak, first_harmonic, error : dict
+        max |x| over a period, the resonant harmonic's amplitude and the series' error estimate
+        of each resonant coordinate (:mod:`perturb.response.measures`).
+    series_ok : bool
+    liouville : float
+        exp(∮ div f dt) along the orbit: the product of the multipliers.
     """
 
     amplitudes: dict
@@ -75,6 +73,11 @@ class BranchPoint:
     multipliers: tuple = attrs.field(converter=tuple)
     first_order: dict = attrs.field(factory=dict)
     note: str = ""
+    peak: dict = attrs.field(factory=dict)
+    first_harmonic: dict = attrs.field(factory=dict)
+    error: dict = attrs.field(factory=dict)
+    series_ok: bool = True
+    liouville: float = math.nan
 
     @property
     def trivial(self) -> bool:
@@ -85,16 +88,6 @@ class BranchPoint:
         if coordinate is None:
             return next(iter(self.norms.values()))
         return self.norms[coordinate]
-
-
-def exact_number(value) -> sp.Rational:
-    """A number as the exact rational of its shortest decimal (what the user typed)."""
-    if isinstance(value, sp.Basic) and value.is_Rational:
-        return value
-    value = float(value)
-    if not math.isfinite(value):
-        raise bad_value("value", value, "give a finite number", InvalidParameterError)
-    return sp.Rational(repr(value))
 
 
 def _fixed(equations: AmplitudeEquations, values: Mapping) -> dict:
@@ -108,125 +101,110 @@ def _fixed(equations: AmplitudeEquations, values: Mapping) -> dict:
 def branches_at(
     equations: AmplitudeEquations, values: Mapping, epsilon: float, order: int = 1
 ) -> tuple[list[BranchPoint], str]:
-    """Every steady-state response at these parameter values.
+    """Every order-N steady-state response at these parameter values.
+
+    The first-order equations are solved for every real root at the point (certified); each
+    first-order branch through it is followed in the detuning σ over a window around the point,
+    carried to order N by the homotopy in the truncation and continued at order N through its
+    folds (:func:`perturb.response.traced.trace`); the order-N curves are read at the point. A
+    first-order root with no order-N branch over it gives none, and an order-N branch whose
+    first-order counterpart turned before the point is found (softening beyond the first-order
+    fold). Stability from the Floquet multipliers along each order-N orbit.
 
     Returns
     -------
     (list of BranchPoint, str)
-        The branches sorted by amplitude, and "" or why the roots could not be enumerated (then
-        the list is empty: never a silent drop).
+        The branches sorted by amplitude (max |x|), and "" or why the roots could not be
+        enumerated (then the list is empty: never a silent drop).
     """
+    from perturb.response.evaluate import PointEvaluator
+    from perturb.response.line import excitation_frequency, line_of_values
+    from perturb.response.traced import trace
+
     fixed = _fixed(equations, values)
-    first = [sp.expand(e.xreplace(fixed)) for e in equations.displacement(0)]
-    unknowns = list(equations.amplitudes)
-    roots = real_roots(first, unknowns)
-    if not roots.status.success:
-        return [], f"{roots.status.value} ({roots.message})"
-    refine = _continuation(equations, order, fixed, float(epsilon))
-    point_values = {k.name: float(v) for k, v in fixed.items()}
+    floats = {k.name: float(v) for k, v in fixed.items()}
+    excitation_frequency(equations.system, floats, float(epsilon))
+    names = [p.name for p in equations.system.parameters]
+    detuning = equations.system.excitation.detuning
+    swept = detuning.name if isinstance(detuning, sp.Symbol) and detuning.name in floats else None
+    if swept is None:  # no detuning to follow: the point's roots carried by the homotopy alone
+        swept = names[0] if names else None
+    if swept is None:
+        return [], "the system has no parameter to continue its branches in"
+    line = line_of_values(names, floats, float(epsilon), swept)
+    centre = floats[swept]
+    half = max(SINGLE_POINT_WINDOW, SINGLE_POINT_SHARE * abs(centre))
+    traced = trace(equations, order, line, centre - half, centre + half, census_at=[centre],
+                   folds=False)  # fmt: skip
+    census_failed = [f for f in traced.failures if f.startswith(f"{swept} = ")]
+    if census_failed:
+        return [], census_failed[0].split(": ", 1)[1]
+    found = traced.at([centre])[0]
+    if not found:
+        return [], ""
+    evaluator = PointEvaluator(equations, line)
+    at = evaluator.evaluate([u for u, _ in found], [centre] * len(found))
+    trouble = "; ".join(traced.failures)
     out = []
-    for root in _distinct_orbits(roots.roots, equations):
-        amplitudes, note = refine(root)
-        # the slow flow of the displacement function whose root this is (order 0 when the
-        # continuation kept the first-order root): a Jacobian off its own root means nothing
-        flow_order = 0 if note else order
-        flow = slow_flow(equations, amplitudes, point_values, float(epsilon), order=flow_order)
-        norms = {
-            c: math.hypot(amplitudes[f"a_{c}"], amplitudes[f"b_{c}"]) for c in equations.coordinates
-        }
+    amplitude_names = [s.name for s in equations.amplitudes]
+    for k, (u, _) in enumerate(found):
+        stability = at["stability"]
+        multipliers = tuple(complex(z) for z in stability.multipliers[k])
+        reasons = at["reasons"][k]
+        note = "; ".join(
+            filter(None, [
+                "the series is outside its domain here: " + "; ".join(reasons) if reasons else "",
+                f"a continuation in the window around the point failed: {trouble}" if trouble else "",
+            ])
+        )  # fmt: skip
         out.append(
             BranchPoint(
-                amplitudes=amplitudes,
-                norms=norms,
-                stable=flow.stable,
-                eigenvalues=tuple(complex(z) for z in flow.eigenvalues),
-                multipliers=tuple(complex(z) for z in flow.multipliers),
-                first_order={s.name: float(v) for s, v in root.items()},
+                amplitudes=dict(zip(amplitude_names, map(float, u), strict=True)),
+                norms={c: float(v[k]) for c, v in at["initial"].items()},
+                stable=stability.stable[k],
+                eigenvalues=tuple(
+                    cmath.log(z) / float(epsilon) if z else complex(-math.inf) for z in multipliers
+                ),  # fmt: skip
+                multipliers=multipliers,
                 note=note,
+                peak={c: float(v[k]) for c, v in at["peak"].items()},
+                first_harmonic={c: float(v[k]) for c, v in at["first-harmonic"].items()},
+                error=at["error"][k],
+                series_ok=not reasons,
+                liouville=float(stability.liouville[k]),
             )
         )
-    return sorted(out, key=lambda p: tuple(p.norms.values())), ""
+    return sorted(out, key=lambda p: (*p.peak.values(), *p.norms.values())), ""
 
 
-def _distinct_orbits(roots, equations: AmplitudeEquations) -> list[dict]:
-    """The roots that are different orbits: a response of p forcing periods shifted by k forcing
-    periods (s -> s + 2 pi k/p) is the same orbit, its harmonic-m amplitudes rotated by
-    2 pi k m/p (p = 2: the parametric response's (a, b) and (-a, -b))."""
-    p = equations.system.excitation.p
-    symbols = equations.amplitudes
-    kept: list[dict] = []
-
-    def vector(root):
-        return np.array([float(root[s]) for s in symbols])
-
-    def rotated(v, k):
-        out = v.copy()
-        for i, m in enumerate(equations.harmonics):
-            angle = 2 * math.pi * k * m / p
-            c, s_ = math.cos(angle), math.sin(angle)
-            a, b = v[2 * i], v[2 * i + 1]
-            out[2 * i], out[2 * i + 1] = c * a + s_ * b, -s_ * a + c * b
-        return out
-
-    for root in roots:
-        v = vector(root)
-        size = max(1.0, float(np.max(np.abs(v))))
-        images = [rotated(v, k) for k in range(1, p)]
-        if any(
-            np.max(np.abs(image - vector(other))) <= DUPLICATE * size
-            for other in kept
-            for image in images
-        ):
-            continue
-        kept.append(root)
-    return kept
+#: The window in the detuning σ around one point over which its branches are followed: at least
+#: this wide on each side, and this share of |σ| (the order-N folds lie O(ε σ-scale) from the
+#: first-order ones: 4 in σ for the forced Duffing's defaults at order 1, where ε a² ~ 0.5).
+SINGLE_POINT_WINDOW = 2.0
+SINGLE_POINT_SHARE = 0.5
 
 
-def _continuation(equations: AmplitudeEquations, order: int, fixed: dict, eps: float):
-    """Newton on D_order from a first-order root (the identity at order 0)."""
-    names = [s.name for s in equations.amplitudes]
-    if order == 0:
-        return lambda root: ({s.name: float(v) for s, v in root.items()}, "")
-    rows = [sp.expand(r.xreplace(fixed).subs(EPS, eps)) for r in equations.displacement(order)]
-    symbols = list(equations.amplitudes)
-    f = numpy_lambdify(symbols, rows)
-    jac = numpy_lambdify(symbols, [[sp.diff(r, a) for a in symbols] for r in rows])
-
-    def refine(root):
-        x = np.array([float(root[s]) for s in symbols])
-        start = x.copy()
-        size = max(1.0, float(np.max(np.abs(x))))
-        residual = np.asarray(f(*x), dtype=float)
-        for _ in range(CONTINUATION_ITERATIONS):
-            if np.max(np.abs(residual)) <= CONTINUATION_TOL * size:
-                break
-            try:
-                x = x + np.linalg.solve(np.asarray(jac(*x), dtype=float), -residual)
-            except np.linalg.LinAlgError:
-                break
-            residual = np.asarray(f(*x), dtype=float)
-        converged = bool(np.max(np.abs(residual)) <= CONTINUATION_TOL * size * 1e3)
-        leap = float(np.max(np.abs(x - start)))
-        if not converged or leap > CONTINUATION_LEAP * max(float(np.max(np.abs(start))), eps):
-            return (
-                dict(zip(names, start.tolist(), strict=True)),
-                f"the order-{order} continuation did not converge from this first-order root "
-                "(near a fold): its first-order amplitudes are kept",
-            )
-        return dict(zip(names, x.tolist(), strict=True)), ""
-
-    return refine
+def count_name(name: str) -> bool:
+    """Whether ``name`` is one of the names :func:`branch_names` gives by count."""
+    if name in ("trivial", "response", "lower", "middle", "upper"):
+        return True
+    head, _, tail = name.rpartition("-")
+    return head in ("branch", "beyond-series") and tail.isdigit()
 
 
 def branch_names(points: list[BranchPoint]) -> list[str]:
     """Stable names for the branches at one point, sorted by amplitude: ``trivial`` (x = 0), then
     ``response`` (one), ``lower``/``upper`` (two), ``lower``/``middle``/``upper`` (three),
-    else ``branch-1``, ``branch-2``, …"""
+    else ``branch-1``, ``branch-2``, …; a root where the series is outside its domain
+    (``series_ok`` False: no lower-order counterpart, terms not decreasing) is ``beyond-series-1``,
+    … and not counted, so that it never renames the others."""
     trivial = [p for p in points if p.trivial]
-    others = [p for p in points if not p.trivial]
+    beyond = [p for p in points if not p.trivial and not getattr(p, "series_ok", True)]
+    others = [p for p in points if not p.trivial and getattr(p, "series_ok", True)]
     labels = {1: ["response"], 2: ["lower", "upper"], 3: ["lower", "middle", "upper"]}
     names = labels.get(len(others), [f"branch-{k + 1}" for k in range(len(others))])
     out = {id(p): n for p, n in zip(others, names, strict=True)}
+    out.update({id(p): f"beyond-series-{k + 1}" for k, p in enumerate(beyond)})
     out.update({id(p): "trivial" for p in trivial})
     return [out[id(p)] for p in points]
 
@@ -266,7 +244,7 @@ def branch_solution(
     message = (
         f"branch {name or 'of the response'}: amplitudes "
         + ", ".join(f"{k} = {v:.6g}" for k, v in point.amplitudes.items())
-        + f"; {stability} (slow flow)"
+        + f"; {stability} (Floquet)"
         + (f"; {point.note}" if point.note else "")
     )
     return attrs.evolve(
@@ -312,10 +290,22 @@ class SteadyState:
                 message=self.why or "the response equations have no real root at these values",
             )
         if name is None:
-            nontrivial = [i for i, p in enumerate(self.points) if not p.trivial]
+            nontrivial = [
+                i for i, p in enumerate(self.points) if not p.trivial and p.series_ok
+            ] or [i for i, p in enumerate(self.points) if not p.trivial]
             index = nontrivial[-1] if nontrivial else len(self.points) - 1
         elif name in self.names:
             index = self.names.index(name)
+        elif count_name(name):  # a branch that exists elsewhere, not here: a failed run
+            return attrs.evolve(
+                self.equations.solution,
+                status=Status.NO_ROOT,
+                message=(
+                    f"no branch {name!r} at these values: the order-{self.equations.order} "
+                    f"response has {list(self.names)} here (a branch ends at a fold: see "
+                    "`perturb response` for where)"
+                ),
+            )
         else:
             raise UnknownNameError(
                 f"`family` = {name!r} is not a branch of the response here: choose from "

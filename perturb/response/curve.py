@@ -1,37 +1,30 @@
 """The frequency response of a driven system: every branch, its stability, its folds.
 
 For each value of the swept parameter (the detuning σ, the excitation frequency Ω, the forcing
-level …), the first-order amplitude equations :math:`P_1(a, b) = 0`
-(:func:`perturb.method.driven.amplitude_equations`, derived once with every parameter symbolic)
-are solved for **every** real root with exact rational coefficients
-(:func:`perturb.response.roots.real_roots`: the count is proved). Each root is
+level …) the response holds every branch of the **order-N** amplitude equations
+(:func:`perturb.method.driven.amplitude_equations`, derived once with every parameter symbolic):
+the first-order equations are solved for every real root with exact rational coefficients at the
+window's ends (the count is proved), their exact folds found, and every branch is continued by
+pseudo-arclength through its folds at order N (:mod:`perturb.response.traced`,
+:mod:`perturb.continuation`), then read at the grid values. Each point is judged stable or not by
+its Floquet multipliers along the order-N orbit (:mod:`perturb.response.floquet`), measured by
+max |x|, its first harmonic and its initial values (:mod:`perturb.response.measures`).
 
-* continued to order N on the displacement function :math:`D_N = \\sum_{k\\le N+1}
-  \\varepsilon^{k-1} P_k` by Newton's method started at that exact root (ε small: the root moves by
-  O(ε)); near a fold, where the first-order roots merge, the continuation may not converge and the
-  point keeps its first-order amplitudes with that said in its ``note``;
-* judged stable or not by the slow flow's Jacobian (:func:`perturb.method.driven.slow_flow`, Malkin).
-
-The **folds** (saddle-node points, where a branch turns and the response jumps) are where the
-first-order roots meet: the real solutions of :math:`\\{P_1 = 0, \\det \\partial P_1/\\partial(a,
-b) = 0\\}` in (a, b, σ), found by the same exact elimination. Branches are traced across the grid
-by the nearest root (:func:`trace_branches`).
+The **folds** (saddle-node points, where a branch turns and the response jumps), branch points
+and Neimark-Sacker points are located on the order-N curves, inside the sweep or just beside it.
+The helpers below for the first-order folds (:func:`_folds`, :func:`continue_fold`) and the
+grid-point tracing (:func:`trace_branches`) serve the responses built point by point.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
 
-import sympy as sp
 from attrs import field, frozen
 
-from perturb.errors import InvalidParameterError, bad_value
-from perturb.method.driven import AmplitudeEquations
-from perturb.response.branches import BranchPoint, branches_at, exact_number
-from perturb.response.roots import RootStatus, real_roots
+from perturb.response.branches import BranchPoint
 
-__all__ = ["Fold", "FrequencyResponse", "ResponsePoint", "frequency_response", "trace_branches"]
+__all__ = ["Fold", "FrequencyResponse", "ResponsePoint", "trace_branches"]
 
 
 @frozen
@@ -47,15 +40,29 @@ class ResponsePoint:
     norms : dict
         ``{coordinate: sqrt(a**2 + b**2)}`` of each resonant coordinate's first harmonic.
     stable : bool or None
-        From the slow flow (None: on a fold, or undamped).
+        From the Floquet multipliers along the order-N orbit (None: marginal).
     eigenvalues : tuple of complex
-        The slow flow's eigenvalues (per unit of ε per period).
+        The Floquet exponents per unit of ε, log μ / ε (the slow flow's eigenvalues they stand
+        for).
     multipliers : tuple of complex
         The Floquet multipliers they predict.
     first_order : dict
-        The first-order root it was continued from.
+        The first-order root it was continued from (empty for a point read off a continued
+        order-N curve).
     note : str
-        Empty, or why the order-N continuation kept the first-order amplitudes.
+        Empty, or what to know about the point (the series outside its domain there).
+    peak, first_harmonic : dict
+        Of each resonant coordinate, from the whole order-N series: max |x| over a period, and
+        the amplitude of the harmonic it resonates at (:mod:`perturb.response.measures`);
+        ``norms`` is the initial-value norm.
+    error : dict
+        The series' own estimate of its state's error, per coordinate (NaN: none).
+    series_ok : bool
+        The series' terms decrease there (``note`` says which do not).
+    liouville : float
+        exp(∮ div f dt) along the orbit: the product of ``multipliers``.
+    branch : int
+        The continued curve the point lies on (-1: not from a continuation).
     """
 
     value: float = field(converter=float)
@@ -66,6 +73,12 @@ class ResponsePoint:
     multipliers: tuple = field(converter=tuple)
     first_order: dict = field(factory=dict)
     note: str = ""
+    peak: dict = field(factory=dict)
+    first_harmonic: dict = field(factory=dict)
+    error: dict = field(factory=dict)
+    series_ok: bool = True
+    liouville: float = field(default=math.nan, converter=float)
+    branch: int = -1
 
     @classmethod
     def of(cls, value: float, branch: BranchPoint) -> ResponsePoint:
@@ -81,13 +94,29 @@ class ResponsePoint:
             return next(iter(self.norms.values()))
         return self.norms[coordinate]
 
+    @property
+    def trivial(self) -> bool:
+        """Every resonant coordinate at rest (x = 0)."""
+        from perturb.response.branches import TRIVIAL
+
+        return all(n <= TRIVIAL for n in self.norms.values())
+
+    def amplitude(self, coordinate: str | None = None, measure: str = "initial") -> float:
+        """``coordinate``'s amplitude by ``measure`` (``peak``, ``first-harmonic`` or
+        ``initial``; :data:`perturb.response.measures.MEASURES`)."""
+        table = {"peak": self.peak, "first-harmonic": self.first_harmonic, "initial": self.norms}
+        values = table[measure] or self.norms
+        return next(iter(values.values())) if coordinate is None else values[coordinate]
+
 
 @frozen
 class Fold:
     """A saddle-node point of the response: where two branches meet.
 
-    ``value`` is the fold of the order-N response (continued from the exact first-order fold,
-    ``first_order``); ``note`` says when the continuation did not converge (then both agree).
+    ``value`` is the fold of the order-N response, located on its continued curve
+    (``first_order``: the nearest fold of the first-order curve); ``note`` says when it could not
+    be located to the tolerance; ``inside`` False for a fold just beside the sweep (in its
+    window); ``peak`` max |x| of each coordinate there.
     """
 
     value: float = field(converter=float)
@@ -95,6 +124,8 @@ class Fold:
     norms: dict
     first_order: float = field(default=math.nan, converter=float)
     note: str = ""
+    inside: bool = True
+    peak: dict = field(factory=dict)
 
 
 @frozen
@@ -117,8 +148,17 @@ class FrequencyResponse:
     folds : tuple of Fold
         Inside the swept range, sorted.
     failures : tuple of str
-        Grid values where the roots could not be enumerated, with the reason (never dropped
-        silently).
+        Grid values where the roots could not be enumerated, and curves that could not be
+        followed, with the reason (never dropped silently).
+    coordinates : tuple of str
+    special : tuple
+        Every located special point of the order-N curves (folds, branch points,
+        Neimark-Sacker and period-doubling points), inside the sweep or just beside it
+        (:class:`perturb.response.continued.SpecialResponse`).
+    curves : tuple
+        The continued order-N curves, densely (:class:`perturb.response.continued.ResponseCurve`).
+    measure : str
+        The amplitude measure the response is drawn and its branches named by.
     """
 
     system: str
@@ -131,6 +171,9 @@ class FrequencyResponse:
     folds: tuple = field(converter=tuple)
     failures: tuple = field(converter=tuple, factory=tuple)
     coordinates: tuple = field(converter=tuple, factory=tuple)
+    special: tuple = field(converter=tuple, factory=tuple)
+    curves: tuple = field(converter=tuple, factory=tuple, eq=False)
+    measure: str = "initial"
 
     def at(self, value: float) -> tuple[ResponsePoint, ...]:
         """The responses at the grid value nearest ``value``."""
@@ -140,199 +183,6 @@ class FrequencyResponse:
     def branches(self, coordinate: str | None = None) -> list[list[ResponsePoint]]:
         """The points traced into continuous branches (:func:`trace_branches`)."""
         return trace_branches(self.points, self.grid, coordinate)
-
-
-def frequency_response(
-    equations: AmplitudeEquations,
-    parameter: str,
-    grid: Sequence[float],
-    values: Mapping[str, float],
-    epsilon: float,
-    order: int = 1,
-) -> FrequencyResponse:
-    """Every branch of the steady-state response over ``grid`` values of ``parameter``.
-
-    Parameters
-    ----------
-    equations : AmplitudeEquations
-        Of the driven system, to at least ``order`` (:func:`amplitude_equations`).
-    parameter : str
-        The swept parameter: one of the system's parameters (σ, a forcing level…).
-    grid : sequence of float
-    values : mapping
-        Values of every other parameter of the system.
-    epsilon : float
-        ε (> 0).
-    order : int
-        The order of the state (0: the first-order response equations only).
-
-    Returns
-    -------
-    FrequencyResponse
-
-    Raises
-    ------
-    InvalidParameterError
-        An unknown swept parameter or a missing value.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from problems import get_problem
-    >>> from perturb import amplitude_equations, frequency_response
-    >>> system = get_problem("forced-duffing").system()
-    >>> response = frequency_response(
-    ...     amplitude_equations(system, 0), "sigma", np.linspace(0.0, 2.0, 5),
-    ...     {"zeta": 0.1, "gamma": 1.0, "F": 1.0}, epsilon=0.05, order=0)
-    >>> [len(response.at(value)) for value in response.grid]  # one branch, then three
-    [1, 1, 3, 3, 3]
-    >>> [round(fold.value, 4) for fold in response.folds]
-    [0.8497]
-    """
-    system = equations.system
-    names = {p.name: p for p in system.parameters}
-    if parameter not in names:
-        raise bad_value(
-            "parameter", parameter, f"sweep one of the system's parameters {sorted(names)}",
-            InvalidParameterError,
-        )  # fmt: skip
-    missing = sorted(set(names) - {parameter} - set(values))
-    if missing:
-        raise bad_value("values", dict(values), f"give values for {missing}", InvalidParameterError)
-    swept = names[parameter]
-    fixed = {names[k]: exact_number(v) for k, v in values.items() if k in names and k != parameter}
-    first = [sp.expand(e.xreplace(fixed)) for e in equations.displacement(0)]
-    unknowns = list(equations.amplitudes)
-    points, failures = [], []
-    for value in grid:
-        at = {**{k.name: v for k, v in fixed.items()}, parameter: exact_number(value)}
-        found, why = branches_at(equations, at, epsilon, order)
-        if why:
-            failures.append(f"{parameter} = {value:g}: {why}")
-        points.extend(ResponsePoint.of(float(value), branch) for branch in found)
-    folds = _folds(first, unknowns, swept, min(grid), max(grid), equations)
-    return FrequencyResponse(
-        system=system.name,
-        parameter=parameter,
-        order=order,
-        epsilon=float(epsilon),
-        values={k.name: float(v) for k, v in fixed.items()},
-        grid=tuple(float(g) for g in grid),
-        points=tuple(points),
-        folds=tuple(folds),
-        failures=tuple(failures),
-        coordinates=equations.coordinates,
-    )
-
-
-def _folds(first, unknowns, swept, low, high, equations) -> list[Fold]:
-    """Where two first-order roots meet: {P1 = 0, det J = 0} in (amplitudes, swept), exactly."""
-    if swept not in set().union(*(e.free_symbols for e in first)):
-        return []
-    jac = sp.Matrix([[sp.diff(e, u) for u in unknowns] for e in first])
-    det = sp.expand(jac.det(method="berkowitz"))
-    found = real_roots([*first, det], [*unknowns, swept])
-    if found.status is not RootStatus.SOLVED:
-        return []
-    out = []
-    for root in found.roots:
-        value = float(root[swept])
-        if not (low <= value <= high):
-            continue
-        amplitudes = {u.name: float(root[u]) for u in unknowns}
-        norms = {
-            c: math.hypot(amplitudes[f"a_{c}"], amplitudes[f"b_{c}"]) for c in equations.coordinates
-        }
-        if all(n == 0 for n in norms.values()):
-            continue  # the trivial branch's own crossing is a pitchfork, reported by stability
-        if _branch_point(jac, root, unknowns, norms):
-            continue  # likewise where a mode at rest starts to move (the absorber's saturation)
-        if any(_same_orbit(fold, value, norms) for fold in out):
-            continue  # the fold of a response shifted by one forcing period: the same orbit
-        out.append(Fold(value, amplitudes, norms, value))
-    return sorted(out, key=lambda f: f.value)
-
-
-#: Relative distance below which two folds are one: the same value and the same amplitude of
-#: every coordinate (a shift by a forcing period rotates the phases, never the norms); the roots
-#: come from one certified isolation, far finer than this.
-SAME_FOLD = 1e-9
-
-
-def _same_orbit(fold: Fold, value: float, norms: dict) -> bool:
-    pairs = [(fold.value, value), *((fold.norms[c], n) for c, n in norms.items())]
-    return all(abs(p - q) <= SAME_FOLD * max(1.0, abs(p)) for p, q in pairs)
-
-
-#: Share of the Jacobian's null vector on the amplitudes of the modes at rest above which a root of
-#: {P1 = 0, det J = 0} is a branch point, not a fold: the null vector leaves the invariant subspace
-#: (at a fold within it the share is zero, at a branch point one: any value between is far from both).
-BRANCH_SHARE = 0.5
-
-
-def _branch_point(jac, root, unknowns, norms) -> bool:
-    """Whether a singular root lies where a coordinate at rest starts to move (a pitchfork off the
-    invariant subspace where it is zero), which stability reports, rather than on a turn of a branch
-    inside that subspace."""
-    import numpy as np
-
-    resting = [c for c, n in norms.items() if n == 0]
-    if not resting:
-        return False
-    matrix = np.array(jac.xreplace(dict(root)).evalf(), dtype=float)
-    null = np.linalg.svd(matrix)[2][-1]
-    share = sum(
-        null[i] ** 2
-        for i, u in enumerate(unknowns)
-        if any(u.name in (f"a_{c}", f"b_{c}") for c in resting)
-    )
-    return share > BRANCH_SHARE
-
-
-#: Newton iterations of a fold's continuation to order N.
-FOLD_ITERATIONS = 20
-
-
-def continue_fold(fold: Fold, equations, order: int, fixed: dict, swept, epsilon: float) -> Fold:
-    """The order-N fold near a first-order one: Newton on {D_N = 0, det dD_N/d(a, b) = 0} in the
-    amplitudes and the swept parameter, started at the exact first-order fold."""
-    import numpy as np
-
-    from perturb._lambdify import numpy_lambdify
-    from perturb.system import EPS
-
-    if order == 0:
-        return fold
-    rows = [sp.expand(r.xreplace(fixed).subs(EPS, epsilon)) for r in equations.displacement(order)]
-    unknowns = [*equations.amplitudes, swept]
-    jac = sp.Matrix([[sp.diff(r, a) for a in equations.amplitudes] for r in rows])
-    system = [*rows, sp.expand(jac.det(method="berkowitz"))]
-    f = numpy_lambdify(unknowns, system)
-    df = numpy_lambdify(unknowns, [[sp.diff(e, u) for u in unknowns] for e in system])
-    x = np.array([*(fold.amplitudes[a.name] for a in equations.amplitudes), fold.value])
-    start = x.copy()
-    for _ in range(FOLD_ITERATIONS):
-        residual = np.asarray(f(*x), dtype=float)
-        if np.max(np.abs(residual)) <= 1e-12 * max(1.0, float(np.max(np.abs(x)))):
-            break
-        try:
-            x = x + np.linalg.lstsq(np.asarray(df(*x), dtype=float), -residual, rcond=None)[0]
-        except np.linalg.LinAlgError:
-            break
-    residual = np.asarray(f(*x), dtype=float)
-    moved = float(np.max(np.abs(x - start)))
-    if (
-        not np.all(np.isfinite(x))
-        or np.max(np.abs(residual)) > 1e-9
-        or moved > 0.5 * max(1.0, float(np.max(np.abs(start))))
-    ):
-        return Fold(fold.value, fold.amplitudes, fold.norms, fold.value,
-                    f"the order-{order} fold did not converge: first-order value kept")  # fmt: skip
-    amplitudes = {a.name: float(v) for a, v in zip(equations.amplitudes, x, strict=False)}
-    norms = {
-        c: math.hypot(amplitudes[f"a_{c}"], amplitudes[f"b_{c}"]) for c in equations.coordinates
-    }
-    return Fold(float(x[-1]), amplitudes, norms, fold.value)
 
 
 def trace_branches(points, grid, coordinate: str | None = None) -> list[list[ResponsePoint]]:

@@ -88,8 +88,7 @@ def slow_sweep(
     -------
     SweepRun
     """
-    if system.excitation is None:
-        raise bad_value("system", system.name, "give a driven system", InvalidParameterError)
+    system.frame.require_driven("system", system.name, "give a driven system")
     if not (rate > 0 and math.isfinite(rate)):
         raise bad_value("rate", rate, "give a positive sweep rate", InvalidParameterError)
     if not (omega_start > 0 and omega_stop > 0 and omega_start != omega_stop):

@@ -2,15 +2,15 @@
 
 :func:`problem_response` sweeps a user-facing parameter (the excitation frequency ``Omega``, a
 forcing level, the detuning ``sigma``…) of a driven problem. The amplitude equations are derived
-once for the problem's symbolic system; at each grid value the problem is re-created (its
-parameter checks apply) and every branch is found at its values (:func:`branches_at`). The folds
-come exactly from the first-order equations in the system's parameter the swept one moves (σ for
-Ω: :math:`\\Omega = (p/q)\\omega + \\varepsilon\\sigma`), mapped back to the swept one. The
-backbone is the free engine's frequency of the unforced, undamped system, if the problem gives one
-(``backbone_system``). With ``validate`` > 0 the true orbit is shot at that many points of every
-branch (:func:`perturb.validation.validate` ingredients: forced shooting, Floquet multipliers).
+once for the problem's symbolic system, and every order-N branch is continued along the sweep
+from the certified first-order census (:mod:`perturb.response.continued`: its folds, branch
+points and Neimark-Sacker points located on the order-N curves, its stability from the Floquet
+multipliers along the order-N series). The backbone is the free engine's frequency of the
+system's conservative, unforced part (:mod:`perturb.response.backbone`). With ``validate`` > 0
+the true orbit is shot at points of every branch chosen by arclength
+(:mod:`perturb.response.truth`).
 
-The problem is duck-typed: ``system()``, ``symbol_values()``, ``epsilon()``, ``name`` and
+The problem gives ``case()`` (a :class:`perturb.case.Case`), ``name`` and
 ``with_parameters(**values)`` (a :class:`problems.base.Problem` has them all).
 """
 
@@ -20,50 +20,28 @@ import math
 from collections.abc import Sequence
 
 import numpy as np
-import sympy as sp
 from attrs import field, frozen
 
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import amplitude_equations
-from perturb.progress import track
-from perturb.response.branches import branch_names, branches_at, exact_number
+from perturb.response.backbone import Backbone, backbone
 from perturb.response.curve import (
-    Fold,
     FrequencyResponse,
-    ResponsePoint,
-    _folds,
-    continue_fold,
 )
-from perturb.response.domain import branch_domains
 
 __all__ = ["Backbone", "ProblemResponse", "TrueResponse", "problem_response"]
-
-#: Amplitudes of the backbone, as fractions of the largest response amplitude found (the
-#: backbone is drawn through the region the response occupies).
-BACKBONE_SAMPLES = 41
-
-
-@frozen
-class Backbone:
-    """The free, undamped system's frequency against its amplitude (the response's spine).
-
-    Attributes
-    ----------
-    coordinate : str
-    amplitudes : tuple of float
-    values : tuple of float
-        The swept parameter's value at which the forced system resonates with the free motion of
-        that amplitude.
-    """
-
-    coordinate: str
-    amplitudes: tuple = field(converter=tuple)
-    values: tuple = field(converter=tuple)
 
 
 @frozen
 class TrueResponse:
-    """The true periodic orbit shot at one response point."""
+    """The true periodic orbit shot at one point of a continued response curve.
+
+    ``amplitude`` is the analytic amplitude and ``true_amplitude`` the shot orbit's, both by
+    ``measure`` (of the first resonant coordinate); ``amplitude_error`` the largest distance of
+    the analytic orbit from the true one over a period, relative to the true amplitude;
+    ``within_tol`` whether that is within the run's ``tol``; ``reason`` why the point was chosen
+    (the largest amplitude, a side of a fold, an end, the arclength spread).
+    """
 
     value: float
     branch: str
@@ -74,6 +52,13 @@ class TrueResponse:
     stable_true: bool | None
     stable_analytic: bool | None
     message: str
+    true_amplitude: float = math.nan
+    measure: str = "initial"
+    within_tol: bool | None = None
+    reason: str = ""
+    multipliers_true: tuple = field(converter=tuple, factory=tuple)
+    multipliers_analytic: tuple = field(converter=tuple, factory=tuple)
+    curve: int = -1
 
 
 @frozen
@@ -92,12 +77,8 @@ class ProblemResponse:
     backbone : Backbone or None
     true : tuple of TrueResponse
         The shot points (empty unless asked).
-    outside : tuple of str
-        Aligned with ``response.points``: ``""`` where the point's series is inside its domain,
-        else why not (``perturb solve``'s check, :mod:`perturb.response.domain`).
-    beyond : tuple of str
-        Aligned with ``response.points``: ``""``, or why the point is beyond the series'
-        estimated validity.
+    true_curve : perturb.response.true_curve.TrueCurves or None
+        The true periodic orbits continued from the branches (``--true``; None unless asked).
     """
 
     problem: str
@@ -106,8 +87,7 @@ class ProblemResponse:
     branches: tuple = field(converter=tuple)
     backbone: Backbone | None = None
     true: tuple = field(converter=tuple, factory=tuple)
-    outside: tuple = field(converter=tuple, factory=tuple)
-    beyond: tuple = field(converter=tuple, factory=tuple)
+    true_curve: object = None
 
 
 def parse_sweep(text: str, argument: str = "--sweep") -> tuple[str, np.ndarray]:
@@ -175,13 +155,11 @@ def check_request(problem, parameter: str):
         A problem that is not driven, or an unknown parameter (the closest is suggested).
     """
     system = problem.system()
-    if system.excitation is None:
-        raise bad_value(
-            "problem", problem.name,
-            "it is not driven (its system has no excitation): the frequency response is for "
-            "forced, damped or parametrically excited systems; use `perturb solve`",
-            InvalidParameterError,
-        )  # fmt: skip
+    system.frame.require_driven(
+        "problem", problem.name,
+        "it is not driven (its system has no excitation): the frequency response is for "
+        "forced, damped or parametrically excited systems; use `perturb solve`",
+    )  # fmt: skip
     if parameter not in problem.values:
         from difflib import get_close_matches
 
@@ -196,9 +174,14 @@ def check_request(problem, parameter: str):
 
 
 def problem_response(
-    problem, parameter: str, grid: Sequence[float], order: int = 1, validate: int = 0
-) -> ProblemResponse:
+    problem, parameter: str, grid: Sequence[float], order: int = 1, validate: int = 0,
+    measure: str = "peak", tol: float | None = None, true: int = 0,
+) -> ProblemResponse:  # fmt: skip
     """The frequency response of a driven ``problem`` over ``grid`` values of ``parameter``.
+
+    Every branch is the order-N one, continued from the certified first-order census through its
+    folds (:mod:`perturb.response.continued`); stability from the Floquet multipliers of the
+    variational equation along the order-N series.
 
     Parameters
     ----------
@@ -211,7 +194,18 @@ def problem_response(
     order : int
         The state's order (>= 1).
     validate : int
-        Shoot the true orbit at this many points of each branch (0: none).
+        Shoot the true orbit at this many points of each branch, spread by arclength, besides the
+        largest amplitude, both sides of each fold and the ends (0: none; at most
+        ``MAX_VALIDATE``).
+    measure : str
+        The amplitude measure the branches are named and drawn by: ``peak`` (max |x|),
+        ``first-harmonic`` or ``initial`` (:data:`perturb.response.measures.MEASURES`).
+    tol : float, optional
+        The relative orbit error above which a shot point is marked (default ``DEFAULT_TOL``).
+    true : int
+        Continue the true periodic orbits from the branches, at most this many points per curve
+        (0: not; :func:`perturb.response.true_curve.true_curves`), and mark where the analytic
+        curve parts from them by more than ``tol`` (relative, in ``measure``).
 
     Returns
     -------
@@ -221,142 +215,120 @@ def problem_response(
     ------
     InvalidParameterError
         A problem that is not driven, an unknown parameter, a grid of fewer than 2 increasing
-        finite values, or invalid parameter values at a grid point.
+        finite values, invalid parameter values at a grid point, an unknown measure, or a
+        validation budget beyond ``MAX_VALIDATE``.
     """
+    from perturb._defaults import DEFAULT_TOL
+    from perturb.response.continued import continued_response
+    from perturb.response.line import line_of_problem
+    from perturb.response.sampled import response_of
+
     system = check_request(problem, parameter)
     grid = _check_grid(parameter, grid)
-    equations = amplitude_equations(system, order)
-    points, names, failures, variants, flags = [], [], [], [], []
-    for value in track(grid, label=f"response {problem.name}"):
+    check_measure(measure)
+    check_validate(validate)
+    tol = DEFAULT_TOL if tol is None else check_tol(tol)
+    from perturb.response.line import excitation_frequency
+
+    for value in grid:  # the problem's own checks at every grid value (one line, exit 2)
         variant = problem.with_parameters(**{parameter: float(value)})
-        variants.append(variant)
-        found, why = branches_at(equations, variant.symbol_values(), variant.epsilon(), order)
-        if why:
-            failures.append(f"{parameter} = {value:g}: {why}")
-        names.extend(branch_names(found))
-        points.extend(ResponsePoint.of(float(value), branch) for branch in found)
-        flags.extend(branch_domains(equations, found, variant))
-    folds = _problem_folds(equations, problem, parameter, variants, grid)
-    response = FrequencyResponse(
-        system=problem.name,
-        parameter=parameter,
-        order=order,
+        excitation_frequency(system, variant.symbol_values(), float(variant.epsilon()))
+    equations = amplitude_equations(system, order)
+    names = [p.name for p in system.parameters]
+    line = line_of_problem(problem, parameter, names, float(grid[0]), float(grid[-1]))
+    result = continued_response(equations, order, line, grid)
+    response, branch_names_ = response_of(
+        result, system=problem.name, parameter=parameter, order=order,
         epsilon=float(problem.epsilon()),
         values={k: float(v) for k, v in problem.values.items() if k != parameter},
-        grid=tuple(float(g) for g in grid),
-        points=tuple(points),
-        folds=tuple(folds),
-        failures=tuple(failures),
-        coordinates=equations.coordinates,
-    )
-    backbone = _backbone(problem, parameter, variants, grid, points, order)
-    true = _shoot(problem, parameter, response, names, order, validate) if validate else ()
-    return ProblemResponse(
-        problem.name, parameter, response, names, backbone, true,
-        outside=[f[0] for f in flags], beyond=[f[1] for f in flags],
+        grid=grid, coordinates=equations.coordinates, measure=measure,
     )  # fmt: skip
+    reference = system.coordinates[system.reference_index].name
+    top = max((p.amplitude(reference, measure) for p in response.points), default=math.nan)
+    spine = backbone(problem.case(), parameter, top, order, measure) if response.points else None
+    true_points = _true_points(result, response, validate, measure, tol) if validate else ()
+    curves = None
+    if true:
+        from perturb.response.true_curve import true_curves
 
-
-def _problem_folds(equations, problem, parameter, variants, grid) -> list[Fold]:
-    """Folds in the system's parameter that ``parameter`` moves (linearly), mapped back."""
-    first, last = variants[0].symbol_values(), variants[-1].symbol_values()
-    moved = [k for k in first if first[k] != last[k]]
-    if len(moved) != 1:
-        return []
-    name = moved[0]
-    (symbol,) = [p for p in equations.system.parameters if p.name == name]
-    a, b = float(grid[0]), float(grid[-1])
-    s0, s1 = first[name], last[name]
-    slope = (s1 - s0) / (b - a)
-    middle = variants[len(variants) // 2].symbol_values()[name]
-    mid_value = float(grid[len(grid) // 2])
-    if not math.isclose(middle, s0 + slope * (mid_value - a), rel_tol=1e-9, abs_tol=1e-12):
-        return []  # not a linear map: no exact folds in the swept parameter
-    fixed = {
-        p: exact_number(first[p.name])
-        for p in equations.system.parameters
-        if p.name in first and p.name != name
-    }
-    rows = [sp.expand(e.xreplace(fixed)) for e in equations.displacement(0)]
-    low, high = sorted((s0, s1))
-    out = []
-    eps = float(problem.epsilon())
-    for fold in _folds(rows, list(equations.amplitudes), symbol, low, high, equations):
-        fold = continue_fold(fold, equations, equations.order, fixed, symbol, eps)
-
-        def back(value):
-            return a + (value - s0) / slope if slope else a
-
-        out.append(
-            Fold(back(fold.value), fold.amplitudes, fold.norms, back(fold.first_order), fold.note)
-        )
-    return sorted(out, key=lambda f: f.value)
-
-
-def _backbone(problem, parameter, variants, grid, points, order) -> Backbone | None:
-    """The free engine's frequency of the problem's unforced, undamped system, if it has one."""
-    import attrs
-
-    make = getattr(problem, "backbone_system", None)
-    built = make(parameter) if make is not None and points else None
-    if built is None:
-        return None
-    free_system, coordinate, to_parameter = built
-    from perturb.method.poincare import PoincareMethod
-
-    amplitude = sp.Symbol("backbone_amplitude", positive=True)
-    free_system = attrs.evolve(free_system, parameters=(*free_system.parameters, amplitude))
-    method = PoincareMethod(order=max(order, 1), amplitudes={coordinate: amplitude})
-    solution = method.solve(free_system)
-    if not solution.success:
-        return None
-    top = max(p.norm(coordinate) for p in points)
-    values = {k: v for k, v in problem.symbol_values().items()}
-    eps = problem.epsilon()
-    amplitudes = np.linspace(0.0, 1.05 * top, BACKBONE_SAMPLES)
-    frequencies = [
-        2 * math.pi / float(solution.period_at(eps, {**values, amplitude.name: float(a)}))
-        for a in amplitudes
-    ]
-    return Backbone(coordinate, tuple(amplitudes), tuple(to_parameter(w) for w in frequencies))
-
-
-def _shoot(problem, parameter, response, names, order, count) -> tuple[TrueResponse, ...]:
-    """Shoot the true orbit at ``count`` points of each branch."""
-    from perturb.validation import as_model, state_along
-    from perturb.validation.forced import forced_orbit_check
-
-    out = []
-    shots = []
-    for branch_name in sorted(set(names)):
-        indices = [i for i, n in enumerate(names) if n == branch_name]
-        spread = np.linspace(0, len(indices) - 1, min(count, len(indices)))
-        shots += [(branch_name, i) for i in sorted({indices[round(j)] for j in spread})]
-    for branch_name, i in track(shots, label=f"response {problem.name}: true orbits"):
-        point = response.points[i]
-        variant = problem.with_parameters(**{parameter: point.value})
-        solution = variant.solve(order, family=branch_name)
-        model = as_model(variant)
-        period = float(model.period(solution))
-        y0 = np.array(
-            [float(v[0]) for v in state_along(solution, [0.0], variant.parameter_value(),
-                                              variant.symbol_values()).values()]
+        curves = true_curves(
+            problem, parameter, response, branch_names_, order, budget=true, tol=tol,
+            measure=measure,
         )  # fmt: skip
-        equations = model.original_equations(y0)
-        check = forced_orbit_check(model, solution, equations, y0, period, None, 1e-12, False)
-        largest = max((abs(z) for z in check.floquet), default=math.nan)
-        amplitude = point.norm()
+    return ProblemResponse(
+        problem.name, parameter, response, branch_names_, spine, true_points, curves
+    )
+
+
+#: Most points ``--validate`` shoots on each branch besides the ones it always shoots (largest
+#: amplitude, fold sides, ends): each is a shooting with variational equations, 0.05-0.5 s.
+MAX_VALIDATE = 50
+
+
+def check_measure(measure: str) -> str:
+    """``measure`` if it is one of :data:`perturb.response.measures.MEASURES`, else one line."""
+    from perturb.response.measures import MEASURES
+
+    if measure not in MEASURES:
+        raise bad_value(
+            "measure", measure, f"choose one of {sorted(MEASURES)}", InvalidParameterError
+        )
+    return measure
+
+
+def check_validate(count) -> int:
+    """A validation budget: a whole number from 0 to :data:`MAX_VALIDATE`, else one line."""
+    if isinstance(count, bool) or not isinstance(count, int | np.integer) or count < 0:
+        raise bad_value("validate", count, "give a whole number >= 0", InvalidParameterError)
+    if count > MAX_VALIDATE:
+        raise bad_value(
+            "validate", count,
+            f"at most {MAX_VALIDATE} points a branch (each is a shooting); the largest amplitude, "
+            "both sides of each fold and the ends are always shot besides",
+            InvalidParameterError,
+        )  # fmt: skip
+    return int(count)
+
+
+def check_tol(tol) -> float:
+    """A tolerance: a finite number > 0, else one line."""
+    try:
+        value = float(tol)
+    except (TypeError, ValueError):
+        raise bad_value("tol", tol, "give a number > 0", InvalidParameterError) from None
+    if not (math.isfinite(value) and value > 0):
+        raise bad_value("tol", tol, "give a finite number > 0", InvalidParameterError)
+    return value
+
+
+def _true_points(result, response, count, measure, tol) -> tuple[TrueResponse, ...]:
+    from perturb.response.truth import shoot_along
+
+    first = response.coordinates[0]
+    out = []
+    for shot in shoot_along(result, response, count, measure, tol):
+        true = shot.get("true", {})
+        multipliers = shot.get("multipliers", ())
+        largest = max((abs(z) for z in multipliers), default=math.nan)
+        success = bool(shot["success"])
         out.append(
             TrueResponse(
-                value=point.value,
-                branch=branch_name,
-                success=check.success,
-                amplitude=amplitude,
-                amplitude_error=check.orbit_error,
+                value=shot["value"],
+                branch=shot["branch"],
+                success=success,
+                amplitude=shot["analytic"][first],
+                amplitude_error=shot.get("orbit_error", math.nan),
                 floquet_max=largest,
-                stable_true=(largest < 1) if check.success else None,
-                stable_analytic=point.stable,
-                message=check.message,
+                stable_true=(largest < 1) if success else None,
+                stable_analytic=shot["stable_analytic"],
+                message=shot["message"],
+                true_amplitude=true.get(first, math.nan),
+                measure=measure,
+                within_tol=shot.get("within_tol"),
+                reason=shot["reason"],
+                multipliers_true=multipliers,
+                multipliers_analytic=shot["multipliers_analytic"],
+                curve=shot["curve"],
             )
         )
     return tuple(out)

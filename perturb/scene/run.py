@@ -146,7 +146,7 @@ def check_scene(scene: Scene, problem, yes: bool = False) -> None:
         An unknown ``[solve] integrator`` of a scene that integrates.
     perturb.errors.SceneError
         A ``[response]`` of a problem that is not driven, over a parameter it does not have or
-        also set in ``[parameters]``, shooting more points than it has; a ``[response]`` and
+        also set in ``[parameters]``; a ``[response]`` and
         ``[sweep]`` estimated past :data:`perturb._defaults.CONFIRM_SECONDS` of work without
         ``yes``.
     """
@@ -157,7 +157,7 @@ def check_scene(scene: Scene, problem, yes: bool = False) -> None:
         from perturb.errors import InvalidParameterError
         from perturb.response.model import check_request, parse_sweep
 
-        name, grid = parse_sweep(scene.response.sweep, "sweep")
+        name, _ = parse_sweep(scene.response.sweep, "sweep")
         try:
             check_request(problem, name)
         except InvalidParameterError as exc:
@@ -166,11 +166,6 @@ def check_scene(scene: Scene, problem, yes: bool = False) -> None:
             raise scene.error(
                 f"[response] sweep = {scene.response.sweep!r}: {name!r} is also set in "
                 "[parameters]; sweep it or set it, not both"
-            )
-        if scene.response.validate > len(grid):
-            raise scene.error(
-                f"[response] validate = {scene.response.validate}: more points than the sweep "
-                f"has ({len(grid)} values); give at most {len(grid)}"
             )
     if outputs.needs_euler and not has_euler_angles(model):
         asked = ["euler = true"] if outputs.euler else []

@@ -12,6 +12,7 @@ from perturb._defaults import (
     SWEEP_CONNECT_SECONDS,
     SWEEP_MAX_CONNECT_SECONDS,
 )
+from perturb._install import install_hint
 from perturb.errors import InvalidParameterError, MissingDependencyError, SweepError
 from perturb.sweep.derive import plan
 from perturb.sweep.grid import Axis, Grid, parse_axis
@@ -35,9 +36,7 @@ def require_extra() -> None:
 
     missing = [name for name in EXTRA_MODULES if not importable(name)]
     if missing:
-        raise MissingDependencyError(
-            f"sweeps need {', '.join(missing)}: pip install 'perturb[sweep]'"
-        )
+        raise MissingDependencyError(f"sweeps need {', '.join(missing)}: {install_hint('sweep')}")
 
 
 def axes_of(grid) -> tuple[Axis, ...]:

@@ -8,7 +8,8 @@ Three ways, chosen on the driver (:class:`Derivation`):
     the swept parameters do not enter its derivation (the disk's ``r0``: only ε changes). Each
     point is then exactly what ``perturb validate`` computes there.
 ``symbolic``
-    The problem offers ``solve(order, symbolic=True)`` (the rigid bodies above order 1) and a swept
+    The problem offers a symbolic derivation (:meth:`~perturb.validation.Model.symbolic_derivation`:
+    the rigid bodies above order 1) and a swept
     parameter enters its specialised derivation: the solution symbolic in the body's parameters is
     derived once and every point evaluates it. ``perturb validate`` derives for the point's
     values instead; the two are the same exact series, evaluated in another form, so they agree
@@ -28,20 +29,18 @@ slower for the solutions that matter (``benchmarks/bench_sweep.md``).
 from __future__ import annotations
 
 import enum
-import inspect
 import math
 from collections.abc import Mapping
 
 import numpy as np
-from attrs import evolve, frozen
+from attrs import frozen
 
 from perturb._defaults import SWEEP_POINTS_PER_DERIVATION
 from perturb.errors import InvalidParameterError, PerturbError
-from perturb.solution import PeriodicSolution
 from perturb.validation.columns import ParameterColumns
 from perturb.validation.model import Model
 
-__all__ = ["DeriveMode", "Derivation", "SymbolicModel", "plan"]
+__all__ = ["DeriveMode", "Derivation", "plan"]
 
 
 class DeriveMode(enum.Enum):
@@ -80,22 +79,24 @@ class Derivation:
                 f"`problem` = {base.label()!r} cannot be re-created at other parameter values "
                 "(its with_parameters gives none): it cannot be swept"
             )
-        return SymbolicModel(model) if self.mode is DeriveMode.SYMBOLIC else model
+        return _symbolic(model) if self.mode is DeriveMode.SYMBOLIC else model
 
     def columns_at(self, base: Model, columns: Mapping) -> ParameterColumns | None:
         """The points whose changed values are ``columns`` (name -> array), all at once
         (:meth:`Model.parameter_columns`; None: the model makes them one by one)."""
-        model = SymbolicModel(base) if self.mode is DeriveMode.SYMBOLIC else base
+        model = _symbolic(base) if self.mode is DeriveMode.SYMBOLIC else base
         return model.parameter_columns(columns)
 
 
-def _offers_symbolic(model: Model) -> bool:
-    """Whether the model's ``solve`` takes ``symbolic=`` (the rigid bodies do)."""
-    try:
-        parameters = inspect.signature(type(model).solve).parameters
-    except (TypeError, ValueError):
-        return False
-    return "symbolic" in parameters
+def _symbolic(model: Model) -> Model:
+    """The model's symbolic derivation (:meth:`Model.symbolic_derivation`; the plan chose this
+    mode only where it is offered)."""
+    symbolic = model.symbolic_derivation()
+    if symbolic is None:
+        raise InvalidParameterError(
+            f"`problem` = {model.label()!r} offers no symbolic derivation: sweep it per point"
+        )
+    return symbolic
 
 
 def _seen_in_columns(base: Model, axis, reference: tuple) -> int | None:
@@ -189,8 +190,8 @@ def plan(base: Model, axes, order: int, derive: str = "auto") -> tuple[Derivatio
             f"{points} points: each made once",
             tuple(entering),
         ), own
-    if _offers_symbolic(base):
-        solution = base.solve(order, symbolic=True)
+    if base.symbolic_derivation() is not None:
+        solution = _symbolic(base).solve(order)
         return Derivation(
             DeriveMode.SYMBOLIC,
             f"{names} enter the derivation: derived once, symbolic in them",
@@ -200,86 +201,3 @@ def plan(base: Model, axes, order: int, derive: str = "auto") -> tuple[Derivatio
         f"{names} enter the derivation and the problem offers no symbolic one",
         tuple(entering),
     ), own
-
-
-class SymbolicModel(Model):
-    """A model whose :meth:`solve` is its own ``solve(order, symbolic=True)``: the one
-    derivation symbolic in its parameters (the problem's own checks of a point still apply, such
-    as the disk's k = 0). Everything else is the model's."""
-
-    __slots__ = ("model",)
-
-    def __init__(self, model: Model):
-        self.model = model
-
-    def __repr__(self) -> str:
-        return f"SymbolicModel({self.model!r})"
-
-    def solve(self, order: int = 1) -> PeriodicSolution:
-        return self.model.solve(order, symbolic=True)
-
-    def with_epsilon(self, eps: float) -> Model | None:
-        other = self.model.with_epsilon(eps)
-        return None if other is None else SymbolicModel(other)
-
-    def with_parameters(self, **values) -> Model | None:
-        other = self.model.with_parameters(**values)
-        return None if other is None else SymbolicModel(other)
-
-    # ------------------------------------------------------------------ the model's own
-    def state_names(self):
-        return self.model.state_names()
-
-    def state(self, solution, t):
-        return self.model.state(solution, t)
-
-    def period(self, solution):
-        return self.model.period(solution)
-
-    def epsilon(self):
-        return self.model.epsilon()
-
-    def system(self):
-        return self.model.system()
-
-    def symbol_values(self):
-        return self.model.symbol_values()
-
-    def parameter_value(self):
-        return self.model.parameter_value()
-
-    def label(self):
-        return self.model.label()
-
-    def parameters_in_force(self):
-        return self.model.parameters_in_force()
-
-    def method_options(self):
-        return self.model.method_options()
-
-    def original_equations(self, y0=None):
-        return self.model.original_equations(y0)
-
-    def integrals_of_motion(self, y0=None):
-        return self.model.integrals_of_motion(y0)
-
-    def validity_estimates(self):
-        return self.model.validity_estimates()
-
-    def true_orbit(self, solution):
-        return self.model.true_orbit(solution)
-
-    def shooting_setup(self):
-        return self.model.shooting_setup()
-
-    def euler_angles(self, solution, t):
-        return self.model.euler_angles(solution, t)
-
-    def evaluates_solution_directly(self) -> bool:
-        return self.model.evaluates_solution_directly()
-
-    def parameter_columns(self, columns) -> ParameterColumns | None:
-        found = self.model.parameter_columns(columns)
-        if found is None or found.model is None:
-            return found
-        return evolve(found, model=SymbolicModel(found.model))

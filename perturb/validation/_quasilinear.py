@@ -19,6 +19,7 @@ from perturb.system import QuasilinearSystem
 __all__ = [
     "conservative_energy",
     "excitation_frequency",
+    "first_order_expressions",
     "first_order_form",
     "lambdify_integrals",
     "quasilinear_state_names",
@@ -48,9 +49,7 @@ def quasilinear_state_names(system: QuasilinearSystem) -> tuple[str, ...]:
     >>> quasilinear_state_names(get_problem("forced-duffing").system())
     ('x', 'xdot', 'theta')
     """
-    if system.excitation is None:
-        return system.state_names
-    return (*system.state_names, system.excitation.phase.name)
+    return system.frame.state_names(system)
 
 
 def state_along(solution, t, parameter_value: float, values: Mapping) -> dict[str, np.ndarray]:
@@ -83,7 +82,7 @@ def state_along(solution, t, parameter_value: float, values: Mapping) -> dict[st
     system = solution.system
     y = solution.evaluate(t, parameter_value, values)
     state = dict(zip(solution.state_names, y, strict=True))
-    if system.excitation is not None:
+    if system.frame.frequency_given:  # the phase theta = Omega t joins the state
         subs = substitutions(system, values, parameter_value, None) or {}
         omega = float(excitation_frequency(system, subs))
         state[system.excitation.phase.name] = omega * np.asarray(t, dtype=float)
@@ -92,10 +91,7 @@ def state_along(solution, t, parameter_value: float, values: Mapping) -> dict[st
 
 def excitation_frequency(system: QuasilinearSystem, subs: Mapping) -> sp.Expr:
     """Ω = (p/q) ω_ref + ε σ of a driven system, with ``subs`` put in (ε included)."""
-    drive = system.excitation
-    w_ref = system.frequencies[system.reference_index]
-    eps = system.parameter if system.regime.value == "small" else 1 / system.parameter
-    return sp.sympify(drive.ratio * w_ref + eps * drive.detuning).subs(subs)
+    return system.frame.frequency(system, subs)
 
 
 def substitutions(
@@ -117,18 +113,21 @@ def substitutions(
     return subs
 
 
-def first_order_form(system: QuasilinearSystem, subs: Mapping) -> SymbolicRHS:
-    """y' = (ẋ, f(x, ẋ) − ω² x) of the quasilinear system, with ``subs`` put in; a driven
-    system's phase θ is appended with θ' = Ω (autonomous form)."""
+def first_order_expressions(system: QuasilinearSystem, subs: Mapping) -> list:
+    """(ẋ, f(x, ẋ) − ω² x) of the quasilinear system on its state ``(x..., ẋ...)``, with ``subs``
+    put in (a driven system's phase θ stays a symbol; parameters left out of ``subs`` too)."""
     n = system.n
     state = system.state_symbols
     forces = [sp.sympify(f).subs(subs) for f in system.rhs]
     w2 = [sp.sympify(w**2).subs(subs) for w in system.frequencies]
-    exprs = list(state[n:]) + [forces[i] - w2[i] * state[i] for i in range(n)]
-    if system.excitation is not None:
-        state = (*state, system.excitation.phase)
-        exprs.append(excitation_frequency(system, subs))
-    return SymbolicRHS(state, exprs)
+    return list(state[n:]) + [forces[i] - w2[i] * state[i] for i in range(n)]
+
+
+def first_order_form(system: QuasilinearSystem, subs: Mapping) -> SymbolicRHS:
+    """y' = (ẋ, f(x, ẋ) − ω² x) of the quasilinear system, with ``subs`` put in; a driven
+    system's phase θ is appended with θ' = Ω (autonomous form)."""
+    exprs = first_order_expressions(system, subs)
+    return SymbolicRHS(*system.frame.autonomous(system.state_symbols, exprs, system, subs))
 
 
 def conservative_energy(system: QuasilinearSystem, subs: Mapping) -> sp.Expr | None:
@@ -138,7 +137,7 @@ def conservative_energy(system: QuasilinearSystem, subs: Mapping) -> sp.Expr | N
     \\omega_i^2 x_i^2/2 + V` and :math:`V(x) = -\\int_0^1 f(s x)\\cdot x\\,ds`.
     """
     n = system.n
-    if system.excitation is not None:
+    if not system.frame.energy_may_be_conserved:
         return None  # a driven system exchanges energy with its drive
     xs, vs = system.state_symbols[:n], system.state_symbols[n:]
     forces = [sp.sympify(f).subs(subs) for f in system.rhs]

@@ -10,13 +10,8 @@ where these are exactly what its points would give one by one.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 from attrs import field, frozen
-
-if TYPE_CHECKING:
-    from perturb.validation.model import Model, SystemModel
 
 __all__ = ["ParameterColumns", "reciprocal", "system_columns"]
 
@@ -63,7 +58,7 @@ class ParameterColumns:
     True
     """
 
-    model: Model | None
+    model: object | None  # a Model (perturb.validation.model), or None
     parameter_value: np.ndarray = field(converter=_float_array)
     epsilon: np.ndarray = field(converter=_float_array)
     symbol_values: dict = field(converter=dict)
@@ -89,24 +84,26 @@ def reciprocal(values: np.ndarray, valid: np.ndarray) -> np.ndarray | None:
         return 1.0 / values
 
 
-def system_columns(model: SystemModel, columns) -> ParameterColumns | None:
+def system_columns(model, columns) -> ParameterColumns | None:
     """:meth:`SystemModel.parameter_columns`: the options do not depend on the values, so one
     solution serves every point (not offered for a driven system, whose solution does)."""
     from perturb.errors import InvalidParameterError
     from perturb.system import Regime
-    from perturb.validation.model import _check_values
+    from perturb.validation.values import check_system_values
 
     system = model.quasilinear
     columns = {str(n): np.asarray(c, dtype=float).ravel() for n, c in columns.items()}
     sizes = {c.size for c in columns.values()}
-    if system.excitation is not None or len(sizes) != 1 or not set(columns) <= set(model.values):
+    if not system.frame.one_solution_for_all_points:
+        return None
+    if len(sizes) != 1 or not set(columns) <= set(model.values):
         return None
     size = sizes.pop()
     finite = np.all([np.isfinite(c) for c in columns.values()], axis=0)
     errors = [""] * size
     for i in np.flatnonzero(~finite):  # the point's own message
         try:
-            _check_values(system, {**model.values, **{n: c[i] for n, c in columns.items()}})
+            check_system_values(system, {**model.values, **{n: c[i] for n, c in columns.items()}})
         except InvalidParameterError as exc:
             errors[i] = str(exc)
 

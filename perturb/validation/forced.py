@@ -3,8 +3,8 @@
 A driven model's true response is found by shooting with the period **given**
 (:func:`perturb.oracle.find_forced_orbit`: no section, no trivial multiplier). Its period error is
 zero by construction, so the verdict's fourth measurement is instead **stability**: the analytic
-stability of the branch (the slow flow's eigenvalues, :func:`perturb.method.driven.slow_flow`)
-against the true orbit's Floquet multipliers (stable when all lie inside the unit circle).
+stability of the branch (the Floquet multipliers along the order-N orbit,
+:mod:`perturb.response.floquet`) against the true orbit's Floquet multipliers (stable when all lie inside the unit circle).
 """
 
 from __future__ import annotations
@@ -86,20 +86,28 @@ def _failed(names, message, status=None, integrator="") -> OrbitCheck:
 
 
 def analytic_stability(model: Model, solution) -> bool | None:
-    """The slow flow's verdict on ``solution``'s branch (first order, Malkin)."""
-    from perturb.method.driven import amplitude_equations, slow_flow
+    """The analytic verdict on ``solution``'s branch: the Floquet multipliers of the variational
+    equation along the order-N orbit (:mod:`perturb.response.floquet`, the response's own)."""
+    from perturb.method.driven import amplitude_equations
+    from perturb.response.evaluate import PointEvaluator
+    from perturb.response.line import line_of_values
 
-    equations = amplitude_equations(model.system(), 0)
+    system = model.system()
+    equations = amplitude_equations(system, max(int(solution.order), 1))
     generating = solution.generating
-    root = {}
-    for name, a, b in zip(
-        generating.coordinates, generating.cos_amplitudes, generating.sin_amplitudes, strict=True
-    ):
-        if name in equations.coordinates:
-            root[f"a_{name}"] = float(sp.sympify(a))
-            root[f"b_{name}"] = float(sp.sympify(b))
+    u = []
+    for name in equations.coordinates:
+        i = generating.coordinates.index(name)
+        u += [float(sp.sympify(generating.cos_amplitudes[i])),
+              float(sp.sympify(generating.sin_amplitudes[i]))]  # fmt: skip
     values = model.symbol_values()
-    return slow_flow(equations, root, values, model.epsilon(), order=0).stable
+    names = [p.name for p in system.parameters]
+    swept = names[0] if names else None
+    if swept is None:
+        return None
+    line = line_of_values(names, values, float(model.epsilon()), swept)
+    at = PointEvaluator(equations, line).evaluate([u], [float(values[swept])], check_lower=False)
+    return at["stability"].stable[0]
 
 
 def stability_check(orbit: OrbitCheck | None, analytic: bool | None, why_missing: str) -> Check:
@@ -111,7 +119,8 @@ def stability_check(orbit: OrbitCheck | None, analytic: bool | None, why_missing
     if analytic is None:
         return Check(
             "stability", largest, 1.0, None,
-            f"the slow flow is marginal here (a fold or no damping); the true orbit's largest "
+            f"the order-N multipliers are marginal here (a fold or no damping); the true orbit's "
+            f"largest "
             f"|Floquet multiplier| is {largest:.6g}",
         )  # fmt: skip
     agree = analytic == true_stable
@@ -121,6 +130,7 @@ def stability_check(orbit: OrbitCheck | None, analytic: bool | None, why_missing
         largest,
         1.0,
         agree,
-        f"the slow flow says {words[analytic]}, the true orbit's largest |Floquet multiplier| "
+        f"the order-N Floquet multipliers say {words[analytic]}, the true orbit's largest "
+        f"|Floquet multiplier| "
         f"{largest:.6g} says {words[true_stable]}" + ("" if agree else ": they disagree"),
     )

@@ -14,7 +14,7 @@ from collections.abc import Callable, Mapping
 import numpy as np
 from attrs import evolve, field, frozen
 
-from perturb.errors import InvalidParameterError, bad_value
+from perturb.errors import bad_value
 from perturb.method import PoincareMethod
 from perturb.oracle import Integrator, SymbolicRHS
 from perturb.solution import PeriodicSolution
@@ -29,6 +29,7 @@ from perturb.validation._quasilinear import (
 )
 from perturb.validation.columns import ParameterColumns
 from perturb.validation.report import Condition
+from perturb.validation.values import check_system_values
 
 __all__ = [
     "Equations",
@@ -325,6 +326,12 @@ class Model(ABC):
         """
         return None
 
+    def symbolic_derivation(self) -> Model | None:
+        """This model with its solution derived once, symbolic in its parameters, so that one
+        derivation serves every parameter set of a sweep (default: None, not offered: its own
+        solution serves, or each point is derived for its values)."""
+        return None
+
     def evaluates_solution_directly(self) -> bool:
         """Whether :meth:`state` and :meth:`period` are the solution's own ``evaluate`` and
         ``period_at`` at :meth:`parameter_value` and :meth:`symbol_values` (default: False), so
@@ -400,29 +407,6 @@ def has_euler_angles(model) -> bool:
 _SOLUTIONS: dict[tuple, PeriodicSolution] = {}
 
 
-def _check_values(system: QuasilinearSystem, values) -> dict[str, float]:
-    if not isinstance(values, Mapping):
-        raise bad_value("values", values, "pass a mapping {name: number}")
-    names = [p.name for p in system.parameters] + [system.parameter.name]
-    unknown = sorted(set(map(str, values)) - set(names))
-    missing = [n for n in names if n not in values]
-    if unknown or missing:
-        raise InvalidParameterError(
-            f"`values` = {dict(values)!r} is invalid: give exactly the system's parameters "
-            f"{names} (missing {missing}, unknown {unknown})"
-        )
-    out = {}
-    for name in names:
-        try:
-            number = float(values[name])
-        except (TypeError, ValueError):
-            raise bad_value("values", dict(values), f"{name} must be a real number") from None
-        if not math.isfinite(number):
-            raise bad_value("values", dict(values), f"{name} must be finite")
-        out[name] = number
-    return out
-
-
 @frozen
 class SystemModel(Model):
     """A bare :class:`perturb.QuasilinearSystem` with numbers, as a :class:`Model`.
@@ -453,7 +437,7 @@ class SystemModel(Model):
     name: str = ""
 
     def __attrs_post_init__(self):
-        object.__setattr__(self, "values", _check_values(self.quasilinear, self.values))
+        object.__setattr__(self, "values", check_system_values(self.quasilinear, self.values))
 
     def label(self) -> str:
         return self.name or self.quasilinear.name
@@ -505,7 +489,7 @@ class SystemModel(Model):
         return evolve(self, values={**self.values, **values})
 
     def evaluates_solution_directly(self) -> bool:
-        return self.quasilinear.excitation is None  # a driven state adds the phase
+        return not self.quasilinear.frame.frequency_given  # a driven state adds the phase
 
     def parameter_columns(self, columns) -> ParameterColumns | None:
         """Many points at once: the options do not depend on the values, so one solution serves

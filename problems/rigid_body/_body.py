@@ -111,6 +111,19 @@ def geometric_constraint(reduction: Reduction) -> sp.Expr:
     return sp.sqrt(1 - g3**2 - g2**2) - shift
 
 
+#: The arm l of gravity's torque: the centre of mass's distance from the spin axis.
+ARM = "sqrt(x0**2 + y0**2)"
+#: The body's user parameters -> the reduction's dimensionless symbols and ε.
+BODY_PARAMETER_MAP = {
+    "a": "A/C",
+    "b": "B/C",
+    "k": f"3*C/(R*M*{ARM})",
+    "x0p": f"x0/{ARM}",
+    "y0p": f"y0/{ARM}",
+    "epsilon": f"sqrt(M*g*{ARM}/C)/r0",
+}
+
+
 class FastSpinBody(Problem):
     """Base of the fast-spin body problems (abstract: see :class:`problems.base.Problem`)."""
 
@@ -118,6 +131,9 @@ class FastSpinBody(Problem):
     uses_z0 = False
     #: The dimensionless parameters of the reduction (:meth:`symbol_values` gives their values).
     parameter_symbols: tuple[sp.Symbol, ...] = ()
+    #: The reduction's dimensionless parameters and ε = c/r0 (the paper's 1/μ), c = sqrt(Mgl/C)
+    #: with the arm l = sqrt(x0² + y0²).
+    parameter_map = BODY_PARAMETER_MAP
 
     # ------------------------------------------------------------------ to provide
     @classmethod
@@ -168,25 +184,6 @@ class FastSpinBody(Problem):
         v = self.values
         return math.sqrt(v["M"] * v["g"] * math.hypot(v["x0"], v["y0"]) / v["C"])
 
-    def epsilon(self) -> float:
-        """:math:`\\varepsilon = c/r_0` (the paper's :math:`\\mu^{-1}`)."""
-        return self.scale_c() / self.values["r0"]
-
-    def symbol_values(self) -> dict[str, float]:
-        v = self.values
-        arm = math.hypot(v["x0"], v["y0"])
-        out = {
-            "a": v["A"] / v["C"],
-            "b": v["B"] / v["C"],
-            "k": 3 * v["C"] / (v["R"] * v["M"] * arm),
-            "x0p": v["x0"] / arm,
-            "y0p": v["y0"] / arm,
-            "gamma3_0": v["gamma3_0"],
-        }
-        if self.uses_z0:
-            out["z0p"] = v["z0"] / arm
-        return out
-
     # ------------------------------------------------------------------ solving
     def _selection_options(self) -> dict:
         """The method options besides the amplitude constraint (which root, which phase)."""
@@ -202,6 +199,8 @@ class FastSpinBody(Problem):
     #: serves every body, and exports LaTeX); above it the parameters are put in first, as exact
     #: rationals, which keeps the construction to seconds instead of minutes.
     SYMBOLIC_MAX_ORDER: int = 1
+    #: A sweep may derive once, symbolic in the body's parameters (``solve(symbolic=True)``).
+    offers_symbolic_derivation = True
 
     def exact_values(self) -> dict[sp.Symbol, sp.Rational]:
         """The body's dimensionless parameters as exact rationals (the decimal values given)."""
@@ -256,6 +255,7 @@ class FastSpinBody(Problem):
             )
         if self.family is not None:
             return self.family_solution(order, self.family)
+        symbolic = self.symbolic if symbolic is None else symbolic
         reduction, system, options, values = self._frame(order, symbolic)
         key = (
             type(self).__module__,

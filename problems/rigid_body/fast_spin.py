@@ -24,7 +24,13 @@ import math
 from perturb._defaults import NEAR_RESONANCE
 from perturb.errors import InvalidParameterError
 from problems import register
-from problems.rigid_body._body import EPSILON_WARN, FastSpinBody, body_parameter_specs
+from problems.rigid_body._body import (
+    ARM,
+    BODY_PARAMETER_MAP,
+    EPSILON_WARN,
+    FastSpinBody,
+    body_parameter_specs,
+)
 from problems.rigid_body.reduction import (
     GENERAL_PARAMETERS,
     Reduction,
@@ -79,6 +85,7 @@ class FastSpinRigidBody(FastSpinBody):
         A=9.0, B=11.0, C=16.0, z0=0.5, gamma3_0=0.25, r0=_DEFAULT_R0
     )
     uses_z0 = True
+    parameter_map = {**BODY_PARAMETER_MAP, "z0p": f"z0/{ARM}"}
     parameter_symbols = GENERAL_PARAMETERS
 
     def check_values(self, values) -> None:

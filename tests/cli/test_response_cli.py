@@ -17,9 +17,9 @@ POINT_KEYS = {
     "eigenvalues",
     "multipliers",
     "note",
-    "outside",
-    "beyond",
 }
+#: What issue 29 added to a point (the contract is extended, never renamed).
+POINT_EXTENSIONS = {"peak", "first_harmonic", "error_estimate", "series_ok", "liouville", "curve"}
 
 
 def run(capsys, *argv):
@@ -36,14 +36,15 @@ def test_response_json_contract(capsys):
     data = json.loads(out)
     assert set(data) == {
         "problem", "parameter", "order", "epsilon", "parameters", "points", "folds", "backbone",
-        "true", "failures",
+        "true", "failures", "measure", "special", "curves", "true_curve",
     }  # fmt: skip
-    assert data["parameter"] == "Omega" and data["order"] == 1
-    assert all(set(p) == POINT_KEYS for p in data["points"])
+    assert data["true_curve"] is None  # only with --true
+    assert data["parameter"] == "Omega" and data["order"] == 3  # the response's default order
+    assert data["measure"]["name"] == "peak"  # the plotted default, and the JSON says which
+    assert all(set(p) == POINT_KEYS | POINT_EXTENSIONS for p in data["points"])
     at_105 = [p for p in data["points"] if p["value"] == pytest.approx(1.05)]
     assert [p["branch"] for p in at_105] == ["lower", "middle", "upper"]
     assert [p["stable"] for p in at_105] == [True, False, True]
-    assert all(p["outside"] == p["beyond"] == "" for p in data["points"])  # near the resonance
     (fold,) = data["folds"]
     assert 1.0 < fold["value"] < 1.05
     assert data["backbone"]["values"][0] == pytest.approx(1.0)  # the free frequency at rest
@@ -58,7 +59,7 @@ def test_response_csv_and_plot(capsys, tmp_path):
     )  # fmt: skip
     assert code == 0, err
     lines = out.splitlines()
-    assert lines[0] == "Omega,branch,x_amplitude,stable,flag"
+    assert lines[0].startswith("Omega,branch,x_amplitude,stable,")  # extended, never renamed
     assert any(",trivial,0," in line for line in lines)
     assert plot.stat().st_size > 0
 

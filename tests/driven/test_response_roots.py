@@ -71,9 +71,9 @@ def test_the_absorbers_folds_are_the_coupled_branchs_turns():
             coupled[p.value] = coupled.get(p.value, 0) + 1
     for fold in response.folds:
         assert fold.norms["x"] > 0
-        # the branches at each grid value are the first-order roots (each one continued): their
-        # number changes across the first-order fold
-        below = max(g for g in grid if g < fold.first_order)
-        above = min(g for g in grid if g > fold.first_order)
+        # the branches at each grid value are the order-N ones (continued through the folds):
+        # their number changes across the order-N fold, located on the order-N curve
+        below = max(g for g in grid if g < fold.value)
+        above = min(g for g in grid if g > fold.value)
         assert coupled.get(below, 0) != coupled.get(above, 0)
         assert abs(fold.value - fold.first_order) <= problem.epsilon()  # moved by O(eps)

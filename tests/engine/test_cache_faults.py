@@ -375,15 +375,17 @@ _WORKER = textwrap.dedent(
     x, xd, A = sp.symbols("x xdot A")
     system = QuasilinearSystem([x], [xd], [1], [-EPS * x**3], parameters=[A])
     ready, other = Path(sys.argv[1]), Path(sys.argv[2])
-    ready.touch()
-    deadline = time.monotonic() + 60
-    while not other.exists() and time.monotonic() < deadline:  # start both cold runs together
-        time.sleep(0.01)
     computed = []
 
     def compute():
         computed.append(1)
-        time.sleep(0.5)  # both runs are inside compute at once: both will write the entry
+        # both runs are inside compute at once, however the machine schedules them: neither has
+        # written the entry, so both missed it and both will write it
+        ready.with_suffix(".computing").touch()
+        partner = other.with_suffix(".computing")
+        deadline = time.monotonic() + 300  # a hang guard only
+        while not partner.exists() and time.monotonic() < deadline:
+            time.sleep(0.01)
         return PoincareMethod(order=2, amplitudes={"x": A}, cache=False).solve(system)
 
     sol = cached("concurrent", ("duffing", 2), compute)

@@ -17,21 +17,18 @@ from perturb import EPS, InvalidSystemError, QuasilinearSystem, Status, UnknownN
 from perturb.method.families import find_families
 from perturb.method.family_names import name_families
 from problems import get_problem
+from tests.engine.henon_heiles import henon_heiles_families
 
 X, Y, XDOT, YDOT = sp.symbols("x y xdot ydot")
 Z = sp.Symbol("z")
 
-#: Hénon–Heiles near the origin: V = (x² + y²)/2 + ε(x²y − y³/3), a 1:1 resonance in both coordinates.
-HENON_HEILES = QuasilinearSystem(
-    [X, Y], [XDOT, YDOT], [1, 1], [-2 * EPS * X * Y, -EPS * (X**2 - Y**2)], name="henon-heiles"
-)
 DUFFING = QuasilinearSystem([X], [XDOT], [1], [-EPS * X**3], name="duffing")
 VAN_DER_POL = QuasilinearSystem([X], [XDOT], [1], [EPS * (1 - X**2) * XDOT], name="van der Pol")
 
 
 @pytest.fixture(scope="module")
 def henon_heiles():
-    return find_families(HENON_HEILES, 2)
+    return henon_heiles_families(2)
 
 
 def _cos(k: int) -> sp.Expr:

@@ -16,15 +16,11 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from perturb import EPS, QuasilinearSystem, Status
+from perturb import Status
 from perturb.method.conditions import compatibility_conditions
-from perturb.method.families import find_families
 from perturb.oracle import SymbolicRHS, find_periodic_orbit, heyoka_available
+from tests.engine.henon_heiles import XDOT, YDOT, X, Y, henon_heiles_families
 
-X, Y, XDOT, YDOT = sp.symbols("x y xdot ydot")
-HENON_HEILES = QuasilinearSystem(
-    [X, Y], [XDOT, YDOT], [1, 1], [-2 * EPS * X * Y, -EPS * (X**2 - Y**2)], name="henon-heiles"
-)
 #: The 8 families: name -> direction of the generating line (degrees), None for the loops.
 EXPECTED = {
     "y-line": 90, "line-30": 30, "line-150": 150,
@@ -41,7 +37,7 @@ UNIT_CIRCLE = 1e-6
 
 @pytest.fixture(scope="module", params=[1, 2])
 def families(request):
-    return find_families(HENON_HEILES, request.param)
+    return henon_heiles_families(request.param)
 
 
 def test_all_eight_families_are_found_named_and_fixed(families):
@@ -119,7 +115,7 @@ def _shoot(family, eps=EPS_SHOOT):
 
 @pytest.fixture(scope="module")
 def order2():
-    return find_families(HENON_HEILES, 2)
+    return henon_heiles_families(2)
 
 
 @pytest.mark.skipif(not heyoka_available(), reason="shooting 8 orbits takes minutes without heyoka")

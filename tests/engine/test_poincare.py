@@ -5,8 +5,9 @@ import pytest
 import sympy as sp
 
 from perturb import EPS, InvalidSystemError, PoincareMethod, QuasilinearSystem, Regime, Status
-from perturb.method.steps import S
+from perturb.steps import S
 from problems import get_problem
+from tests.helpers import roundings
 
 x, xd, y, yd, A, mu = sp.symbols("x xdot y ydot A mu")
 DUFFING = QuasilinearSystem([x], [xd], [1], [-EPS * x**3], parameters=[A], name="duffing")
@@ -59,7 +60,7 @@ def test_large_and_small_regimes_give_the_same_solution():
         large.evaluate(t, 20.0, {"A": 1.1}),
         small.evaluate(t, 0.05, {"A": 1.1}),
         rtol=1e-13,
-        atol=1e-14,
+        atol=FORMULATIONS * 1.1,  # x crosses zero: relative to the amplitude A = 1.1
     )
 
 
@@ -201,8 +202,12 @@ COUPLED_VDP = QuasilinearSystem(
     parameters=[kappa],
     name="coupled van der Pol",
 )
-#: Far below the seconds sympy would need to enumerate the coupled pair's amplitude roots.
+#: Far below the seconds sympy would need to enumerate the coupled pair's amplitude roots (hours):
+#: spent on any machine, however fast, so the outcome (the budget's status, or the branch given
+#: taking over) does not depend on the machine's speed.
 SHORT_BUDGET = 1.0
+#: Two formulations (eps, mu = 1/eps) of the same order-2 series: a dozen operations a term.
+FORMULATIONS = roundings(12)
 
 
 def test_numeric_amplitude_equations_are_solved_by_a_groebner_basis():

@@ -7,17 +7,18 @@ whose floor is higher than ours would get. Given the shooting's augmented state 
 its n x n variational matrix), only the state is perturbed: a machine's last bits move the
 monodromy by its own float64 rounding, not by the state's noise. Its error model is the one the shooting's precision
 floor assumes: :meth:`loosened` makes the noise ``factor`` times larger along with the inner
-integrator's tolerance.
+integrator's tolerance. The perturbation is :func:`perturb.oracle._noise.perturbed`, the one the
+suite-wide test noise (``PERTURB_TEST_NOISE``) adds to every integration.
 """
 
 from __future__ import annotations
 
-import hashlib
 import math
 
 import numpy as np
 from attrs import frozen
 
+from perturb.oracle._noise import perturbed
 from perturb.oracle.base import IntegratorBase, Run
 
 
@@ -45,13 +46,14 @@ class NoisyIntegrator(IntegratorBase):
         run = self.inner._integrate_impl(rhs, t0, t1, y0, grid, jac)
         if len(run.states) == 0:
             return run
-        states = [np.asarray(state, dtype=float) for state in run.states]
-        # the same start gives the same noise: a machine is deterministic, only different
-        seed = hashlib.sha256(np.asarray(y0, dtype=float).tobytes()).digest()
-        rng = np.random.default_rng(int.from_bytes(seed[:8], "little"))
+        # copies in the inner integrator's own type: the template's test noise (PERTURB_TEST_NOISE)
+        # then moves them by ulps of that type, as it would the inner integrator's
+        states = [np.array(state) for state in run.states]
         size = states[-1].size
         n = math.isqrt(4 * size + 1) // 2  # size = n + n**2 for the shooting's augmented state
         n = n if n + n * n == size else size
-        size = self.level + self.ulps * np.spacing(np.abs(states[-1][:n]))
-        states[-1][:n] = states[-1][:n] + size * rng.uniform(-1.0, 1.0, n)
+        # the same start gives the same noise: a machine is deterministic, only different
+        start = np.asarray(y0, dtype=float)
+        moved = perturbed(states[-1][:n].astype(float), self.ulps, start, level=self.level)
+        states[-1][:n] = moved.astype(states[-1].dtype)
         return Run(run.t, states, run.t_reached, run.nfev, run.status, run.message)

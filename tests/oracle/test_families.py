@@ -11,6 +11,7 @@ import pytest
 import sympy as sp
 from scipy.special import ellipk
 
+from perturb._defaults import SHOOTING_TOL
 from perturb.errors import InvalidParameterError
 from perturb.oracle import (
     OrbitStatus,
@@ -126,7 +127,10 @@ def test_henon_heiles_orbit_has_two_trivial_multipliers_and_a_reciprocal_pair():
     assert orbit.success, orbit.message
     assert orbit.n_trivial_expected == 2 and orbit.n_trivial_found == 2
     energy_at = sp.lambdify((q1, q2, p1, p2), energy)
-    assert energy_at(*orbit.initial_state) == pytest.approx(energy_at(*guess), abs=1e-14)
+    # held to the shooting's tol relative to the integral's size, max(|E|, |grad E| max|y|) =
+    # 0.25 * 0.25 at the guess (|E| = 0.06): the defect of the integral is part of the residual
+    held = SHOOTING_TOL * 0.25 * 0.25
+    assert energy_at(*orbit.initial_state) == pytest.approx(energy_at(*guess), abs=held)
     nontrivial = orbit.floquet_multipliers[2:]
     assert abs(nontrivial[0] * nontrivial[1] - 1) < 1e-9  # symplectic: lambda and 1/lambda
     assert np.min(np.abs(nontrivial - 1)) > 1e-2  # an isolated orbit at this energy

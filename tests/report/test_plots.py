@@ -38,6 +38,7 @@ from perturb.report.plots import (  # noqa: E402
 )
 from perturb.workprecision import work_precision  # noqa: E402
 from problems import get_problem  # noqa: E402
+from tests.helpers import roundings  # noqa: E402
 
 #: Duffing's small parameter and order: error O(eps^3) ~ 1e-3 relative, visible on the plots.
 EPS, ORDER = 0.1, 2
@@ -46,6 +47,10 @@ CONVERGENCE_EPS = (0.025, 0.05, 0.1, 0.2)
 #: A fitted slope may fall this far from order + 1: four points a factor 2 apart leave a few tenths
 #: from the next-order terms (perturb.validation.SLOPE_TOLERANCE).
 SLOPE_TOLERANCE = 0.5
+#: Entries of a rotation from its three angles by two routes: sines and cosines, products of up to
+#: three of them and sums of two (and R R^T: three more products and a sum): about 8 operations on
+#: numbers of size <= 1.
+ROTATION = roundings(8)
 #: The disk of the README (fast spin, eps = c/r0 = 0.004).
 DISK = {"r0": 0.755155, "R": 0.123299, "gamma3_0": 0.25}
 
@@ -305,13 +310,13 @@ def test_rotation_matches_the_problems_derivation():
     angles = rng.uniform(-np.pi, np.pi, size=(20, 3))
     ours = rotation_matrix(angles[:, 0], angles[:, 1], angles[:, 2])
     for (psi, theta, phi), r in zip(angles, ours, strict=True):
-        np.testing.assert_allclose(r, numeric(psi, theta, phi), atol=1e-15)
+        np.testing.assert_allclose(r, numeric(psi, theta, phi), atol=ROTATION)
     # and its third row is the vertical the problems package derives
     vertical = sp.lambdify((ea.theta, ea.phi), ea.euler_kinematics().vertical, modules="numpy")
     for (_, theta, phi), r in zip(angles, ours, strict=True):
-        np.testing.assert_allclose(r[2], vertical(theta, phi), atol=1e-15)
+        np.testing.assert_allclose(r[2], vertical(theta, phi), atol=ROTATION)
     np.testing.assert_allclose(
-        ours @ np.swapaxes(ours, -1, -2), np.broadcast_to(np.eye(3), ours.shape), atol=1e-15
+        ours @ np.swapaxes(ours, -1, -2), np.broadcast_to(np.eye(3), ours.shape), atol=ROTATION
     )
 
 
@@ -356,7 +361,7 @@ def test_orientation_body_axes_and_spin_trace(disk, out_dir):
             np.testing.assert_array_equal(segment[:, 0], 0.0)
             np.testing.assert_allclose(segment[:, 1], rotations[index][:, k], atol=1e-12)
         trace = np.array(trace.get_data_3d()).T
-        np.testing.assert_allclose(trace, rotations[:, :, 2], atol=1e-15)
+        np.testing.assert_allclose(trace, rotations[:, :, 2], atol=ROTATION)
         np.testing.assert_allclose(np.linalg.norm(trace, axis=1), 1.0, atol=1e-12)
         assert ax.get_zlabel().startswith("$Z$") and "[1]" in ax.get_xlabel()
         assert ax.get_title() == f"$t$ = {t[index]:.4g}"
@@ -470,7 +475,7 @@ def test_missing_matplotlib_is_one_clear_import_error(duffing, monkeypatch):
     for module in [m for m in sys.modules if m == "matplotlib" or m.startswith("matplotlib.")]:
         monkeypatch.setitem(sys.modules, module, None)
     with pytest.raises(
-        ImportError, match=r"^plots need matplotlib: pip install 'perturb\[plot\]'$"
+        ImportError, match=r"^plots need matplotlib: pip install 'perturb-poincare\[plot\]'"
     ) as info:
         plot_time_series(t, analytic)
     assert isinstance(info.value, MissingDependencyError)

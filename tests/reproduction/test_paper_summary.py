@@ -8,6 +8,7 @@ paper's module was split into a package (``paper_report_keys.json``).
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import attrs
@@ -23,7 +24,7 @@ from problems.reproductions import (
     reproduction_names,
 )
 from problems.rigid_body.paper import PaperReproduction, reproduce
-from problems.rigid_body.paper.data import PRINTED_CONSTANTS, TABLE1_COLUMNS
+from problems.rigid_body.paper.data import PAPER_CITATION, PRINTED_CONSTANTS, TABLE1_COLUMNS
 from problems.rigid_body.paper.errata import ERRATA_STATUSES
 from problems.rigid_body.paper.output import (
     SUMMARY_MAX_LINES,
@@ -76,12 +77,28 @@ def test_summary_fits_one_screen(summary):
 def test_summary_leads_with_the_verdict(report, summary):
     lines = summary.splitlines()
     assert lines[0].startswith("Reproduction of 'paper'")
-    verdict = next(line for line in lines[1:] if line.strip())
+    # the first unindented line after the title and the paper's citation block
+    verdict = next(line for line in lines[1:] if line.strip() and not line.startswith(" "))
     assert verdict.startswith("VERDICT")
     assert not report.verdict["valid"]
     assert "does NOT hold" in verdict
     assert f"{report.verdict['numbers']['eps_c_over_r0']:.4g}" in verdict
     assert f"{report.verdict['numbers']['r_over_r0_min_0_300s']:.4g}" in summary
+
+
+def test_summary_names_the_paper_and_how_to_read_it(summary):
+    """A newcomer without the paper open: which paper, what (NN) and E# mean, where each is argued."""
+    flat = " ".join(line.strip() for line in summary.splitlines()[:8])
+    assert f'paper: "{PAPER_CITATION["title"]}"' in flat
+    assert "(NN) = the paper's equation NN" in flat
+    assert f"argued under its ID in {PAPER_CITATION['errata']}" in flat
+
+
+def test_every_erratum_on_the_screen_is_argued_in_the_errata_file(report, summary):
+    doc = (Path(__file__).resolve().parents[2] / PAPER_CITATION["errata"]).read_text()
+    for eid in report.errata:
+        assert eid in summary
+        assert re.search(rf"(^#+ .*\b{eid}\b|\*\*{eid}\b)", doc, re.M), eid
 
 
 def test_summary_counts_the_constants_matched(report, summary):
@@ -142,7 +159,9 @@ def test_summary_counts_the_errata_by_status(report, summary):
 def test_summary_leaves_the_tables_to_full(report, summary):
     assert "## " not in summary
     assert "--full" in summary
-    assert len(summary.splitlines()) < len(report.table1["t"])
+    # no column of Table 1 is listed: at most a couple of its printed values may appear by chance
+    printed = {str(v) for column in TABLE1_COLUMNS for v in report.table1_printed[column]}
+    assert sum(v in summary for v in printed if len(v) > 4) <= 2
 
 
 def test_summary_without_the_corrected_solution(report):
@@ -183,13 +202,14 @@ def test_cli_full_prints_the_summary_then_the_tables(cli_report, capsys):
 
 def test_cli_json_keeps_the_key_tree(capsys):
     """The JSON keys are a contract for users' scripts: every key of before the split is kept;
-    the only additions are the extensions named here (issue 21: the paper geometry's true orbit)."""
+    the only additions are the extensions named here (issue 21: the paper geometry's true orbit;
+    issue 27: the paper's citation)."""
     assert main(["reproduce", "paper", "--format", "json"]) == 0
     data = json.loads(capsys.readouterr().out)
     expected = set(json.loads(KEYS_FILE.read_text())["paths"])
     paths = _key_paths(data)
     assert expected <= paths
-    assert {p.split("/")[1] for p in paths - expected} == {"true_orbit"}
+    assert {p.split("/")[1] for p in paths - expected} == {"true_orbit", "citation"}
 
 
 # ---------------------------------------------------------------------------- the registry

@@ -1,4 +1,5 @@
-"""The disk's order-2 solution symbolic in the body's parameters (``solve(2, symbolic=True)``).
+"""The disk's solution symbolic in the body's parameters (``solve(order, symbolic=True)``), at
+order 1 (the default route) in the default suite and at order 2 among the slow tests.
 
 Two routes to the same exact object: the symbolic solution with the body's exact values put in
 afterwards, and the specialised solution with the values put in before the reduction. They must
@@ -21,9 +22,15 @@ BODIES = (
 )
 
 
-@pytest.fixture(scope="module")
-def symbolic():
-    return DISK.create(**BODIES[0]).solve(2, symbolic=True)
+@pytest.fixture(
+    scope="module",
+    # order 1 in the default suite (the default route: symbolic up to SYMBOLIC_MAX_ORDER); the
+    # order-2 derivation takes minutes
+    params=[1, pytest.param(2, marks=pytest.mark.slow)],
+    ids=["order1", "order2"],
+)
+def symbolic(request):
+    return DISK.create(**BODIES[0]).solve(request.param, symbolic=True)
 
 
 def test_symbolic_solution_keeps_the_parameters_and_is_shared(symbolic):
@@ -31,13 +38,13 @@ def test_symbolic_solution_keeps_the_parameters_and_is_shared(symbolic):
     assert {"a", "b", "k", "gamma3_0"} <= names
     assert symbolic.frequency[2].free_symbols & set(symbolic.system.parameters)
     # one derivation serves every parameter set
-    assert DISK.create(**BODIES[1]).solve(2, symbolic=True) is symbolic
+    assert DISK.create(**BODIES[1]).solve(symbolic.order, symbolic=True) is symbolic
 
 
 @pytest.mark.parametrize("values", BODIES)
 def test_values_put_in_afterwards_equal_the_specialised_solution_exactly(symbolic, values):
     problem = DISK.create(**values)
-    special = problem.solve(2, symbolic=False)
+    special = problem.solve(symbolic.order, symbolic=False)
     assert not special.system.parameters
     exact = problem.exact_values()
     for k, (mine, theirs) in enumerate(zip(symbolic.frequency, special.frequency, strict=True)):
@@ -51,7 +58,7 @@ def test_values_put_in_afterwards_equal_the_specialised_solution_exactly(symboli
 @pytest.mark.parametrize("values", BODIES)
 def test_both_routes_give_the_same_motion(symbolic, values):
     problem = DISK.create(**values)
-    special = problem.solve(2)  # the default above SYMBOLIC_MAX_ORDER: specialised
+    special = problem.solve(symbolic.order, symbolic=False)
     t = np.linspace(0.0, 3 * problem.period(special), 11)
     mine, theirs = problem.state_vector(symbolic, t), problem.state_vector(special, t)
     # both are float evaluations of the same exact series: round-off only

@@ -12,13 +12,12 @@ pytest.importorskip("zarr")
 
 from perturb.cli import main  # noqa: E402
 from perturb.errors import InvalidParameterError  # noqa: E402
-from perturb.sweep.derive import Derivation, DeriveMode, SymbolicModel  # noqa: E402
+from perturb.sweep.derive import Derivation, DeriveMode  # noqa: E402
 from perturb.sweep.grid import parse_axis  # noqa: E402
 from perturb.sweep.memory import MemoryResult  # noqa: E402
 from perturb.sweep.spec import SweepJob, check_spec  # noqa: E402
 from perturb.sweep.store import SweepStore  # noqa: E402
 from perturb.sweep.task import run_chunk  # noqa: E402
-from perturb.validation import Model  # noqa: E402
 from problems import get_problem  # noqa: E402
 
 
@@ -170,17 +169,19 @@ def test_points_as_csv_and_json(tmp_path):
     assert json.loads(json.dumps(data, allow_nan=True))["grid"][1]["values"] == [-1.0, 1.0]
 
 
-def test_the_symbolic_model_delegates_every_hook_of_the_protocol():
-    hooks = {
-        name for name, value in vars(Model).items() if callable(value) and not name.startswith("_")
-    }
-    missing = sorted(name for name in hooks if name not in vars(SymbolicModel))
-    assert not missing, f"SymbolicModel does not pass on {missing}"
+def test_the_symbolic_derivation_is_a_declared_hook_kept_at_every_point():
+    """A problem that offers it says so (no proxy, no signature probe); the symbolic problem
+    stays symbolic at other parameter values and at another eps, on the same numbers."""
     disk = get_problem("disk").create(r0=0.755155, R=0.123299, gamma3_0=0.25)
-    model = SymbolicModel(disk)
-    assert model.parameters_in_force() == disk.parameters_in_force()
-    assert isinstance(model.with_epsilon(0.002), SymbolicModel)
-    assert model.with_epsilon(0.002).epsilon() == pytest.approx(0.002, rel=1e-12)
+    symbolic = disk.symbolic_derivation()
+    assert symbolic is not None and symbolic.symbolic is True
+    assert symbolic.parameters_in_force() == disk.parameters_in_force()
+    assert symbolic.with_epsilon(0.002).symbolic is True
+    assert symbolic.with_epsilon(0.002).epsilon() == pytest.approx(0.002, rel=1e-12)
+    assert symbolic.with_parameters(gamma3_0=0.3).symbolic is True
+    assert get_problem("duffing").create().symbolic_derivation() is None  # already symbolic
+    derivation = Derivation(DeriveMode.SYMBOLIC, "test")
+    assert derivation.model_at(disk, {"gamma3_0": 0.3}).symbolic is True
 
 
 def test_a_model_that_cannot_be_recreated_cannot_be_swept():

@@ -1,12 +1,15 @@
 """Frequency-response plots: every branch (stable solid, unstable dashed), folds, backbone, the
-true motion's points; and the Floquet multipliers along the branches."""
+true motion's points and curves; and the Floquet multipliers along the branches."""
 
 from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from perturb.errors import bad_value
 from perturb.report.plots.style import new_figure, publication_style
+from perturb.report.plots.true_curve import draw_true_curves
 
 __all__ = ["plot_floquet_along_branches", "plot_frequency_response"]
 
@@ -32,8 +35,14 @@ def plot_frequency_response(result, *, coordinate: str | None = None, ax=None, t
     Returns
     -------
     matplotlib.figure.Figure
-        Stable segments solid, unstable dashed, folds as open circles, the backbone dotted, the
-        true orbits (``perturb response --validate K``) as crosses.
+        Every continued order-N curve, stable stretches solid, unstable dashed, where the series'
+        terms do not decrease dotted grey; folds as open circles, branch points, Neimark-Sacker
+        and period-doubling points by their own markers; the backbone dotted; the true orbits
+        (``perturb response --validate K``) as crosses at their true amplitude, the analytic points
+        off the truth by more than ``tol`` ringed. The amplitude is the response's ``measure``
+        (max |x| by default), named on the axis.
+        With ``--true``, the true curves in black beside them, their special points and where
+        the two part (:func:`~perturb.report.plots.true_curve.draw_true_curves`).
 
     Raises
     ------
@@ -54,44 +63,86 @@ def plot_frequency_response(result, *, coordinate: str | None = None, ax=None, t
     _check(result)
     response = result.response
     coordinate = coordinate or response.coordinates[0]
+    measure = getattr(response, "measure", "initial")
+    from perturb.response.measures import MEASURES
+
     with publication_style():
         if ax is None:
             fig, axes = new_figure(1, 1, height=4.0)
             ax = axes[0, 0]
         else:
             fig = ax.figure
-        for branch in response.branches(coordinate):
-            for a, b in zip(branch, branch[1:], strict=False):
-                style = "-" if (a.stable and b.stable) else "--"
-                colour = "C0" if (a.stable and b.stable) else "C3"
-                ax.plot([a.value, b.value], [a.norm(coordinate), b.norm(coordinate)],
-                        style, color=colour, lw=1.4)  # fmt: skip
-            if len(branch) == 1:
-                p = branch[0]
-                ax.plot([p.value], [p.norm(coordinate)], ".", color="C0" if p.stable else "C3")
+        low, high = min(response.grid), max(response.grid)
+        if response.curves:
+            for curve in response.curves:
+                _draw_curve(ax, curve, coordinate, measure)
+        else:  # a response without continued curves: its grid points, traced
+            for branch in response.branches(coordinate):
+                for a, b in zip(branch, branch[1:], strict=False):
+                    good = bool(a.stable and b.stable)
+                    ax.plot([a.value, b.value],
+                            [a.amplitude(coordinate, measure), b.amplitude(coordinate, measure)],
+                            "-" if good else "--", color="C0" if good else "C3", lw=1.4)  # fmt: skip
         ax.plot([], [], "-", color="C0", label="stable")
         ax.plot([], [], "--", color="C3", label="unstable")
-        if response.folds:
-            ax.plot([f.value for f in response.folds],
-                    [f.norms.get(coordinate, math.nan) for f in response.folds],
+        if any(not all(c.series_ok) for c in response.curves):
+            ax.plot([], [], ":", color="0.6", label="series terms not decreasing")
+        folds = [f for f in response.folds if low <= f.value <= high]
+        if folds:
+            size = [(f.peak if measure == "peak" and f.peak else f.norms) for f in folds]
+            ax.plot([f.value for f in folds], [s.get(coordinate, math.nan) for s in size],
                     "o", mfc="none", color="k", label="fold")  # fmt: skip
+        marks = {"branch-point": ("s", "branch point"), "neimark-sacker": ("D", "Neimark-Sacker"),
+                 "period-doubling": ("^", "period doubling")}  # fmt: skip
+        for kind, (marker, label) in marks.items():
+            found = [p for p in response.special if p.kind == kind and low <= p.value <= high]
+            if found:
+                heights = [(p.peak if measure == "peak" else p.norms).get(coordinate, math.nan)
+                           for p in found]  # fmt: skip
+                ax.plot([p.value for p in found], heights, marker, mfc="none", color="k",
+                        label=label)  # fmt: skip
         if result.backbone is not None and result.backbone.coordinate == coordinate:
             ax.plot(result.backbone.values, result.backbone.amplitudes, ":", color="0.4",
                     label="backbone")  # fmt: skip
         shot = [t for t in result.true if t.success]
         if shot:
-            ax.plot([t.value for t in shot], [t.amplitude for t in shot], "x", color="k",
-                    label="true motion")  # fmt: skip
+            first = coordinate == response.coordinates[0]
+            heights = [t.true_amplitude if first else math.nan for t in shot]
+            ax.plot([t.value for t in shot], heights, "x", color="k", label="true motion")
+            off = [t for t in shot if t.within_tol is False]
+            if off:
+                ax.plot([t.value for t in off], [t.amplitude for t in off], "o", ms=9,
+                        mfc="none", color="C1", label="analytic off the truth by > tol")  # fmt: skip
+        draw_true_curves(ax, result.true_curve, coordinate, result.parameter)
         ax.set_xlabel(result.parameter)
-        ax.set_ylabel(f"amplitude |{coordinate}|")
-        ax.set_xlim(min(response.grid), max(response.grid))
+        ax.set_ylabel(f"{MEASURES.get(measure, 'amplitude')} of {coordinate}")
+        ax.set_xlim(low, high)
         ax.legend(loc="best", frameon=False)
         ax.set_title(title or f"{result.problem}: frequency response, order {response.order}")
     return fig
 
 
+def _draw_curve(ax, curve, coordinate: str, measure: str) -> None:
+    """One continued curve: stable stretches solid, unstable dashed, where the series' terms do
+    not decrease dotted grey; the style changes where the label does."""
+    x = np.asarray(curve.values)
+    y = np.asarray(curve.measures[measure][coordinate])
+    kind = [
+        ("series" if not ok else ("stable" if st else "unstable"))
+        for st, ok in zip(curve.stable, curve.series_ok, strict=True)
+    ]
+    styles = {"stable": ("-", "C0"), "unstable": ("--", "C3"), "series": (":", "0.6")}
+    start = 0
+    for k in range(1, len(x) + 1):
+        if k == len(x) or kind[k] != kind[start]:
+            stop = min(k + 1, len(x))  # overlap one point: no gap where the style changes
+            style, colour = styles[kind[start]]
+            ax.plot(x[start:stop], y[start:stop], style, color=colour, lw=1.4)
+            start = k
+
+
 def plot_floquet_along_branches(result, *, ax=None, title=None):
-    """The largest modulus of the Floquet multipliers the slow flow predicts, along each branch (1 dotted):
+    """The largest modulus of the order-N Floquet multipliers along each branch (1 dotted):
     above 1 the branch is unstable.
 
     Parameters
@@ -128,9 +179,16 @@ def plot_floquet_along_branches(result, *, ax=None, title=None):
             ax = axes[0, 0]
         else:
             fig = ax.figure
-        for i, branch in enumerate(response.branches()):
-            largest = [max((abs(z) for z in p.multipliers), default=math.nan) for p in branch]
-            ax.plot([p.value for p in branch], largest, "-", color=f"C{i % 10}", lw=1.2)
+        low, high = min(response.grid), max(response.grid)
+        if response.curves:  # along each continued curve, inside the sweep
+            for i, curve in enumerate(response.curves):
+                x = np.asarray(curve.values)
+                keep = (x >= low) & (x <= high)
+                ax.plot(x[keep], np.asarray(curve.largest)[keep], "-", color=f"C{i % 10}", lw=1.2)
+        else:
+            for i, branch in enumerate(response.branches()):
+                largest = [max((abs(z) for z in p.multipliers), default=math.nan) for p in branch]
+                ax.plot([p.value for p in branch], largest, "-", color=f"C{i % 10}", lw=1.2)
         shot = [t for t in result.true if t.success]
         if shot:
             ax.plot([t.value for t in shot], [t.floquet_max for t in shot], "x", color="k",

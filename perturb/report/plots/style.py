@@ -16,6 +16,7 @@ import re
 import threading
 from collections.abc import Iterator
 
+from perturb._install import install_hint
 from perturb.errors import MissingDependencyError
 
 __all__ = [
@@ -37,7 +38,7 @@ __all__ = [
 _STYLE_LOCK = threading.RLock()
 
 #: The message of the error raised when matplotlib is missing: what to install.
-MISSING_MATPLOTLIB = "plots need matplotlib: pip install 'perturb[plot]'"
+MISSING_MATPLOTLIB = f"plots need matplotlib: {install_hint('plot')}"
 
 #: Single-column figure width in inches (the usual journal column is 3.3-3.5 in; 6.4 in is a
 #: full-width figure, readable on screen and in a two-column layout when scaled to the text width).

@@ -20,6 +20,7 @@ from importlib import resources
 from problems.rigid_body.equations import NondimensionalParameters, RigidBodyParameters
 
 __all__ = [
+    "PAPER_CITATION",
     "PAPER_INPUTS",
     "PRINTED_CONSTANTS",
     "TABLE1_COLUMNS",
@@ -31,6 +32,20 @@ __all__ = [
     "paper_table1",
     "table1_tolerance",
 ]
+
+#: What we know of the seed paper's identity. Our copy is a plain-text extraction that starts at the
+#: abstract, so the title is the one we cite it by (its subject in its own words) and the authors
+#: and the year are not known to us; every equation number (NN) printed by the reproduction is the
+#: paper's, Table 1 is its table, and E#/C#/U# are our errata, argued in ``docs/paper-errata.md``.
+PAPER_CITATION = {
+    "title": (
+        "Periodic solutions of a disk about a fixed point in a Newtonian force field and gravity "
+        "(large parameter technique, slow spin)"
+    ),
+    "authors": "not in our copy of the paper",
+    "year": "not in our copy of the paper",
+    "errata": "docs/paper-errata.md",
+}
 
 #: Input data (31) of the paper.  ``g`` is printed among the *derived* constants (32), but nothing
 #: in (31) determines it; it is an input (with it, c of (32) is reproduced to all printed digits).

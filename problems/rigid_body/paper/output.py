@@ -15,14 +15,16 @@ import csv
 import io
 import json
 import tempfile
+import textwrap
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from perturb.errors import InvalidParameterError
-from problems.rigid_body.paper.data import PRINTED_CONSTANTS, TABLE1_COLUMNS
+from problems.rigid_body.paper.data import PAPER_CITATION, PRINTED_CONSTANTS, TABLE1_COLUMNS
 from problems.rigid_body.paper.errata import ERRATA_STATUSES
+from problems.rigid_body.paper.geometry_orbit import ROUTE_QUAD
 from problems.rigid_body.paper.report import ReproductionReport
 
 __all__ = [
@@ -39,14 +41,15 @@ __all__ = [
 #: Files written by ``--output DIR``.
 OUTPUT_FILES = ("paper-report.json", "constants.csv", "table1.csv", "table2.csv", "errata.csv")
 
-#: The summary must fit one terminal screen (a classic 80x30 window keeps the prompt visible).
-SUMMARY_MAX_LINES = 30
+#: The summary must fit one terminal screen (a 100x35 window keeps the prompt visible): the verdict,
+#: the figures, and the lines that say which paper it is and how to read it without the paper open.
+SUMMARY_MAX_LINES = 34
 
 #: ... and one line of it fits the project's line length (a wide terminal shows it unwrapped).
 SUMMARY_MAX_WIDTH = 100
 
 #: Where the errata are argued in full.
-ERRATA_DOC = "docs/paper-errata.md"
+ERRATA_DOC = PAPER_CITATION["errata"]
 
 
 # ---------------------------------------------------------------------------- JSON
@@ -71,6 +74,7 @@ def report_dict(report: ReproductionReport) -> dict:
     return _jsonable(
         {
             "paper": report.paper,
+            "citation": PAPER_CITATION,
             "constants": report.constants,
             "closed_form": report.closed_form,
             "table1": report.table1,
@@ -267,7 +271,7 @@ def _summary_true_orbit(report: ReproductionReport) -> list[str]:
     b1, b2 = orbit["beta1_over_eps"], orbit["beta2_over_eps"]
     f1, f2 = orbit["first_order"][:2]
     return [
-        f"true orbit at eps = {orbit['eps']:g} (paper geometry; conditioned, quadruple precision):",
+        f"true orbit at eps = {orbit['eps']:g} (paper geometry; {orbit.get('route', ROUTE_QUAD)}):",
         f"  beta/eps = {b1:.7f}, {b2:.7f} (+-{orbit['resolution']:.0e}); first order "
         f"{f1:.6f}, {f2:.6f}: {100 * (1 - f1 / b1):.2f} % low",
     ]
@@ -282,6 +286,18 @@ def _summary_errata(report: ReproductionReport) -> list[str]:
     lines = [f"errata              {counts} (argued in {ERRATA_DOC})"]
     lines += [f"  {status:<18}{' '.join(ids)}" for status, ids in by_status.items() if ids]
     return lines
+
+
+def _summary_citation() -> list[str]:
+    """Which paper, and how to read the screen without it open."""
+    legend = (
+        f'paper: "{PAPER_CITATION["title"]}" (authors and year: {PAPER_CITATION["authors"]}). '
+        "How to read: (NN) = the paper's equation NN; eps = c/r0 the small parameter (c = "
+        "sqrt(M g l/C)), mu = 1/eps the paper's large one; p2a gamma2a xa ya = Table 1's columns; "
+        "E#/C#/U# = errata wrong/confirmed/unverifiable, each argued under its ID in "
+        f"{ERRATA_DOC}"
+    )
+    return textwrap.wrap(legend, SUMMARY_MAX_WIDTH - 2, initial_indent="  ", subsequent_indent="  ")
 
 
 def summary_text(report: ReproductionReport) -> str:
@@ -304,6 +320,7 @@ def summary_text(report: ReproductionReport) -> str:
     lines = [
         f"Reproduction of {report.paper!r}: a disk about a fixed point in a Newtonian field and "
         "gravity",
+        *_summary_citation(),
         "",
         f"VERDICT  the paper's solution {'holds' if valid else 'does NOT hold'} for its own data: "
         f"eps = c/r0 = {numbers['eps_c_over_r0']:.4g} ({'small' if valid else 'not small'})",

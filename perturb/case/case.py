@@ -1,0 +1,183 @@
+"""A case: a system, its parameter map, one point of user values and the family followed.
+
+:class:`Case` is what every client of a problem's numbers holds — the response, a sweep, the
+order scan of validation — instead of re-creating problems to learn what a parameter does:
+
+* :attr:`Case.symbol_values`, :attr:`Case.epsilon`, :attr:`Case.parameter_value` — the point;
+* :meth:`Case.at` — another point (checked by the problem's own rules, no class re-created);
+* :meth:`Case.with_epsilon` — the same scaled system at another ε, solved from the map;
+* :meth:`Case.columns` — many points as numpy columns (a sweep's fast route);
+* :meth:`Case.to_user` — a value found in a system symbol (a fold's σ) back in a user parameter.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+
+import attrs
+import numpy as np
+from attrs import field, frozen
+
+from perturb.case.parameters import EPSILON_KEY, ParameterMap
+from perturb.errors import InvalidParameterError, bad_value
+from perturb.system import QuasilinearSystem, Regime
+
+__all__ = ["Case", "CaseColumns"]
+
+
+@frozen
+class CaseColumns:
+    """Many points of a case as columns (one entry per point).
+
+    Attributes
+    ----------
+    symbols : dict of str to numpy.ndarray
+        Each system symbol's value.
+    epsilon : numpy.ndarray
+    parameter_value : numpy.ndarray
+        ε, or μ = 1/ε for a large-parameter system (the solution's own argument).
+    """
+
+    symbols: dict
+    epsilon: np.ndarray
+    parameter_value: np.ndarray
+
+
+def _no_check(values: dict) -> dict:
+    return dict(values)
+
+
+@frozen
+class Case:
+    """A system at one point of its user parameters (see the module docstring).
+
+    Parameters
+    ----------
+    system : QuasilinearSystem
+    map : ParameterMap
+    values : mapping of str to float
+        Every user parameter's value.
+    family : str, optional
+        The family of periodic solutions followed (None: the default one).
+    check : callable, optional
+        ``check(values) -> values``: the problem's own validation of a point (raises a
+        ``ValueError`` subclass naming the parameter); default: none.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from perturb import EPS, Excitation, QuasilinearSystem
+    >>> from perturb.case import Case, ParameterMap
+    >>> x, xdot, th, sigma, F = sp.symbols("x xdot theta sigma F")
+    >>> system = QuasilinearSystem([x], [xdot], [1], [EPS * (-x**3 + F * sp.cos(th))],
+    ...     parameters=[F, sigma], excitation=Excitation(phase=th, ratio=1, detuning=sigma))
+    >>> mapping = ParameterMap.declare(system.parameters, ["eps", "F", "Omega"],
+    ...     {"sigma": "(Omega - 1)/eps"})
+    >>> case = Case(system, mapping, {"eps": 0.1, "F": 1.0, "Omega": 1.2})
+    >>> round(case.symbol_values["sigma"], 12), case.epsilon
+    (2.0, 0.1)
+    >>> case.with_epsilon(0.05).values["Omega"]
+    1.1
+    >>> case.to_user("Omega", "sigma", 1.0)
+    1.1
+    """
+
+    system: QuasilinearSystem
+    map: ParameterMap
+    values: dict = field(converter=dict)
+    family: str | None = None
+    check: Callable[[dict], dict] = field(default=_no_check, eq=False, repr=False)
+    _point: tuple = field(init=False, eq=False, repr=False)
+
+    def __attrs_post_init__(self):
+        missing = [n for n in self.map.user if n not in self.values]
+        if missing:
+            raise bad_value(
+                "values", sorted(self.values), f"give every user parameter: {missing} missing",
+                InvalidParameterError,
+            )  # fmt: skip
+        object.__setattr__(self, "_point", self.map.evaluate(self.values))
+
+    # ------------------------------------------------------------------ the point
+    @property
+    def symbol_values(self) -> dict[str, float]:
+        """The system symbols' values at this point, by name."""
+        return dict(self._point[0])
+
+    @property
+    def epsilon(self) -> float:
+        """ε at this point (raises if the map does not give it)."""
+        eps = self._point[1]
+        if eps is None:
+            raise bad_value(
+                "parameter_map", "(no epsilon)",
+                f"declare {EPSILON_KEY!r} in the map or give a parameter named 'eps'",
+                InvalidParameterError,
+            )  # fmt: skip
+        return eps
+
+    @property
+    def parameter_value(self) -> float:
+        """The solution's own argument: ε, or μ = 1/ε for a large-parameter system."""
+        eps = self.epsilon
+        return 1.0 / eps if self.system.regime is Regime.LARGE else eps
+
+    # ------------------------------------------------------------------ other points
+    def at(self, **values) -> Case:
+        """This case at other user values (the rest kept), checked by :attr:`check`."""
+        unknown = sorted(set(values) - set(self.map.user))
+        if unknown:
+            raise bad_value(
+                unknown[0], values[unknown[0]],
+                f"it is not a parameter: choose from {list(self.map.user)}", InvalidParameterError,
+            )  # fmt: skip
+        return attrs.evolve(self, values=self.check({**self.values, **values}))
+
+    def with_epsilon(self, eps: float) -> Case | None:
+        """The same scaled system (every symbol kept) at ε = ``eps``, or None if no move of the
+        user parameters gives it (or the move leaves their admissible range)."""
+        moved = self.map.with_epsilon(self.values, eps)
+        if moved is None:
+            return None
+        try:
+            return attrs.evolve(self, values=self.check(moved))
+        except ValueError:
+            return None
+
+    def with_family(self, family: str | None) -> Case:
+        return attrs.evolve(self, family=family)
+
+    def columns(self, grid: Mapping[str, np.ndarray]) -> CaseColumns:
+        """Points as columns: ``grid`` gives some user parameters as arrays of one length (the
+        rest are this case's values). No check is applied: the caller validates the points."""
+        values = {n: grid.get(n, self.values[n]) for n in self.map.user}
+        symbols, eps = self.map.columns(values)
+        if eps is None:
+            raise bad_value(
+                "parameter_map", "(no epsilon)", f"declare {EPSILON_KEY!r} in the map",
+                InvalidParameterError,
+            )  # fmt: skip
+        with np.errstate(divide="ignore"):
+            value = 1.0 / eps if self.system.regime is Regime.LARGE else eps
+        return CaseColumns(symbols, eps, value)
+
+    # ------------------------------------------------------------------ back to the user
+    def moves(self, parameter: str) -> tuple[str, ...]:
+        """The system symbols (and :data:`~perturb.case.parameters.EPSILON_KEY`) that the user
+        parameter ``parameter`` moves."""
+        return self.map.moved_by(parameter)
+
+    def rate(self, parameter: str) -> tuple[dict[str, float], float]:
+        """How the user ``parameter`` moves the point: ``(d symbol/d parameter by name,
+        d ε/d parameter)``, exact derivatives at this case's values."""
+        symbols, eps = self.map.rate(parameter, self.values)
+        return symbols, (0.0 if eps is None else eps)
+
+    def is_affine_in(self, parameter: str) -> bool:
+        """Whether the symbols and ε move affinely with ``parameter`` (Ω for σ = (Ω − 1)/ε)."""
+        return self.map.is_affine_in(parameter)
+
+    def to_user(self, parameter: str, name: str, value: float) -> float:
+        """The value of the user ``parameter`` at which the system symbol ``name`` equals
+        ``value``, the other parameters at this case's values (NaN if none)."""
+        return self.map.solve_user(parameter, name, value, self.values)

@@ -1,0 +1,190 @@
+"""The linear algebra of a continuation step: the tangent, the corrector, Newton at fixed λ.
+
+For G: R^(n+1) -> R^n with Jacobian J = [G_u | G_λ] (n x (n+1)), the tangent t is the unit null
+vector of J, oriented along the continuation by solving the bordered system
+
+.. math:: \\begin{pmatrix} J \\\\ t_{old}^T \\end{pmatrix} z = e_{n+1}, \\qquad t = z/|z|,
+
+so that t·t_old > 0 (Keller). The corrector is Newton's method on {G(x) = 0, t_k·(x − x_pred) = 0}
+(the hyperplane through the predictor orthogonal to the previous tangent); its matrix is the same
+bordered matrix, regular at folds. The determinant of the bordered matrix keeps its sign along a
+curve with a continuously oriented tangent except where the curve crosses another: a branch point.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from attrs import frozen
+
+from perturb._defaults import CORRECTOR_MAX_ITER, CORRECTOR_TOL
+
+__all__ = [
+    "Correction",
+    "bordered",
+    "correct",
+    "newton_fixed",
+    "newton_nearest",
+    "null_tangent",
+    "tangent",
+]
+
+
+@frozen
+class Correction:
+    """The outcome of one corrector run.
+
+    ``x`` the corrected point (the last iterate when not converged), ``jacobian`` J at ``x``,
+    ``iterations`` the Newton steps taken, ``converged``, ``finite`` (False: a non-finite value
+    was met, which ends the continuation).
+    """
+
+    x: np.ndarray
+    jacobian: np.ndarray | None
+    iterations: int
+    converged: bool
+    finite: bool = True
+
+
+def _finite(*arrays) -> bool:
+    # a sum is not finite when any term is not (inf - inf is nan): one reduction an array
+    return all(math.isfinite(a.sum()) for a in arrays)
+
+
+def _solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``a⁻¹ b`` for the small systems of a continuation: 2 x 2 and 3 x 3 by Cramer's rule on
+    floats (numpy's per-call cost dwarfs their arithmetic), larger ones by LAPACK. Raises
+    :class:`numpy.linalg.LinAlgError` on a singular matrix, as numpy does."""
+    n = a.shape[0]
+    if n == 2:
+        (p, q), (r, t) = a.tolist()
+        det = p * t - q * r
+        if det == 0 or not math.isfinite(det):
+            raise np.linalg.LinAlgError("singular matrix")
+        u, v = b.tolist()
+        return np.array([(t * u - q * v) / det, (p * v - r * u) / det])
+    if n == 3:
+        (a0, a1, a2), (b0, b1, b2), (c0, c1, c2) = a.tolist()
+        m0, m1, m2 = b1 * c2 - b2 * c1, b2 * c0 - b0 * c2, b0 * c1 - b1 * c0
+        det = a0 * m0 + a1 * m1 + a2 * m2
+        if det == 0 or not math.isfinite(det):
+            raise np.linalg.LinAlgError("singular matrix")
+        u, v, w = b.tolist()
+        x = (u * m0 + v * (a2 * c1 - a1 * c2) + w * (a1 * b2 - a2 * b1)) / det
+        y = (u * m1 + v * (a0 * c2 - a2 * c0) + w * (a2 * b0 - a0 * b2)) / det
+        z = (u * m2 + v * (a1 * c0 - a0 * c1) + w * (a0 * b1 - a1 * b0)) / det
+        return np.array([x, y, z])
+    return np.linalg.solve(a, b)
+
+
+def _size(v: np.ndarray) -> float:
+    """max |v_i| (ndarray methods: a fraction of numpy's function-call cost on tiny arrays)."""
+    return float(abs(v).max()) if v.size else 0.0
+
+
+def bordered(jacobian: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """The (n+1) x (n+1) matrix [J; t^T]."""
+    return np.vstack((jacobian, t[None, :]))
+
+
+def null_tangent(jacobian: np.ndarray) -> np.ndarray:
+    """The unit null vector of J (n x (n+1)) from its SVD, of arbitrary orientation (the start)."""
+    return np.linalg.svd(np.atleast_2d(jacobian))[2][-1]
+
+
+def tangent(jacobian: np.ndarray, previous: np.ndarray) -> np.ndarray | None:
+    """The unit tangent at a point with Jacobian J, oriented like ``previous`` (None: singular)."""
+    rhs = np.zeros(jacobian.shape[1])
+    rhs[-1] = 1.0
+    try:
+        z = _solve(bordered(jacobian, previous), rhs)
+    except np.linalg.LinAlgError:
+        return None
+    norm = float(np.linalg.norm(z))
+    if not (math.isfinite(norm) and norm > 0):
+        return None
+    return z / norm
+
+
+def correct(equations, predictor: np.ndarray, normal: np.ndarray) -> Correction:
+    """Newton on {G(x) = 0, normal·(x − predictor) = 0} from the predictor.
+
+    Converged when a step is below ``CORRECTOR_TOL * max(1, |x|)``; rejected when the steps stop
+    shrinking (the predictor is outside the basin) or after ``CORRECTOR_MAX_ITER``.
+    """
+    x = np.array(predictor, dtype=float)
+    previous = math.inf
+    for iteration in range(1, CORRECTOR_MAX_ITER + 1):
+        g = np.asarray(equations.residual(x), dtype=float)
+        jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))
+        if not _finite(g, jac):
+            return Correction(x, None, iteration, False, False)
+        rhs = np.concatenate((-g, [-float(normal @ (x - predictor))]))
+        try:
+            step = _solve(bordered(jac, normal), rhs)
+        except np.linalg.LinAlgError:
+            return Correction(x, jac, iteration, False)
+        size = _size(step)
+        if not math.isfinite(size):
+            return Correction(x, jac, iteration, False)
+        if iteration > 2 and size > 0.5 * previous:
+            return Correction(x, jac, iteration, False)  # not contracting: outside the basin
+        x = x + step
+        previous = size
+        if size <= CORRECTOR_TOL * max(1.0, _size(x)):
+            jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))
+            if not _finite(x, jac):
+                return Correction(x, None, iteration, False, False)
+            return Correction(x, jac, iteration, True)
+    return Correction(x, None, CORRECTOR_MAX_ITER, False)
+
+
+def newton_fixed(equations, x0: np.ndarray, max_iter: int = CORRECTOR_MAX_ITER) -> Correction:
+    """Newton on G(u, λ) = 0 in u with λ = x0[-1] fixed (G_u square)."""
+    x = np.array(x0, dtype=float)
+    previous = math.inf
+    for iteration in range(1, max_iter + 1):
+        g = np.asarray(equations.residual(x), dtype=float)
+        jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))
+        if not _finite(g, jac):
+            return Correction(x, None, iteration, False, False)
+        try:
+            step = _solve(jac[:, :-1], -g)
+        except np.linalg.LinAlgError:
+            return Correction(x, jac, iteration, False)
+        size = _size(step)
+        if not math.isfinite(size) or (iteration > 2 and size > 0.5 * previous):
+            return Correction(x, jac, iteration, False)
+        x[:-1] = x[:-1] + step
+        previous = size
+        if size <= CORRECTOR_TOL * max(1.0, _size(x)):
+            jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))
+            if not _finite(x, jac):
+                return Correction(x, None, iteration, False, False)
+            return Correction(x, jac, iteration, True)
+    return Correction(x, None, max_iter, False)
+
+
+def newton_nearest(equations, x0: np.ndarray, max_iter: int = CORRECTOR_MAX_ITER) -> Correction:
+    """Newton's method with the least-norm step (Gauss-Newton on the n x (n+1) Jacobian): to a
+    point of the curve near x0, λ free; regular at folds, where Newton at fixed λ is not."""
+    x = np.array(x0, dtype=float)
+    previous = math.inf
+    for iteration in range(1, max_iter + 1):
+        g = np.asarray(equations.residual(x), dtype=float)
+        jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))
+        if not _finite(g, jac):
+            return Correction(x, None, iteration, False, False)
+        step = np.linalg.lstsq(jac, -g, rcond=None)[0]
+        size = _size(step)
+        if not math.isfinite(size) or (iteration > 2 and size > 0.5 * previous):
+            return Correction(x, jac, iteration, False)
+        x = x + step
+        previous = size
+        if size <= CORRECTOR_TOL * max(1.0, _size(x)):
+            jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))
+            if not _finite(x, jac):
+                return Correction(x, None, iteration, False, False)
+            return Correction(x, jac, iteration, True)
+    return Correction(x, None, max_iter, False)

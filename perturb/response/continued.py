@@ -1,0 +1,237 @@
+"""The order-N response over a sweep, read off its continued curves (issue 29).
+
+:func:`continued_response` traces every order-N branch through a window a little wider than the
+sweep (:func:`perturb.response.traced.trace`), reads every branch at each grid value, and
+evaluates every point in one batch from the compiled series: its amplitude measures
+(:mod:`perturb.response.measures`), the series' own estimate, and its Floquet multipliers along
+the order-N orbit (:mod:`perturb.response.floquet`). The curves themselves, densely, come back for
+the figure; their folds and branch points, and the Neimark-Sacker and period-doubling points where
+the multipliers cross the unit circle, are located on them, inside the sweep or just beside it.
+"""
+
+from __future__ import annotations
+
+import cmath
+import math
+
+import numpy as np
+from attrs import field, frozen
+
+from perturb._defaults import WINDOW_MARGIN
+from perturb.continuation import TestFunction, locate_on_curve
+from perturb.response.census import same_orbit
+from perturb.response.evaluate import PointEvaluator
+from perturb.response.traced import trace
+
+__all__ = ["Continued", "ResponseCurve", "SpecialResponse", "continued_response", "window_of"]
+
+#: A fold and a branch point this close (relative, in λ and amplitudes) are one point: a
+#: pitchfork, where the branch crossing the other turns in λ too.
+SAME_POINT = 1e-6
+
+
+@frozen
+class SpecialResponse:
+    """A located special point of the order-N response.
+
+    ``kind``: ``fold``, ``branch-point``, ``neimark-sacker`` or ``period-doubling``; ``inside``:
+    within the sweep's range (else just beside it, in the window).
+    """
+
+    kind: str
+    value: float
+    amplitudes: dict
+    norms: dict
+    peak: dict
+    inside: bool
+    multipliers: tuple = field(converter=tuple, factory=tuple)
+
+
+@frozen
+class ResponseCurve:
+    """One order-N branch, densely: the continuation's points, in the swept parameter.
+
+    ``measures[name][coordinate]`` an array along the curve for each amplitude measure;
+    ``stable`` and ``series_ok`` per point; ``largest`` the largest multiplier's modulus.
+    """
+
+    values: np.ndarray = field(eq=False)
+    amplitudes: np.ndarray = field(eq=False)
+    measures: dict = field(eq=False)
+    stable: tuple = field(converter=tuple)
+    series_ok: tuple = field(converter=tuple)
+    largest: np.ndarray = field(eq=False)
+    arclength: np.ndarray = field(eq=False)
+    status: str = ""
+    multipliers: np.ndarray = field(eq=False, default=None)
+
+
+@frozen
+class Continued:
+    """What :func:`continued_response` returns: the grid's points (with their curve), the
+    curves, the special points, the failures."""
+
+    readings: tuple = field(converter=tuple)  # per point: (value, u, branch, evaluation dict)
+    curves: tuple = field(converter=tuple)
+    special: tuple = field(converter=tuple)
+    failures: tuple = field(converter=tuple)
+    traced: object = field(eq=False, repr=False)
+    evaluator: object = field(eq=False, repr=False, default=None)
+
+
+def window_of(line, low: float, high: float) -> tuple[float, float]:
+    """The sweep's range widened by ``WINDOW_MARGIN`` on each side, where the problem accepts
+    the values (a side shrunk toward the sweep until it does)."""
+    margin = WINDOW_MARGIN * (high - low)
+    ends = []
+    for edge, outward in ((low, -margin), (high, margin)):
+        step = outward
+        while step and line.invalid(edge + step):
+            step = step / 2 if abs(step) > 1e-6 * margin else 0.0
+        ends.append(edge + step)
+    return ends[0], ends[1]
+
+
+def _multiplier_tests(evaluator, line):
+    """Neimark-Sacker (Π_{i<j} (μᵢμⱼ − 1)) and period-doubling (Π (μᵢ + 1)) test functions on
+    the curve, one point's multipliers each, and their batch values from multipliers."""
+
+    def multipliers(x):
+        lam = float(line.lam(x[-1]))
+        return evaluator.evaluate(x[:-1], [lam], check_lower=False)["stability"].multipliers[0]
+
+    def ns(mu):
+        mu = np.asarray(mu)
+        pairs = [mu[i] * mu[j] - 1 for i in range(len(mu)) for j in range(i + 1, len(mu))]
+        return float(np.prod(pairs).real) if pairs else 1.0
+
+    def pd(mu):
+        return float(np.prod(np.asarray(mu) + 1).real)
+
+    def classify_ns(x, t, j):
+        mu = multipliers(x)
+        pairs = [z for z in mu if abs(z.imag) > 1e-9 * abs(z)]
+        return "neimark-sacker" if pairs and abs(abs(pairs[0]) - 1) < 1e-6 else None
+
+    tests = (
+        (TestFunction("neimark-sacker", lambda x, t, j: ns(multipliers(x)), classify_ns), ns),
+        (TestFunction("period-doubling", lambda x, t, j: pd(multipliers(x))), pd),
+    )
+    return tests
+
+
+def _dedupe(found: list[SpecialResponse], harmonics, group) -> list[SpecialResponse]:
+    """One entry per point: images under the time shifts dropped, a fold at a branch point
+    dropped (a pitchfork)."""
+    out: list[SpecialResponse] = []
+
+    def u(point):
+        return np.array(list(point.amplitudes.values()))
+
+    def close(p, q):
+        scale = max(1.0, abs(p.value))
+        return (
+            abs(p.value - q.value) <= SAME_POINT * scale
+            and same_orbit(u(p), u(q), harmonics, group)
+            or (
+                abs(p.value - q.value) <= SAME_POINT * scale
+                and float(np.max(np.abs(u(p) - u(q))))
+                <= 1e-4 * max(1.0, float(np.max(np.abs(u(p)))))
+            )
+        )
+
+    ranked = sorted(found, key=lambda p: p.kind != "branch-point")  # branch points first
+    for point in ranked:
+        if any(close(point, kept) for kept in out):
+            continue
+        out.append(point)
+    return sorted(out, key=lambda p: p.value)
+
+
+def continued_response(equations, order: int, line, grid) -> Continued:
+    """Every order-N point at each grid value, the dense curves and their special points (see
+    the module notes); ``line`` the sweep's :class:`~perturb.response.line.ParameterLine`."""
+    grid = np.asarray(grid, dtype=float)
+    low, high = window_of(line, float(grid[0]), float(grid[-1]))
+    traced = trace(equations, order, line, low, high)
+    evaluator = PointEvaluator(equations, line)
+    coords = equations.coordinates
+    names = [s.name for s in equations.amplitudes]
+    readings_at = traced.at(grid)
+    flat = [(float(v), u, b) for v, found in zip(grid, readings_at, strict=True) for u, b in found]
+    batch = evaluator.evaluate([u for _, u, _ in flat], [v for v, _, _ in flat]) if flat else None
+    readings = []
+    for k, (value, u, branch) in enumerate(flat):
+        stability = batch["stability"]
+        readings.append(
+            (
+                value,
+                dict(zip(names, map(float, u), strict=True)),
+                branch,
+                _point(batch, k, stability),
+            )
+        )
+    curves, special = [], []
+    tests = _multiplier_tests(evaluator, line)
+    for branch in traced.branches:
+        curve = branch.curve
+        lam = line.lam(curve.points[:, -1])
+        dense = evaluator.evaluate(curve.points[:, :-1], lam, check_lower="along")
+        stability = dense["stability"]
+        curves.append(
+            ResponseCurve(
+                values=np.asarray(lam),
+                amplitudes=curve.points[:, :-1],
+                measures={m: dense[m] for m in ("peak", "first-harmonic", "initial")},
+                stable=stability.stable,
+                series_ok=[not r for r in dense["reasons"]],
+                largest=np.abs(stability.multipliers[:, 0]),
+                arclength=curve.arclength,
+                status=curve.message,
+                multipliers=stability.multipliers,
+            )
+        )
+        located = list(curve.special)
+        for test, batch_test in tests:
+            values = [batch_test(mu) for mu in stability.multipliers]
+            for k in range(len(values) - 1):
+                a, b = values[k], values[k + 1]
+                if math.isfinite(a) and math.isfinite(b) and a != 0 and (a > 0) != (b > 0):
+                    point = locate_on_curve(curve, test, k, a, b)
+                    if point is not None:
+                        located.append(point)
+        for point in located:
+            u, value = point.x[:-1], float(line.lam(point.x[-1]))
+            at = evaluator.evaluate(u, [value])
+            special.append(
+                SpecialResponse(
+                    kind=point.kind,
+                    value=value,
+                    amplitudes=dict(zip(names, map(float, u), strict=True)),
+                    norms={c: float(at["initial"][c][0]) for c in coords},
+                    peak={c: float(at["peak"][c][0]) for c in coords},
+                    inside=bool(grid[0] <= value <= grid[-1]),
+                    multipliers=tuple(complex(z) for z in at["stability"].multipliers[0]),
+                )
+            )
+    special = _dedupe(special, traced.harmonics, traced.group)
+    return Continued(readings, curves, special, traced.failures, traced, evaluator)
+
+
+def _point(batch, k: int, stability) -> dict:
+    """One grid point's evaluation out of a batch."""
+    eps = float(batch["eps"][k])
+    multipliers = tuple(complex(z) for z in stability.multipliers[k])
+    return {
+        "peak": {c: float(v[k]) for c, v in batch["peak"].items()},
+        "first-harmonic": {c: float(v[k]) for c, v in batch["first-harmonic"].items()},
+        "initial": {c: float(v[k]) for c, v in batch["initial"].items()},
+        "stable": stability.stable[k],
+        "multipliers": multipliers,
+        "eigenvalues": tuple(
+            cmath.log(z) / eps if z != 0 else complex(-math.inf) for z in multipliers
+        ),
+        "liouville": float(stability.liouville[k]),
+        "error": batch["error"][k],
+        "reasons": batch["reasons"][k],
+    }

@@ -1,0 +1,156 @@
+"""The system's parameter values along one swept parameter: the line a response is continued on.
+
+A problem's user parameter λ (Ω, a forcing level…) moves the values its system is written in (σ,
+F, …) and possibly ε through the problem's own map (its :class:`~perturb.case.Case`: the point at
+each λ, the exact rate of every symbol and of ε, whether they move affinely). When the map is
+affine along the sweep — Ω ↦ σ = (Ω − 1)/ε, or a coefficient swept directly — the amplitude
+equations restricted to the line are polynomials in (amplitudes, λ), specialised once; otherwise
+the values are asked of the case at each λ and differentiated by centred differences. The continuation
+runs in the scaled variable μ = (λ − λ₀)·scale, scale the largest rate at which a system value
+moves (μ in the units of σ when sweeping Ω): amplitudes and parameter then weigh alike in the
+arclength.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+from attrs import field, frozen
+
+from perturb.errors import InvalidParameterError
+
+__all__ = ["ParameterLine", "excitation_frequency", "line_of_problem", "line_of_values"]
+
+#: Relative step of the centred differences of a map that is not affine (eps^(1/3)).
+MAP_STEP = 6e-6
+
+
+@frozen
+class ParameterLine:
+    """System parameter values and ε along λ (see the module notes).
+
+    Attributes
+    ----------
+    parameter : str
+        The swept parameter's name.
+    names : tuple of str
+        The system's parameters, in its order.
+    origin : float
+        λ₀, where μ = 0.
+    base, slope : ndarray
+        Values at λ₀ and their rate dv/dλ (affine maps; a tangent at λ₀ otherwise).
+    eps, eps_slope : float
+    scale : float
+        μ per unit of λ.
+    affine : bool
+    values_at : callable
+        ``λ -> (values, eps)`` from the problem (None for a line given by values).
+    invalid : callable
+        ``λ -> str``: "" where the problem accepts λ, else its one-line reason.
+    """
+
+    parameter: str
+    names: tuple = field(converter=tuple)
+    origin: float
+    base: np.ndarray = field(eq=False)
+    slope: np.ndarray = field(eq=False)
+    eps: float
+    eps_slope: float
+    scale: float
+    affine: bool
+    values_at: Callable | None = field(eq=False, default=None)
+    invalid: Callable = field(eq=False, default=lambda lam: "")
+
+    def mu(self, lam):
+        return (np.asarray(lam, dtype=float) - self.origin) * self.scale
+
+    def lam(self, mu):
+        return self.origin + np.asarray(mu, dtype=float) / self.scale
+
+    def at(self, lam: float) -> tuple[np.ndarray, float]:
+        """``(values, eps)`` at λ."""
+        if self.affine:
+            d = float(lam) - self.origin
+            return self.base + d * self.slope, self.eps + d * self.eps_slope
+        return self.values_at(float(lam))
+
+    def rate(self, lam: float) -> tuple[np.ndarray, float]:
+        """``(dvalues/dλ, deps/dλ)`` at λ."""
+        if self.affine:
+            return self.slope, self.eps_slope
+        h = MAP_STEP * max(1.0, abs(float(lam)))
+        (v1, e1), (v0, e0) = self.values_at(lam + h), self.values_at(lam - h)
+        return (v1 - v0) / (2 * h), (e1 - e0) / (2 * h)
+
+
+def _scale(slope: np.ndarray, eps_slope: float) -> float:
+    top = max(float(np.max(np.abs(slope), initial=0.0)), abs(eps_slope))
+    return top if top > 0 and math.isfinite(top) else 1.0
+
+
+def line_of_problem(problem, parameter: str, names, low: float, high: float) -> ParameterLine:
+    """The line of ``problem``'s system values along its parameter ``parameter`` over [low, high]:
+    its :class:`~perturb.case.Case` gives each point, the exact rate of the symbols and ε and
+    whether they move affinely (read from the parameter map, not probed)."""
+    names = tuple(names)
+    case = problem.case()
+
+    def values_at(lam: float):
+        point = case.at(**{parameter: float(lam)})
+        values = point.symbol_values
+        return np.array([float(values[n]) for n in names]), float(point.epsilon)
+
+    def invalid(lam: float) -> str:
+        try:
+            case.at(**{parameter: float(lam)})
+        except (InvalidParameterError, ValueError) as error:
+            return str(error)
+        return ""
+
+    v0, e0 = values_at(low)
+    start = case.at(**{parameter: float(low)})
+    rates, eps_rate = start.rate(parameter)
+    slope = np.array([float(rates.get(n, 0.0)) for n in names])
+    affine = bool(case.is_affine_in(parameter))
+    return ParameterLine(
+        parameter, names, low, v0, slope, e0, float(eps_rate), _scale(slope, float(eps_rate)),
+        affine, values_at, invalid,
+    )  # fmt: skip
+
+
+def line_of_values(names, values: dict, eps: float, parameter: str) -> ParameterLine:
+    """The line through the system values ``values`` along the system parameter ``parameter``
+    (σ for one point's branches), ε fixed."""
+    names = tuple(names)
+    base = np.array([float(values[n]) for n in names])
+    slope = np.array([1.0 if n == parameter else 0.0 for n in names])
+    return ParameterLine(
+        parameter, names, float(values[parameter]), base, slope, float(eps), 0.0, 1.0, True
+    )
+
+
+def excitation_frequency(system, values: dict, eps: float) -> float:
+    """Ω = (p/q) ω_ref + ε σ of the driven ``system`` at ``values`` (by name).
+
+    Raises
+    ------
+    InvalidParameterError
+        When Ω <= 0: a forcing frequency must be positive (one line, with the detuning that
+        gives it).
+    """
+    import sympy as sp
+
+    drive = system.excitation
+    subs = {p: values[p.name] for p in system.parameters if p.name in values}
+    w_ref = sp.sympify(system.frequencies[system.reference_index]).xreplace(subs)
+    sigma = sp.sympify(drive.detuning).xreplace(subs)
+    omega = float(drive.ratio * w_ref + eps * sigma)
+    if not omega > 0:
+        raise InvalidParameterError(
+            f"`{drive.detuning}` = {float(sigma):g} is invalid: it makes the excitation frequency "
+            f"Omega = {float(drive.ratio * w_ref):g} + {eps:g}*{drive.detuning} = {omega:g} <= 0; "
+            f"give {drive.detuning} > {-float(drive.ratio * w_ref) / eps:g} (Omega > 0)"
+        )
+    return omega
