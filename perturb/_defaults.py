@@ -195,19 +195,22 @@ SWEEP_CONFIRM_POINTS = 10_000_000
 #: (README, about 8 minutes) stays below it.
 CONFIRM_SECONDS = 3600.0
 
-#: The estimate's figures (CPU seconds on one core, measured on the shipped driven problems with
-#: ``benchmarks/hostile_cli.py``'s timing run): a response value at order 1 (0.17-0.67 s: the
-#: roots of the amplitude equations, the continuation, the slow flow, the domain check), the
-#: growth of that cost with each order (1.6-2.0 measured for orders 1-3, the derivation of the
-#: amplitude equations 1.3-2.5), the derivation at order 1, the branches a driven problem
-#: typically has (lower, middle, upper), a point shot against the true motion (0.4-1.6 s), an
-#: evaluated sweep point (1-3 x 10^5 points a second, benchmarks/bench_sweep.md) and a validated
-#: one (0.07-0.3 s).
-RESPONSE_SECONDS_PER_VALUE = 0.5
-RESPONSE_ORDER_GROWTH = 2.0
-RESPONSE_DERIVE_SECONDS = 0.2
-RESPONSE_TYPICAL_BRANCHES = 3
+#: The estimate's figures (CPU seconds on one core, measured on the shipped driven problems;
+#: benchmarks/hostile_cli.md): the response's derivation at order 1 (the amplitude equations and
+#: the continuation's compiled series, 0.5-2.5 s) and its growth with each order (1.7-2.5 a step
+#: from order 3 to 7: forced Duffing 1.8, 4.9, 25 s at orders 3, 5, 7), a grid value read off the
+#: continued curves per order (5-10 ms at order 3, 200 values), the points shot against the true
+#: motion besides those asked (the largest amplitude, both sides of each fold, the ends), a shot
+#: (0.4-1.6 s), a point of a continued true curve (about 10 ms), the branches a driven problem
+#: typically has (lower, middle, upper), an evaluated sweep point (1-3 x 10^5 points a second,
+#: benchmarks/bench_sweep.md) and a validated one (0.07-0.3 s).
+RESPONSE_DERIVE_SECONDS = 0.5
+RESPONSE_ORDER_GROWTH = 2.5
+RESPONSE_SECONDS_PER_VALUE = 0.02
+RESPONSE_ALWAYS_SHOT = 4
 SHOT_SECONDS = 1.0
+TRUE_POINT_SECONDS = 0.01
+RESPONSE_TYPICAL_BRANCHES = 3
 SWEEP_POINT_SECONDS = 1e-5
 SWEEP_VALIDATION_SECONDS = 0.3
 

@@ -19,10 +19,10 @@ Examples
 >>> cost = response_cost(values=61, order=1, shots=2)
 >>> cost.seconds < CONFIRM_SECONDS
 True
->>> check_cost(response_cost(values=200_000, order=1, shots=0), yes=False)
+>>> check_cost(response_cost(values=200_000, order=3, shots=0), yes=False)
 Traceback (most recent call last):
 ...
-perturb.errors.InvalidParameterError: this asks for about 28 h of work (200,000 response values at order 1); check the request and confirm with --yes (yes=True in Python)
+perturb.errors.InvalidParameterError: this asks for about 3 h of work (200,000 response values at order 3); check the request and confirm with --yes (yes=True in Python)
 """
 
 from __future__ import annotations
@@ -33,11 +33,13 @@ from attrs import frozen
 
 from perturb._defaults import (
     CONFIRM_SECONDS,
+    RESPONSE_ALWAYS_SHOT,
     RESPONSE_DERIVE_SECONDS,
     RESPONSE_ORDER_GROWTH,
     RESPONSE_SECONDS_PER_VALUE,
     RESPONSE_TYPICAL_BRANCHES,
     SHOT_SECONDS,
+    TRUE_POINT_SECONDS,
     SWEEP_CONFIRM_POINTS,
     SWEEP_MAX_POINTS,
     SWEEP_POINT_SECONDS,
@@ -79,12 +81,16 @@ def response_cost(values: int, order: int, shots: int, true: int = 0) -> Cost:
     """A frequency response over ``values`` values at ``order``, ``shots`` points of each
     branch shot against the true motion, true curves of at most ``true`` points
     (:func:`perturb.response.model.problem_response`)."""
-    growth = _growth(order)
-    seconds = RESPONSE_DERIVE_SECONDS * growth + values * RESPONSE_SECONDS_PER_VALUE * growth
-    seconds += shots * RESPONSE_TYPICAL_BRANCHES * SHOT_SECONDS
+    seconds = RESPONSE_DERIVE_SECONDS * _growth(order)
+    seconds += values * RESPONSE_SECONDS_PER_VALUE * max(int(order), 1)
+    if shots:
+        seconds += (shots + RESPONSE_ALWAYS_SHOT) * RESPONSE_TYPICAL_BRANCHES * SHOT_SECONDS
+    seconds += true * RESPONSE_TYPICAL_BRANCHES * TRUE_POINT_SECONDS
     what = f"{values:,} response values at order {order}"
     if shots:
         what += f", {shots} shots per branch"
+    if true:
+        what += f", true curves of {true} points"
     return Cost(what, 0, seconds)
 
 

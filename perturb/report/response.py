@@ -240,6 +240,7 @@ def response_as_table(result) -> str:
     for failure in response.failures:
         lines.append(f"not solved: {failure}")
     lines.extend(true_curve_lines(result.true_curve, result.parameter))
+    lines.extend(flag_lines(result))
     return "\n".join(lines)
 
 

@@ -505,7 +505,7 @@ def _report_cases() -> list[Case]:
         ),  # fmt: skip
         _report(
             scene(
-                response='sweep = "Omega=0.9:1.1:9000"\nvalidate = 100', outputs="response = true"
+                response='sweep = "Omega=0.9:1.1:1000000"\nvalidate = 10', outputs="response = true"
             ),
             "usage",
         ),  # fmt: skip

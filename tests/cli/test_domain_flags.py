@@ -33,25 +33,37 @@ def test_superharmonic_at_the_primary_resonance_is_refused(capsys):
     assert code == 2 and "primary resonance" in err and err.count("\n") == 1
 
 
-def test_eps_10_is_flagged_beyond_the_series_validity(capsys):
+def test_eps_10_is_outside_the_domain_at_order_3_and_beyond_validity_at_order_1(capsys):
     argv = ["response", "forced-duffing", "--sweep", "Omega=0.9:1.1:3", "--set", "eps=10"]
-    code, out, err = run(capsys, *argv, "--format", "json")
+    code, out, err = run(capsys, *argv)  # order 3, the default: its terms grow
+    assert code == 1 and out == "" and "outside its domain at every steady state" in err
+    code, out, err = run(capsys, *argv, "--order", "1", "--format", "json")
     assert code == 0, err
     points = json.loads(out)["points"]
-    assert points and all(p["beyond"] and not p["outside"] for p in points)
-    assert "beyond the series' estimated validity" in err  # said on stderr, JSON kept clean
-    code, out, _ = run(capsys, *argv, "--format", "csv")
-    rows = [line.split(",") for line in out.strip().splitlines()]
-    assert rows[0][-1] == "flag" and all(row[-1] == "beyond" for row in rows[1:])
-    code, out, _ = run(capsys, *argv)
-    assert "[beyond]" in out and "may be far from the motion's" in out
+    assert points and all(p["series_ok"] for p in points)
+    ratios = [p["error_estimate"]["x"] / p["peak"]["x"] for p in points]
+    assert max(ratios) > VALIDITY_ESTIMATE_LIMIT  # the series' own estimate: not a motion
+    assert "beyond the series' validity" in err  # said on stderr, the JSON kept clean
+    code, out, _ = run(capsys, *argv, "--order", "1")
+    assert code == 0 and "beyond the series' validity" in out  # the table says it itself
+
+
+def test_a_sweep_past_the_resonance_flags_the_points_outside(capsys):
+    argv = ["response", "superharmonic-duffing", "--sweep", "Omega=0.32:0.5:6", "--format", "json"]
+    code, out, err = run(capsys, *argv)
+    assert code == 0, err
+    points = json.loads(out)["points"]
+    outside = [p for p in points if not p["series_ok"]]
+    assert outside and len(outside) < len(points)
+    assert all("outside its domain" in p["note"] for p in outside)
+    assert "outside the series' domain" in err
 
 
 def test_near_the_resonance_nothing_is_flagged(capsys):
     code, out, err = run(capsys, "response", "forced-duffing", "--sweep", "Omega=0.95:1.1:4",
                          "--format", "json")  # fmt: skip
     assert code == 0, err
-    assert all(p["outside"] == p["beyond"] == "" for p in json.loads(out)["points"])
+    assert all(p["series_ok"] for p in json.loads(out)["points"])
     assert "warning" not in err
 
 

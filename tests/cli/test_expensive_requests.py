@@ -71,7 +71,7 @@ def _asked(code, out, err, *words):
         (["response", "forced-duffing", "--sweep", "Omega=0.9:1.1:5", "--order", "12"],
          ["order 12", "--yes"]),
         (["response", "forced-duffing", "--sweep", "Omega=0.9:1.1:5", "--validate", "1000000000"],
-         ["--validate 1000000000", "at most 5"]),
+         ["--validate 1000000000", "at most 50"]),
         (["sweep", "duffing", "--grid", "eps=0.01:0.2:400", "--grid", "amplitude=0.5:2:400",
           "--validate", "--format", "csv"], ["validated sweep points", "--yes"]),
         (["sweep", "duffing", "--grid", "eps=0.01:0.2:100000", "--grid",
@@ -96,7 +96,7 @@ name = "{problem}"
     ("problem", "section", "body", "output"),
     [
         ("forced-duffing", "response", 'sweep = "Omega=0.9:1.1:10000000"', "response"),
-        ("forced-duffing", "response", 'sweep = "Omega=0.9:1.1:9000"\nvalidate = 100',
+        ("forced-duffing", "response", 'sweep = "Omega=0.9:1.1:1000000"\nvalidate = 10',
          "response"),
         ("duffing", "sweep", 'grid = ["eps=0.01:0.1:3000", "amplitude=0.5:2:3000"]\n'
          "validate = true", "sweep"),
