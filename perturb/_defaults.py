@@ -541,3 +541,33 @@ TRUE_CURVE_MULTIPLIER_TOL = 1e-9
 #: orbit: a seed on a curve already followed. The corrector converges to 1e-10; distinct branches
 #: lie orders of magnitude further apart.
 TRUE_CURVE_SAME_ORBIT = 1e-6
+
+# -- perturb.continuation.reading
+#: Two readings closer than this (relative to max(1, |x|)) are one point: the same crossing seen
+#: from the two segments that share an end, far below any distance between distinct branches.
+SAME_READING = 1e-8
+
+# -- perturb.case.parameters
+#: Digits of the evaluation of an inverse at the given doubles (taken as exact): far past double
+#: precision, so the double returned is the correctly rounded value of the exact inverse.
+EVAL_DIGITS = 30
+
+# -- perturb.oracle.symbolic
+#: Fields whose numeric functions are kept by value (:func:`_derived`): a sweep builds an equal
+#: field at every point, and a validation asks each for its numeric functions.
+DERIVED_CACHE_SIZE = 64
+
+# -- perturb.method.families
+#: How many orders past the requested one a continuum with several free amplitudes is carried to
+#: see whether a later order restricts it (Hénon–Heiles: the directions of its lines are fixed by
+#: the conditions of order 4, i.e. carrying order 2, from the requested order 1: one order more;
+#: two leave room for a family order of 2 on a quadratic right-hand side's neighbour).
+PROBE_ORDERS = 2
+
+#: Successive restrictions of one continuum (each removes at least one free amplitude).
+MAX_RESTRICTIONS = 4
+
+# -- perturb.method.family_names
+#: A standing wave of n coordinates is "localised" when its participation number is at most this
+#: fraction of n + 1: it moves fewer than about half of the coordinates (module notes, rule 4).
+LOCALISED_BELOW = 0.5

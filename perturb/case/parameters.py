@@ -24,7 +24,7 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
-from perturb._defaults import REAL_ROOT_TOL
+from perturb._defaults import EVAL_DIGITS, REAL_ROOT_TOL
 from perturb.errors import InvalidSystemError
 
 __all__ = ["EPSILON_KEY", "ParameterMap"]
@@ -347,9 +347,6 @@ class ParameterMap:
 
 
 _TARGET = sp.Symbol("target_value_", real=True)
-#: Digits of the evaluation of an inverse at the given doubles (taken as exact): far past double
-#: precision, so the double returned is the correctly rounded value of the exact inverse.
-EVAL_DIGITS = 30
 
 
 def _to_float(value) -> float:

@@ -12,15 +12,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from perturb._defaults import READ_MAX_ITER
+from perturb._defaults import READ_MAX_ITER, SAME_READING
 from perturb.continuation.events import TestFunction, locate
 from perturb.continuation.newton import newton_fixed
 
 __all__ = ["values_at"]
-
-#: Two readings closer than this (relative to max(1, |x|)) are one point: the same crossing seen
-#: from the two segments that share an end, far below any distance between distinct branches.
-SAME_READING = 1e-8
 
 
 def _hermite(x0, t0, x1, t1, theta):

@@ -42,7 +42,7 @@ import attrs
 import sympy as sp
 from attrs import field, frozen
 
-from perturb._defaults import SOLVE_SECONDS
+from perturb._defaults import MAX_RESTRICTIONS, PROBE_ORDERS, SOLVE_SECONDS
 from perturb.errors import InvalidSystemError, UnknownNameError, bad_value
 from perturb.method.components import Component, components_or_failed, solution_components
 from perturb.method.conditions import ConditionSolver, OrderFailed, amplitude_pairs
@@ -58,13 +58,6 @@ __all__ = ["Family", "FamilyList", "find_families"]
 
 #: The two kinds of family, as reported to users.
 ISOLATED, CONTINUUM = "isolated", "continuum"
-#: How many orders past the requested one a continuum with several free amplitudes is carried to
-#: see whether a later order restricts it (Hénon–Heiles: the directions of its lines are fixed by
-#: the conditions of order 4, i.e. carrying order 2, from the requested order 1: one order more;
-#: two leave room for a family order of 2 on a quadratic right-hand side's neighbour).
-PROBE_ORDERS = 2
-#: Successive restrictions of one continuum (each removes at least one free amplitude).
-MAX_RESTRICTIONS = 4
 
 
 @frozen

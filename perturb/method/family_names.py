@@ -67,13 +67,10 @@ from itertools import pairwise
 
 import sympy as sp
 
+from perturb._defaults import LOCALISED_BELOW
 from perturb.method.exact import is_zero, probe_values
 
 __all__ = ["name_families"]
-
-#: A standing wave of n coordinates is "localised" when its participation number is at most this
-#: fraction of n + 1: it moves fewer than about half of the coordinates (module notes, rule 4).
-LOCALISED_BELOW = 0.5
 
 
 def _sign(expr: sp.Expr) -> int:

@@ -17,6 +17,7 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._defaults import DERIVED_CACHE_SIZE
 from perturb._lambdify import numpy_lambdify
 from perturb.cache import cached
 from perturb.errors import bad_value
@@ -139,11 +140,6 @@ class SymbolicRHS:
         phi = sp.Matrix(n, n, lambda i, j: sp.Dummy(f"Phi{i}_{j}"))
         phi_dot = self.jacobian_expressions * phi
         return self.state + tuple(phi), self.expressions + tuple(phi_dot)
-
-
-#: Fields whose numeric functions are kept by value (:func:`_derived`): a sweep builds an equal
-#: field at every point, and a validation asks each for its numeric functions.
-DERIVED_CACHE_SIZE = 64
 
 
 @functools.lru_cache(maxsize=DERIVED_CACHE_SIZE)
