@@ -39,11 +39,11 @@ from perturb._defaults import (
     RESPONSE_SECONDS_PER_VALUE,
     RESPONSE_TYPICAL_BRANCHES,
     SHOT_SECONDS,
-    TRUE_POINT_SECONDS,
     SWEEP_CONFIRM_POINTS,
     SWEEP_MAX_POINTS,
     SWEEP_POINT_SECONDS,
     SWEEP_VALIDATION_SECONDS,
+    TRUE_POINT_SECONDS,
 )
 from perturb.errors import InvalidParameterError
 
