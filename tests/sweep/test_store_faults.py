@@ -224,3 +224,55 @@ def test_the_upper_branch_swept_over_the_frequency(client):
         upper = point.families(1).get("upper")
         assert amplitude == pytest.approx(float(np.hypot(*upper.amplitudes.values())), rel=0.05)
     assert all("upper" in r for r in ds["reason"].values[~ok])
+
+
+KILLER = """
+import os
+import sympy as sp
+from perturb import EPS, QuasilinearSystem
+from problems.base import ParameterSpec, Problem
+
+X, V, A = sp.symbols("x xdot amplitude")
+
+
+class Killer(Problem):
+    name = "killer"
+    summary = "Duffing whose points past eps = 0.2 kill the Dask worker computing them"
+    parameter_specs = (ParameterSpec("eps", 0.1, "eps"), ParameterSpec("amplitude", 1.0, "a"))
+
+    @classmethod
+    def build_system(cls):
+        return QuasilinearSystem([X], [V], [1], [-EPS * X**3], parameters=[A])
+
+    def method_options(self):
+        return {"amplitudes": {"x": A}}
+
+    def symbol_values(self):
+        if self.values["eps"] > 0.2:
+            try:
+                from distributed import get_worker
+
+                get_worker()
+            except (ImportError, ValueError):
+                pass  # not in a worker: the driver and the pilot live
+            else:
+                os._exit(1)
+        return super().symbol_values()
+"""
+
+
+@pytest.mark.slow  # workers killed again and again until Dask gives the chunks up: ~1-2 min
+def test_the_count_of_what_is_missing_is_the_stores(client, tmp_path):
+    from perturb.errors import SweepError
+    from problems.loading import load_problem
+
+    (tmp_path / "killer.py").write_text(KILLER)
+    problem = load_problem(f"{tmp_path / 'killer.py'}:Killer").create()
+    store = tmp_path / "killed.zarr"
+    with pytest.raises(SweepError) as info:
+        perturb.sweep(problem, ["eps=0.05:0.4:8"], validate=True, client=client, output=store)
+    session = zarr.open_group(str(store), mode="r")["session"][...]
+    missing = int(np.count_nonzero(session == 0))
+    assert missing >= 4  # every point past eps = 0.2 (and its chunk-mates)
+    assert f"{missing} of 8 points" in str(info.value) and "--resume" in str(info.value)
+    client.wait_for_workers(2, timeout=120)
