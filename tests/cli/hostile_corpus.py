@@ -611,7 +611,8 @@ def _file_cases() -> list[Case]:
                                 "--workers", "1"],
                   "any" if expect in ("ok", "failed") else expect, files=texts, seconds=SMALL)
         )  # fmt: skip
-        if expect == "usage" or name in (DRIVEN_FILE, "undamped_linear.py:Undamped"):
+        driven = ("undamped_linear.py:Undamped", "ratio_float.py", "detuning_number.py")
+        if expect == "usage" or name == DRIVEN_FILE or name in driven:
             cases.append(
                 _case("user-file", ["response", name, "--sweep", "sigma=-1:1:5"], expect,
                       files=texts, seconds=SMALL)

@@ -182,6 +182,13 @@ PROBLEM_FILES: dict[str, tuple[str, str]] = {
         "usage",
     ),
     "linear.py": (_variant(_GOOD.replace("-EPS * X**3", "-EPS * X")), "ok"),
+    # a user's own driven problem, carelessly excited
+    "ratio_list.py": (_variant(_DRIVEN.replace("ratio=1,", "ratio=[1],")), "usage"),
+    "ratio_zero.py": (_variant(_DRIVEN.replace("ratio=1,", "ratio=0,")), "usage"),
+    "ratio_float.py": (_variant(_DRIVEN.replace("ratio=1,", "ratio=1.5,")), "any"),
+    "detuning_number.py": (_variant(_DRIVEN.replace("detuning=SIGMA", "detuning=0")), "any"),
+    "phase_is_state.py": (_variant(_DRIVEN.replace("phase=THETA", "phase=X")), "usage"),
+    "tan_forcing.py": (_variant(_DRIVEN.replace("sp.cos(THETA)", "sp.tan(THETA)")), "usage"),
     "zero_rhs.py": (_variant(_GOOD.replace("-EPS * X**3", "0 * EPS")), "ok"),
     "undamped_linear.py:Undamped": (_variant(_UNDAMPED_LINEAR), "failed"),
     "two_classes.py": (_variant(_GOOD + _GOOD.replace("class Good", "class Other")), "usage"),
