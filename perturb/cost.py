@@ -74,7 +74,10 @@ class Cost:
 
 
 def _growth(order: int) -> float:
-    return RESPONSE_ORDER_GROWTH ** (max(int(order), 1) - 1)
+    try:
+        return RESPONSE_ORDER_GROWTH ** (max(int(order), 1) - 1)
+    except OverflowError:  # an order of thousands: past any estimate, past any confirmation
+        return math.inf
 
 
 def response_cost(values: int, order: int, shots: int, true: int = 0) -> Cost:
@@ -103,6 +106,8 @@ def sweep_cost(points: int, order: int, validate: bool) -> Cost:
 
 
 def _duration(seconds: float) -> str:
+    if not math.isfinite(seconds):
+        return "more time than can be estimated"
     if seconds < 90:
         return f"{seconds:.0f} s"
     if seconds < 5400:
@@ -135,6 +140,7 @@ def check_cost(cost: Cost, yes: bool) -> None:
         )
     if not cost.seconds <= CONFIRM_SECONDS or not math.isfinite(cost.seconds):
         raise InvalidParameterError(
-            f"this asks for about {_duration(cost.seconds)} of work ({cost.what}); check the "
+            f"this asks for {'about ' if math.isfinite(cost.seconds) else ''}"
+            f"{_duration(cost.seconds)} of work ({cost.what}); check the "
             "request and confirm with --yes (yes=True in Python)"
         )

@@ -6,7 +6,7 @@ import math
 from collections.abc import Sequence
 from pathlib import Path
 
-from perturb._defaults import MAX_TIMES
+from perturb._defaults import MAX_ORDER, MAX_TIMES
 from perturb._install import install_hint
 from perturb.cli._errors import _UsageError
 
@@ -31,8 +31,8 @@ def _parse_order(text: str) -> int:
         order = int(text)
     except ValueError:
         raise _UsageError(f"--order {text!r} is not an integer: give an integer >= 1") from None
-    if order < 1:
-        raise _UsageError(f"--order {order} is invalid: give an integer >= 1")
+    if not 1 <= order <= MAX_ORDER:  # the engine's own bound, checked before any work
+        raise _UsageError(f"--order {order} is invalid: give an integer from 1 to {MAX_ORDER}")
     return order
 
 
