@@ -188,6 +188,32 @@ SCENE_SUGGESTION_CUTOFF = 0.6
 #: typing slip (an extra zero in N) should not start an hour of work unasked.
 SWEEP_CONFIRM_POINTS = 10_000_000
 
+#: Estimated work (seconds on one core) above which a request needs confirmation (``--yes``),
+#: whatever it is made of (perturb.cost: a response's values and order, the points shot against
+#: the true motion, a validated sweep): an hour is a plan, not a typing slip, and a slip (an extra
+#: zero, an order of 12) must not start it unasked. The 100 x 100 validated map of the disk
+#: (README, about 8 minutes) stays below it.
+CONFIRM_SECONDS = 3600.0
+
+#: The estimate's figures (CPU seconds on one core, measured on the shipped driven problems;
+#: benchmarks/hostile_cli.md): the response's derivation at order 1 (the amplitude equations and
+#: the continuation's compiled series, 0.5-2.5 s) and its growth with each order (1.7-2.5 a step
+#: from order 3 to 7: forced Duffing 1.8, 4.9, 25 s at orders 3, 5, 7), a grid value read off the
+#: continued curves per order (5-10 ms at order 3, 200 values), the points shot against the true
+#: motion besides those asked (the largest amplitude, both sides of each fold, the ends), a shot
+#: (0.4-1.6 s), a point of a continued true curve (about 10 ms), the branches a driven problem
+#: typically has (lower, middle, upper), an evaluated sweep point (1-3 x 10^5 points a second,
+#: benchmarks/bench_sweep.md) and a validated one (0.07-0.3 s).
+RESPONSE_DERIVE_SECONDS = 0.5
+RESPONSE_ORDER_GROWTH = 2.5
+RESPONSE_SECONDS_PER_VALUE = 0.02
+RESPONSE_ALWAYS_SHOT = 4
+SHOT_SECONDS = 1.0
+TRUE_POINT_SECONDS = 0.01
+RESPONSE_TYPICAL_BRANCHES = 3
+SWEEP_POINT_SECONDS = 1e-5
+SWEEP_VALIDATION_SECONDS = 0.3
+
 #: Most points of one sweep even with confirmation: 10^10 float64 values per quantity are 80 GB
 #: a variable; beyond it the grid is a mistake rather than a plan.
 SWEEP_MAX_POINTS = 10_000_000_000
@@ -240,9 +266,43 @@ SWEEP_POINTS_PER_DERIVATION = 20
 #: state at many times grows as points x times x components.
 SWEEP_MAX_CHUNK_POINTS = 100_000
 
+#: Most memory the results of a sweep kept in memory (no store: ``--format csv|json``, Python
+#: without ``output``) may take: a quarter of a small machine's 8 GiB, as numpy arrays; a larger
+#: sweep writes a Zarr store, which holds one chunk at a time (a 10^5 x 10^5 grid asked for 18.6
+#: GiB and failed with a MemoryError before this bound).
+SWEEP_MEMORY_BYTES = 2 * 2**30
+
+#: Bytes a text value of a sweep (a reason, a warning) is counted at in that estimate: a Python
+#: string object of a few dozen characters.
+SWEEP_TEXT_BYTES = 80
+
 #: Seconds to wait for an existing Dask scheduler (``--scheduler``) before giving up with one
 #: line (exit 2): a scheduler on the network answers in well under a second.
 SWEEP_CONNECT_SECONDS = 10.0
+
+#: Pause between attempts to reach a scheduler that refuses the connection (it may be starting:
+#: ``dask scheduler`` takes a few seconds), within ``--timeout``.
+SWEEP_CONNECT_RETRY = 0.25
+
+#: Longest wait for a scheduler that can be asked for (``--timeout``): a larger value is refused.
+#: Dask's own connection timeout is 30 s; a scheduler that has not answered in a minute is not
+#: starting up, and a run must never wait for ever on a silent port.
+SWEEP_MAX_CONNECT_SECONDS = 60.0
+
+#: Largest first frame a Dask scheduler sends when a connection opens (its handshake, about 60
+#: bytes): an 8-byte length beyond this is another kind of server (an HTTP reply read as a frame
+#: length asked Dask for 3 EiB).
+SWEEP_HANDSHAKE_BYTES = 1 << 20
+
+#: Most worker processes of a local cluster per core of the machine: each holds an interpreter,
+#: numpy and sympy (about 150 MB); beyond a few per core they only compete for the cores (a
+#: million asked for would start until the machine runs out of memory).
+SWEEP_WORKERS_PER_CORE = 8
+
+#: Points of a sweep's grid (its ends and evenly between) at which a family named by ``--family``
+#: is looked for when the problem's own values do not have it (a driven problem's upper branch
+#: exists only past its fold): each costs one root-finding of the amplitude equations.
+SWEEP_FAMILY_PROBES = 9
 
 #: Relative margin of the vectorised domain screen: a point whose terms are within this fraction of
 #: failing (or passing) the check is decided by :func:`perturb.domain.series_domain` itself, so the
@@ -259,6 +319,12 @@ SWEEP_DOMAIN_MARGIN = 1e-9
 #: error, of a solution still called valid.  10 % is where a plot of the analytic and the true curves
 #: visibly separates; pass a smaller ``tol`` to demand more.
 DEFAULT_TOL = 0.1
+
+#: A series whose next term is estimated (perturb.domain.next_term) at more than this fraction of
+#: its leading term is flagged as beyond its validity (a response point, a family, a sweep point):
+#: the default accuracy tolerance, where the analytic and the true curves visibly separate. Forced
+#: Duffing swept to eps = 10 has an estimate of 0.5 and amplitudes 8-20 % off the true motion.
+VALIDITY_ESTIMATE_LIMIT = DEFAULT_TOL
 
 #: The former name of :data:`DEFAULT_TOL` (kept: tests and user code import it).
 MAX_RELATIVE_ERROR = DEFAULT_TOL

@@ -61,7 +61,9 @@ def _big_integers_as_floats(expr):
     Exact results can hold such integers (``sqrt(847504615198858776185891631)`` in a specialised
     solution of the disk). As a Python ``int`` in the generated code, a ufunc fails on it; as a
     float literal of all its digits it is the double nearest to it, the very number Python's
-    arithmetic makes of it where it worked (a product, a quotient).
+    arithmetic makes of it where it worked (a product, a quotient). A complex infinity (``zoo``,
+    a pole the parameter values fall on) becomes NaN: the function's value there is not a number,
+    and its callers check for that, where numpy's printer would fail with a KeyError.
     """
     import sympy
 
@@ -71,6 +73,8 @@ def _big_integers_as_floats(expr):
         return expr.applyfunc(_big_integers_as_floats)
     if not isinstance(expr, sympy.Basic):
         return expr
+    if expr.has(sympy.zoo):  # a pole at these values: numpy's printer has no name for it
+        expr = expr.xreplace({sympy.zoo: sympy.nan})
     big = [n for n in expr.atoms(sympy.Integer) if abs(int(n)) > INT64_MAX]
     if not big:
         return expr

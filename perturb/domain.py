@@ -16,10 +16,11 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
-from perturb.solution import PeriodicSolution
+from perturb._defaults import VALIDITY_ESTIMATE_LIMIT
+from perturb.solution import PeriodicSolution, SolutionFailed
 from perturb.system import Regime
 
-__all__ = ["DomainCheck", "series_domain"]
+__all__ = ["DomainCheck", "next_term", "next_terms", "series_domain"]
 
 
 @frozen
@@ -43,6 +44,10 @@ class DomainCheck:
         others).
     frequency_terms : tuple of float
         :math:`|\\varepsilon^k \\Omega_k|`.
+    estimate : float
+        The first neglected term, relative to the leading one, extrapolated from the last two
+        kept terms (:func:`next_term`) of the frequency and of each coordinate: the largest. An
+        estimate of the series' relative error, not a measurement (``perturb validate`` measures).
     """
 
     ok: bool
@@ -51,6 +56,70 @@ class DomainCheck:
     term_sizes: tuple = field(converter=tuple)
     frequency_terms: tuple = field(converter=tuple)
     coordinate_term_sizes: dict = field(factory=dict)
+    estimate: float = 0.0
+
+    @property
+    def beyond_validity(self) -> bool:
+        """Whether the estimated relative error passes :data:`VALIDITY_ESTIMATE_LIMIT`."""
+        return not self.estimate <= VALIDITY_ESTIMATE_LIMIT
+
+    def validity_note(self) -> str:
+        """One sentence when :attr:`beyond_validity` (else ``""``)."""
+        if not self.beyond_validity:
+            return ""
+        return (
+            f"beyond the series' validity: its next term is estimated at {self.estimate:.2g} of "
+            f"the leading one (more than {VALIDITY_ESTIMATE_LIMIT:g}); check it with "
+            "`perturb validate`"
+        )
+
+
+def next_term(sizes) -> float:
+    """The first neglected term of a series, relative to its leading term, extrapolated
+    geometrically from its last two non-zero terms: :math:`s_{n}^2 / s_{n-1} / s_0`.
+
+    Zero when fewer than two terms are non-zero (nothing to extrapolate from); for a driven
+    system's frequency :math:`(\\Omega_0, \\varepsilon\\sigma)`, exact in itself, it is
+    :math:`(\\varepsilon\\sigma/\\Omega_0)^2`, the size of the detuning effects the
+    expansion about the resonance leaves out.
+
+    Examples
+    --------
+    >>> next_term([1.0, 0.1, 0.01])
+    0.001
+    >>> next_term([1.0, 0.0])
+    0.0
+    """
+    kept = [float(s) for s in sizes if s != 0]
+    if len(kept) < 2:
+        return 0.0
+    return kept[-1] ** 2 / kept[-2] / kept[0]
+
+
+def next_terms(terms) -> np.ndarray:
+    """:func:`next_term` of many series at once: ``terms`` has one row per order, one column per
+    series (a sweep's points); returns one estimate per column.
+
+    Examples
+    --------
+    >>> next_terms(np.array([[1.0, 2.0], [0.1, 0.0], [0.01, 0.5]])).tolist()
+    [0.001, 0.0625]
+    """
+    terms = np.asarray(terms, dtype=float)
+    if terms.ndim != 2 or terms.shape[0] < 2:
+        return np.zeros(terms.shape[-1] if terms.ndim else 1)
+    count, columns = terms.shape
+    index = np.arange(columns)
+    nonzero = terms != 0
+    first = np.argmax(nonzero, axis=0)
+    last = count - 1 - np.argmax(nonzero[::-1], axis=0)
+    before = nonzero.copy()
+    before[last, index] = False
+    second = count - 1 - np.argmax(before[::-1], axis=0)
+    usable = before.any(axis=0)
+    with np.errstate(all="ignore"):
+        estimate = terms[last, index] ** 2 / terms[second, index] / terms[first, index]
+    return np.where(usable, estimate, 0.0)
 
 
 def _numbers(exprs, subs) -> list[float]:
@@ -110,9 +179,13 @@ def series_domain(
         max([0.0, *(own[k] for own in per_coordinate.values() if k < len(own))])
         for k in range(depth)
     ]
-    with np.errstate(all="ignore"):
-        omega = float(np.asarray(solution.coefficients(parameter_value, values)[0]).ravel()[0])
     reasons = []
+    with np.errstate(all="ignore"):
+        try:
+            omega = float(np.asarray(solution.coefficients(parameter_value, values)[0]).ravel()[0])
+        except SolutionFailed as exc:  # coefficients not finite here: no series at all
+            omega = math.nan
+            reasons.append(" ".join(str(exc).split()))
     if not (math.isfinite(omega) and omega > 0):
         period = 2 * math.pi / omega if omega else math.inf
         reasons.append(
@@ -125,4 +198,10 @@ def series_domain(
         reasons += _not_decreasing(freq_terms, "frequency", eps)
         for name, own in per_coordinate.items():
             reasons += _not_decreasing(own, f"coordinate {name}", eps)
-    return DomainCheck(not reasons, reasons, omega, sizes, freq_terms, per_coordinate)
+    estimate = max(
+        [next_term(freq_terms), *(next_term(own) for own in per_coordinate.values())],
+        default=0.0,
+    )
+    if not math.isfinite(estimate):
+        estimate = math.inf
+    return DomainCheck(not reasons, reasons, omega, sizes, freq_terms, per_coordinate, estimate)

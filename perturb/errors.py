@@ -15,6 +15,7 @@ __all__ = [
     "InvalidParameterError",
     "InvalidSystemError",
     "MissingDependencyError",
+    "OutputError",
     "PerturbError",
     "ProblemLoadError",
     "SceneError",
@@ -200,6 +201,12 @@ class SceneError(PerturbError, ValueError):
 class SweepError(PerturbError, RuntimeError):
     """A sweep that could not finish: chunks whose workers died again and again, or an
     interrupted run (the store keeps every point written; ``--resume`` continues it)."""
+
+
+class OutputError(PerturbError, ValueError):
+    """An output path perturb must not or cannot write: a file or a report folder's file that
+    perturb did not write (never overwritten without ``--force``, a folder's never), an empty
+    path, a folder that does not exist or cannot be written, an unknown plot format."""
 
 
 class ContinuationError(PerturbError, RuntimeError):

@@ -64,6 +64,8 @@ def _as_ratio(value) -> sp.Rational:
         ratio = sp.Rational(str(value)) if isinstance(value, str | Fraction) else sp.sympify(value)
     except (sp.SympifyError, TypeError, ValueError):
         raise bad_value("ratio", value, fix, InvalidSystemError) from None
+    if not isinstance(ratio, sp.Expr):  # a list, a matrix...: no number at all
+        raise bad_value("ratio", value, fix, InvalidSystemError)
     if not ratio.is_Rational:
         raise bad_value("ratio", value, "an irrational ratio is no resonance; " + fix,
                         InvalidSystemError)  # fmt: skip

@@ -16,26 +16,33 @@ Every failure is one :class:`perturb.errors.ProblemLoadError` line naming the fi
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 import importlib.util
 import itertools
 import os
 import re
+import signal
 import sys
 import traceback
 from pathlib import Path
 from types import ModuleType
 
 from perturb.errors import ProblemLoadError
+from problems._checks import check_usable
 from problems._registry import check_problem_class, did_you_mean, get_problem
 from problems.base import Problem
 
-__all__ = ["load_problem"]
+__all__ = ["LOADED_FILES", "load_problem", "user_frame"]
 
 #: Suffix that marks the part before ``:`` as a file rather than a module.
 _PY_SUFFIX = ".py"
 
 _counter = itertools.count(1)
+
+#: The files of the problems loaded by path or module in this process (resolved paths): an
+#: exception raised in one of them at run time is the user's code failing (:func:`user_frame`).
+LOADED_FILES: set[str] = set()
 
 
 def load_problem(spec: str) -> type[Problem]:
@@ -108,20 +115,34 @@ def _from_file(spec: str, target: str, class_name: str | None) -> type[Problem]:
     folder = str(path.parent)
     sys.path.insert(0, folder)
     try:
-        module_spec.loader.exec_module(module)
-    except Exception as exc:
+        with _interrupts_told_apart() as pressed:
+            module_spec.loader.exec_module(module)
+    except KeyboardInterrupt as exc:
+        del sys.modules[module_name]
+        if pressed():  # Ctrl-C while the file was imported: the run is interrupted
+            raise
+        raise _import_failure(exc, str(path)) from None
+    except (Exception, SystemExit) as exc:
         del sys.modules[module_name]
         raise _import_failure(exc, str(path)) from None
     finally:
         if folder in sys.path:
             sys.path.remove(folder)
-    return _pick_class(module, str(path), class_name)
+    cls = _pick_class(module, str(path), class_name)
+    LOADED_FILES.add(str(path))
+    check_usable(cls, f"{path}:{cls.__name__}")
+    return cls
 
 
 # ---------------------------------------------------------------------------------- modules
 def _from_module(spec: str, target: str, class_name: str) -> type[Problem]:
     try:
-        module = importlib.import_module(target)
+        with _interrupts_told_apart() as pressed:
+            module = importlib.import_module(target)
+    except KeyboardInterrupt as exc:
+        if pressed():
+            raise
+        raise _import_failure(exc, target) from None
     except ModuleNotFoundError as exc:
         if exc.name is not None and (target == exc.name or target.startswith(f"{exc.name}.")):
             raise ProblemLoadError(
@@ -129,9 +150,22 @@ def _from_module(spec: str, target: str, class_name: str) -> type[Problem]:
                 "to PYTHONPATH, or name the file instead (path/to/file.py:ClassName)"
             ) from None
         raise _import_failure(exc, target) from None
-    except Exception as exc:
+    except (Exception, SystemExit) as exc:
         raise _import_failure(exc, target) from None
-    return _pick_class(module, target, class_name)
+    cls = _pick_class(module, target, class_name)
+    origin = getattr(module, "__file__", None)
+    if origin and not origin.startswith(str(Path(__file__).resolve().parent)):
+        LOADED_FILES.add(str(Path(origin).resolve()))  # a user's module, not a built-in one
+    check_usable(cls, spec)
+    return cls
+
+
+def user_frame(exc: BaseException) -> str | None:
+    """``file:line`` of the deepest frame of ``exc``'s traceback in a problem file loaded by
+    path or module (:data:`LOADED_FILES`), or None when the user's code is not on the path."""
+    frames = traceback.extract_tb(exc.__traceback__) if exc.__traceback__ else []
+    mine = [f for f in frames if f.filename in LOADED_FILES]
+    return f"{mine[-1].filename}:{mine[-1].lineno}" if mine else None
 
 
 # ---------------------------------------------------------------------------------- helpers
@@ -139,8 +173,37 @@ def _one_line(exc: BaseException) -> str:
     return " ".join(str(exc).split())
 
 
-def _import_failure(exc: Exception, where: str) -> ProblemLoadError:
+@contextlib.contextmanager
+def _interrupts_told_apart():
+    """Tell a Ctrl-C pressed during an import (the run is interrupted) from a
+    ``KeyboardInterrupt`` the imported code raised itself (a broken file): yields a function
+    saying whether SIGINT arrived."""
+    arrived = []
+
+    def handler(signum, frame):
+        arrived.append(signum)
+        raise KeyboardInterrupt
+
+    try:
+        previous = signal.signal(signal.SIGINT, handler)
+    except ValueError:  # not the main thread: signals cannot be watched, every one is a Ctrl-C
+        yield lambda: True
+        return
+    try:
+        yield lambda: bool(arrived)
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def _import_failure(exc: BaseException, where: str) -> ProblemLoadError:
     """One line for an exception raised while importing ``where`` (a file path or module name)."""
+    if isinstance(exc, SystemExit):
+        code = exc.code
+        what = f"sys.exit({code!r})" if not isinstance(code, str) else f"exit({code!r})"
+        return ProblemLoadError(
+            f"{where}: importing it called {what}: a problem file is imported, not run; move "
+            'the call under `if __name__ == "__main__":` or remove it'
+        )
     if isinstance(exc, SyntaxError):
         location = f"{exc.filename}:{exc.lineno}" if exc.filename else where
         return ProblemLoadError(f"{location}: syntax error: {exc.msg}: fix the file")
@@ -157,8 +220,10 @@ def _import_failure(exc: Exception, where: str) -> ProblemLoadError:
             f"{location}: importing it failed: no module named {exc.name!r}: install "
             f"{exc.name.partition('.')[0]} or fix the import"
         )
+    detail = _one_line(exc)
     return ProblemLoadError(
-        f"{location}: importing it raised {type(exc).__name__}: {_one_line(exc)}: fix the file"
+        f"{location}: importing it raised {type(exc).__name__}{': ' + detail if detail else ''}: "
+        "fix the file"
     )
 
 

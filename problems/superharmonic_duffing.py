@@ -16,9 +16,12 @@ its own frequency 3Ω ≈ 1: the superharmonic response (the state is u; x = u +
 
 from __future__ import annotations
 
+import math
+
 import sympy as sp
 
 from perturb import EPS, Excitation, QuasilinearSystem
+from perturb.errors import InvalidParameterError
 from problems import register
 from problems.base import ParameterSpec, positive
 from problems.driven import DrivenProblem, non_negative, positive_frequency
@@ -56,6 +59,18 @@ class SuperharmonicDuffing(DrivenProblem):
         ParameterSpec("Omega", 1.0 / 3.0, "excitation frequency", positive_frequency),
     )  # fmt: skip
     parameter_map = {"sigma": "(Omega - 1/3)/eps"}  # Omega = 1/3 + eps*sigma
+
+    def check_values(self, values) -> None:
+        super().check_values(values)
+        # the forced part's amplitude F/(1 - Omega^2), as the system computes it from sigma
+        sigma = (values["Omega"] - 1.0 / 3.0) / values["eps"]  # as parameter_map has it
+        omega = 1.0 / 3.0 + values["eps"] * sigma
+        if not math.isfinite(sigma) or 1.0 - omega * omega == 0.0:
+            raise InvalidParameterError(
+                f"`Omega` = {values['Omega']:g} is invalid: it is the primary resonance, where the "
+                "forced response F/(1 - Omega^2) is infinite; this model is for Omega near 1/3 "
+                "(forced-duffing is the primary resonance)"
+            )
 
     @classmethod
     def build_system(cls) -> QuasilinearSystem:

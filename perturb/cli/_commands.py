@@ -12,12 +12,13 @@ import numpy as np
 from perturb._defaults import DEFAULT_SAMPLES
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError
 from perturb.cli._values import (
-    _check_plot_backend,
+    _check_plot,
     _parse_order,
     _parse_output,
     _parse_positive,
     _parse_sets,
     _parse_times,
+    _save_plot,
 )
 from perturb.domain import series_domain
 
@@ -156,7 +157,12 @@ def _cmd_validate(args) -> int:
         print(validation_latex(report), end="")
     else:
         print(validation_as_table(report))
-    return EXIT_OK if report.completed else EXIT_FAILED
+    if not report.completed:  # the report is printed; the reason goes to stderr too
+        reason = " ".join(str(report.message or report.verdict).split())
+        print(f"perturb: {args.problem}: the validation did not complete: {reason}",
+              file=sys.stderr)  # fmt: skip
+        return EXIT_FAILED
+    return EXIT_OK
 
 
 def _cmd_work_precision(args) -> int:
@@ -173,7 +179,7 @@ def _cmd_work_precision(args) -> int:
     periods = _parse_positive("--periods", args.periods, float)
     orders = _parse_positive("--orders", args.orders, int)
     repeat = _parse_positive("--repeat", args.repeat, int)
-    _check_plot_backend(args.plot)
+    plot = _check_plot(args)
     result = work_precision(problem, periods=periods, orders=orders, repeat=repeat)
     if args.format == "json":
         print(json.dumps(work_precision_as_dict(result), allow_nan=True))
@@ -185,10 +191,10 @@ def _cmd_work_precision(args) -> int:
         print(work_precision_latex(result), end="")
     else:
         print(work_precision_as_table(result))
-    if args.plot is not None:
+    if plot is not None:
         from perturb.report.plots import plot_work_precision
 
-        plot_work_precision(result).savefig(args.plot)
+        _save_plot(plot_work_precision(result), plot)
     return EXIT_OK
 
 
@@ -229,15 +235,44 @@ def _cmd_families(args) -> int:
     cls = load_problem(args.problem)
     problem = cls.create(**_parse_sets(args.sets))
     families = problem.families(_parse_order(args.order))
+    flags = [_family_domain(problem, f) for f in families]
     if args.format == "json":
-        print(json.dumps(as_dict(families, args.problem)))
+        print(json.dumps(as_dict(families, args.problem, flags)))
     elif args.format == "latex":
         from perturb.report.latex import families_latex
 
         print(families_latex(families, args.problem), end="")
     else:
-        print(as_table(families, args.problem))
-    return EXIT_OK if len(families) else EXIT_FAILED
+        print(as_table(families, args.problem, flags))
+    if not len(families):
+        return EXIT_FAILED
+    built = [(f, o) for f, (o, _) in zip(families, flags, strict=True) if f.solution.success]
+    if built and all(outside for _, outside in built):
+        print(
+            f"perturb: {args.problem}: the series of every family is outside its domain at "
+            f"these values (e.g. {built[0][0].name}: {built[0][1]})",
+            file=sys.stderr,
+        )
+        return EXIT_FAILED
+    return EXIT_OK
+
+
+def _family_domain(problem, family) -> tuple[str, str]:
+    """``(outside, beyond)`` of one family at the problem's values (``perturb solve``'s check)."""
+    own = {p.name for p in problem.system().parameters}
+    if not family.solution.success or any(
+        p.name not in own for p in family.solution.system.parameters
+    ):  # a continuum in an amplitude the problem does not fix: no values to check it at
+        return "", ""
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("ignore")
+        try:
+            check = series_domain(
+                family.solution, problem.parameter_value(), problem.symbol_values()
+            )
+        except (ArithmeticError, ValueError, TypeError) as exc:
+            return f"the series cannot be evaluated at these values ({exc})", ""
+    return "; ".join(check.reasons), check.validity_note()
 
 
 def _non_finite(value) -> bool:

@@ -11,6 +11,7 @@ _INPUT_ERRORS = (
     "UnknownNameError",
     "ProblemLoadError",
     "SceneError",
+    "OutputError",
 )
 
 

@@ -11,7 +11,6 @@ import sys
 import time
 import warnings
 from collections.abc import Iterator, Sequence
-from pathlib import Path
 
 from perturb.cli._errors import _INPUT_ERRORS, EXIT_FAILED, EXIT_USAGE, _RunFailed, _UsageError
 from perturb.cli._parser import _build_parser
@@ -98,37 +97,27 @@ def _progress(args) -> Iterator[None]:
 _FOLDER_OUTPUT = ("reproduce", "report", "sweep", "phase-diagram")
 
 
-def _output_file(path: str) -> Path:
-    """``--output PATH``: checked before the run (its folder exists, it is not a folder)."""
-    target = Path(path)
-    folder = target.parent if str(target.parent) else Path(".")
-    if target.is_dir() or not folder.is_dir() or not os.access(folder, os.W_OK):
-        raise _UsageError(
-            f"--output {path!r}: cannot write a file there (a folder, or a folder that does not "
-            "exist or is not writable); give a file path in a writable folder"
-        )
-    return target
-
-
 @contextlib.contextmanager
 def _to_file(args) -> Iterator[None]:
-    """With ``--output PATH`` (a file), what the command prints goes into PATH instead."""
+    """With ``--output PATH`` (a file), what the command prints goes into PATH instead.
+
+    PATH is checked before the run (:func:`perturb.report.written.check_file`): an existing file
+    perturb did not write is refused unless ``--force``; it is written atomically at the end.
+    """
     path = getattr(args, "output", None)
     if path is None or args.command in _FOLDER_OUTPUT:
         yield
         return
-    target = _output_file(path)
+    from perturb.report.written import check_file, write_file
+
+    target = check_file(path, "--output", force=getattr(args, "force", False))
     buffer = io.StringIO()
     with contextlib.redirect_stdout(buffer):
         try:
             yield
         finally:  # a failed run's output (e.g. its JSON failure record) is written too
-            try:
-                target.write_text(buffer.getvalue(), encoding="utf-8")
-            except OSError as exc:
-                raise _UsageError(
-                    f"--output {path!r}: cannot write ({exc.strerror or exc}); give a writable file"
-                ) from None
+            if buffer.getvalue():
+                write_file(target, buffer.getvalue())
 
 
 def _command(name: str, module: str = "_commands"):
@@ -185,23 +174,55 @@ def _run(argv: Sequence[str] | None) -> int:
         return EXIT_FAILED
     except BrokenPipeError:
         raise
-    except (OverflowError, FloatingPointError, ZeroDivisionError) as exc:
+    except Exception as exc:  # noqa: BLE001 - a run never ends in a traceback
+        return _failure(exc)
+
+
+def _user_code(exc: BaseException) -> str | None:
+    """The one-line error of an exception the user's problem file caused, if it did: raised in
+    its code, or a recursion without end while a user's problem is in use."""
+    loading = sys.modules.get("problems.loading")
+    if loading is None or not loading.LOADED_FILES:
+        return None
+    where = loading.user_frame(exc)
+    if where is not None:
+        return (
+            f"{where}: the problem's code raised {type(exc).__name__}: {_one_line(exc)}: fix the "
+            "class"
+        )
+    if isinstance(exc, RecursionError):
+        files = ", ".join(sorted(loading.LOADED_FILES))
+        return (
+            f"{files}: the problem's equations make perturb recurse without end "
+            "(RecursionError): fix the expressions (a function that rewrites itself, or one "
+            "nested thousands of levels deep)"
+        )
+    return None
+
+
+def _failure(exc: BaseException) -> int:
+    """The exit code and the line of an exception that ended a run."""
+    if not isinstance(exc, PerturbError) or not _is_input_error(exc):
+        user = _user_code(exc)
+        if user is not None:
+            print(f"perturb: error: {user}", file=sys.stderr)
+            return EXIT_USAGE
+    if isinstance(exc, OverflowError | FloatingPointError | ZeroDivisionError):
         print(
             f"perturb: failed: the computation overflowed or divided by zero at these parameters "
             f"({_one_line(exc)}); try values closer to the problem's defaults",
             file=sys.stderr,
         )
         return EXIT_FAILED
-    except Exception as exc:  # noqa: BLE001 - a run never ends in a traceback
-        if _is_input_error(exc):
-            print(f"perturb: error: {_one_line(exc)}", file=sys.stderr)
-            return EXIT_USAGE
-        print(
-            f"perturb: failed: internal error ({type(exc).__name__}: {_one_line(exc)}); please "
-            "report it with the command line",
-            file=sys.stderr,
-        )
-        return EXIT_FAILED
+    if _is_input_error(exc):
+        print(f"perturb: error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_USAGE
+    print(
+        f"perturb: failed: internal error ({type(exc).__name__}: {_one_line(exc)}); please "
+        "report it with the command line",
+        file=sys.stderr,
+    )
+    return EXIT_FAILED
 
 
 #: Thread-count variables of the BLAS/OpenMP runtimes numpy may load, set to 1 by the command when
@@ -225,6 +246,10 @@ def _before_exit() -> None:
     gc.freeze()
 
 
+#: numpy's floating-point warnings (np.errstate's "warn" messages).
+FLOATING_POINT_NOTICES = r"(overflow|underflow|invalid value|divide by zero) encountered"
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``perturb`` command; returns the exit code.
 
@@ -233,6 +258,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     :data:`SINGLE_THREAD_VARIABLES` to 1 where they are unset, before numpy is imported.
     """
     warnings.formatwarning = _format_warning
+    # numpy's floating-point notices ("overflow encountered in exp") are the arithmetic of a run
+    # at extreme values, not news for the user: what comes of them (a non-finite result, a series
+    # outside its domain) is reported by perturb's own checks, in one line
+    warnings.filterwarnings("ignore", message=FLOATING_POINT_NOTICES, category=RuntimeWarning)
     program = argv is None
     if program:
         _as_a_program()
@@ -248,7 +277,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             devnull = os.open(os.devnull, os.O_WRONLY)
             os.dup2(devnull, sys.stdout.fileno())
         return EXIT_FAILED
-    except KeyboardInterrupt:  # pragma: no cover
+    except KeyboardInterrupt:  # pragma: no cover - Ctrl-C: said, with the shells' code
+        print("\nperturb: interrupted", file=sys.stderr)
         return 130
 
 

@@ -179,6 +179,18 @@ def _build_parser() -> argparse.ArgumentParser:
     report.add_argument(
         "--output", required=True, metavar="DIR", help="the report folder (created if missing)"
     )
+    report.add_argument(
+        "--yes",
+        action="store_true",
+        help="confirm a scene whose [response] or [sweep] is estimated at more than an hour of "
+        "work",
+    )
+    report.add_argument(
+        "--force",
+        action="store_true",
+        help="replace perturb's own files of another scene's report in DIR (a file perturb did "
+        "not write is never overwritten)",
+    )
     _add_sweep(sub)
     _add_phase(sub)
     for name, command in sub.choices.items():
@@ -188,6 +200,13 @@ def _build_parser() -> argparse.ArgumentParser:
                 default=None,
                 metavar="PATH",
                 help="write the output into the file PATH instead of printing it",
+            )
+        if name not in ("reproduce", "report"):
+            command.add_argument(
+                "--force",
+                action="store_true",
+                help="overwrite an existing --output/--plot file that perturb did not write "
+                "(without it such a file is refused: exit 2)",
             )
         command.add_argument(
             "--quiet",
@@ -254,6 +273,11 @@ def _add_response(sub) -> None:
     response.add_argument(
         "--plot", default=None, metavar="FILE",
         help="also save the frequency-response plot (needs matplotlib)",
+    )  # fmt: skip
+    response.add_argument(
+        "--yes", action="store_true",
+        help="confirm a request estimated at more than an hour of work (many values, a high "
+        "order, many shots)",
     )  # fmt: skip
     _add_format(response, ["table", "csv", "json", "latex"])
 
@@ -415,5 +439,6 @@ def _add_sweep(sub) -> None:
     sweep.add_argument(
         "--yes",
         action="store_true",
-        help=f"confirm a grid of more than {10**7:,} points",
+        help=f"confirm a grid of more than {10**7:,} points, or estimated at more than an hour "
+        "of work",
     )

@@ -8,6 +8,8 @@ problem and its parameters, runs the lazy pipeline (:mod:`perturb.scene.run`) an
 
 from __future__ import annotations
 
+import sys
+
 from perturb._install import install_hint
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _UsageError
 from perturb.errors import InvalidParameterError, ProblemLoadError, UnknownNameError
@@ -32,9 +34,23 @@ def _load(scene):
         try:
             problem.families(scene.order).get(scene.family)
         except UnknownNameError as exc:
-            raise scene.error(f"[problem] family: {exc}") from None
+            if scene.sweep is None or not scene.outputs.needs_sweep:
+                raise scene.error(f"[problem] family: {exc}") from None
+            problem = _family_along_sweep(scene, problem, exc)
         problem = problem.with_family(scene.family)
     return problem
+
+
+def _family_along_sweep(scene, problem, exc):
+    """A family the scene's values do not have, looked for along its ``[sweep]`` grid."""
+    from perturb.sweep.grid import Grid, parse_axis
+    from perturb.sweep.spec import check_family
+
+    grid = Grid(tuple(parse_axis(axis) for axis in scene.sweep.grid))
+    try:
+        return check_family(problem, scene.family, grid, scene.order)
+    except UnknownNameError:
+        raise scene.error(f"[problem] family: {exc} (nor anywhere on the [sweep] grid)") from None
 
 
 def _cmd_report(args) -> int:
@@ -60,9 +76,15 @@ def _cmd_report(args) -> int:
                 "remove the plots"
             ) from None
     problem = _load(scene)
-    check_scene(scene, problem)
-    prepare_folder(args.output)  # an unwritable folder fails now, before the computation
-    result = run_scene(scene, problem)
-    _, summary = write_report(result, args.output)
+    check_scene(scene, problem, args.yes)
+    # the folder is claimed now, before the computation: unwritable, or holding a file perturb
+    # did not write where the report writes, it is refused (exit 2) with nothing computed
+    folder = prepare_folder(args.output, scene, force=args.force)
+    result = run_scene(scene, problem, args.yes)
+    _, summary = write_report(result, folder)
     print(summary, end="")
-    return EXIT_OK if result.success else EXIT_FAILED
+    if not result.success:  # the summary says why; stderr too, in one line
+        why = result.failure or (result.validation.message if result.validation else "")
+        print(f"perturb: {args.scene}: {' '.join(str(why).split())}", file=sys.stderr)
+        return EXIT_FAILED
+    return EXIT_OK

@@ -4,32 +4,10 @@ from __future__ import annotations
 
 import json
 import math
-from pathlib import Path
+import sys
 
-from perturb.cli._errors import EXIT_OK, _UsageError
-from perturb.cli._values import _check_plot_backend, _parse_order, _parse_sets
-
-
-def _check_plot_target(plot: str | None) -> None:
-    """A usage error, before any computing, when ``--plot FILE`` cannot be written: a folder that
-    does not exist, or a format matplotlib does not save (by the file's extension)."""
-    if plot is None:
-        return
-    path = Path(plot)
-    if not path.parent.is_dir():
-        raise _UsageError(
-            f"--plot {plot}: the folder {str(path.parent)!r} does not exist; create it or choose "
-            "another path"
-        )
-    from matplotlib.figure import Figure
-
-    formats = Figure().canvas.get_supported_filetypes()
-    extension = path.suffix.lstrip(".").lower()
-    if extension not in formats:
-        raise _UsageError(
-            f"--plot {plot}: {extension or 'no extension'!r} is not a format matplotlib saves; "
-            f"end FILE with one of {', '.join(sorted(formats))} (e.g. response.png)"
-        )
+from perturb.cli._errors import EXIT_OK, _RunFailed, _UsageError
+from perturb.cli._values import _check_plot, _parse_order, _parse_sets, _save_plot
 
 
 def _parse_sweep(text: str):
@@ -67,15 +45,33 @@ def _parse_true(points: str | None) -> int:
     return count
 
 
+def _check_domain(result) -> None:
+    """Every steady state outside its series' domain: a failed run (``perturb solve``'s rule)."""
+    points = result.response.points
+    if points and not any(p.series_ok for p in points):
+        first = points[0]
+        raise _RunFailed(
+            f"the series is outside its domain at every steady state of the sweep (e.g. at "
+            f"{result.parameter} = {first.value:.6g}: {first.note}); sweep closer to the "
+            "resonance or at a smaller eps"
+        )
+
+
 def _cmd_response(args) -> int:
     from perturb.report import response_as_csv, response_as_dict, response_as_table
     from perturb.response.model import MAX_VALIDATE, problem_response
     from problems import load_problem
 
     cls = load_problem(args.problem)
-    problem = cls.create(**_parse_sets(args.sets))
+    overrides = _parse_sets(args.sets)
+    problem = cls.create(**overrides)
     order = _parse_order(args.order)
     parameter, grid = _parse_sweep(args.sweep)
+    if parameter in overrides:
+        raise _UsageError(
+            f"--sweep {args.sweep!r}: {parameter!r} is also set with --set; sweep it or set it, "
+            "not both"
+        )
     try:
         count = int(args.validate)
     except ValueError:
@@ -96,12 +92,20 @@ def _cmd_response(args) -> int:
         if not (math.isfinite(tol) and tol > 0):
             raise _UsageError(f"--tol {args.tol}: give a finite number > 0, e.g. --tol 0.01")
     true = _parse_true(args.true_curve)
-    _check_plot_backend(args.plot)
-    _check_plot_target(args.plot)
+    from perturb.cost import check_cost, response_cost
+
+    check_cost(response_cost(len(grid), order, count, true), args.yes)
+    plot = _check_plot(args)
     result = problem_response(
         problem, parameter, grid, order=order, validate=count, measure=args.measure, tol=tol,
         true=true,
     )  # fmt: skip
+    _check_domain(result)
+    if args.format != "table":  # the table shows them itself
+        from perturb.report.response import flag_lines
+
+        for line in flag_lines(result):
+            print(f"perturb: warning: {line}", file=sys.stderr)
     if args.format == "json":
         print(json.dumps(response_as_dict(result), allow_nan=False))
     elif args.format == "csv":
@@ -112,8 +116,8 @@ def _cmd_response(args) -> int:
         print(response_latex(result), end="")
     else:
         print(response_as_table(result))
-    if args.plot is not None:
+    if plot is not None:
         from perturb.report.plots import plot_frequency_response
 
-        plot_frequency_response(result).savefig(args.plot)
+        _save_plot(plot_frequency_response(result), plot)
     return EXIT_OK

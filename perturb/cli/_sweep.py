@@ -38,16 +38,14 @@ def _check_output(args) -> None:
             "--output: name the Zarr store to write, e.g. --output sweep.zarr (or ask for "
             "--format csv or json)"
         )
+    if args.output is not None and not args.output.strip():
+        raise _UsageError(f"--output {args.output!r}: name the store, e.g. --output sweep.zarr")
     if args.resume and args.format != "zarr":
         raise _UsageError("--resume continues a Zarr store: drop --format or --resume")
     if args.format != "zarr" and args.output is not None:
-        target = Path(args.output)
-        folder = target.parent if str(target.parent) else Path(".")
-        if target.exists() or not folder.is_dir():
-            raise _UsageError(
-                f"--output {args.output!r}: give a new file in an existing folder (a sweep never "
-                "overwrites a file)"
-            )
+        from perturb.report.written import check_file
+
+        check_file(args.output, "--output", force=args.force)
 
 
 def _summary(ds, label: str, store: str | None) -> str:
@@ -55,7 +53,7 @@ def _summary(ds, label: str, store: str | None) -> str:
     from perturb.validation import Verdict
 
     size = int(ds["session"].size)
-    statuses = Counter(int(c) for c in ds["status"].values.ravel())
+    statuses = _counts(ds["status"])
     parts = [
         f"{member_of(PointStatus, code).name.lower().replace('_', ' ')} {n}"
         for code, n in sorted(statuses.items())
@@ -66,7 +64,7 @@ def _summary(ds, label: str, store: str | None) -> str:
         f"{ds.attrs.get('seconds', 0.0):.1f} s; points: {', '.join(parts)}"
     ]
     if "verdict" in ds:
-        verdicts = Counter(int(c) for c in ds["verdict"].values.ravel())
+        verdicts = _counts(ds["verdict"])
         counts = [
             f"{member_of(Verdict, code).label} {n}"
             for code, n in sorted(verdicts.items())
@@ -76,6 +74,19 @@ def _summary(ds, label: str, store: str | None) -> str:
     if store is not None:
         lines.append(f"written to {store} (open it with xarray.open_zarr)")
     return "\n".join(lines)
+
+
+def _counts(variable) -> Counter:
+    """How many points hold each code, counted chunk by chunk for a store read lazily (a store
+    of 10^10 points is never loaded whole)."""
+    data = variable.data
+    if hasattr(data, "compute"):
+        import dask
+        import dask.array as da
+
+        values, counts = dask.compute(*da.unique(data.ravel(), return_counts=True))
+        return Counter({int(v): int(n) for v, n in zip(values, counts, strict=True)})
+    return Counter(int(c) for c in data.ravel())
 
 
 def _dims(ds):
@@ -102,11 +113,14 @@ def _cmd_sweep(args) -> int:
     overrides = _parse_sets(args.sets)
     problem = cls.create(**overrides)
     order = _parse_order(args.order)
-    if args.family is not None:
-        problem.families(order).get(args.family)  # an unknown name exits 2 with the list
-        problem = problem.with_family(args.family)
     axes = axes_of(args.grids)
     check_names(axes, [spec.name for spec in cls.parameter_specs], cls.name, fixed=set(overrides))
+    if args.family is not None:  # looked for along the grid; an unknown name exits 2 with the list
+        from perturb.sweep.grid import Grid, check_size
+        from perturb.sweep.spec import check_family
+
+        check_size(Grid(axes).size, args.yes)
+        problem = check_family(problem, args.family, Grid(axes), order)
     times = _parse_times(args.times)
     tol = DEFAULT_TOL if args.tol is None else _parse_positive("--tol", args.tol, float)
     store = args.output if args.format == "zarr" else None
@@ -136,7 +150,11 @@ def _cmd_sweep(args) -> int:
     except SweepError as exc:
         raise _RunFailed(str(exc)) from None
     except KeyboardInterrupt:
-        where = f"; continue with the same command and --resume (store {store})" if store else ""
+        where = ""
+        if store and Path(store).is_dir():
+            where = f"; continue with the same command and --resume (store {store})"
+        elif store:
+            where = f"; nothing was written to {store}: run the command again"
         print(
             f"\nperturb: interrupted: the points finished so far are written{where}",
             file=sys.stderr,
@@ -151,7 +169,9 @@ def _cmd_sweep(args) -> int:
         sweep_as_csv(ds) if args.format == "csv" else json.dumps(sweep_as_dict(ds), allow_nan=True)
     )
     if args.output is not None:
-        Path(args.output).write_text(text + "\n", encoding="utf-8")
+        from perturb.report.written import write_file
+
+        write_file(args.output, text + "\n")
     else:
         print(text)
     return EXIT_OK if ds.attrs.get("complete", True) else EXIT_FAILED

@@ -6,7 +6,7 @@ import math
 from collections.abc import Sequence
 from pathlib import Path
 
-from perturb._defaults import MAX_TIMES
+from perturb._defaults import MAX_ORDER, MAX_TIMES
 from perturb._install import install_hint
 from perturb.cli._errors import _UsageError
 
@@ -31,8 +31,8 @@ def _parse_order(text: str) -> int:
         order = int(text)
     except ValueError:
         raise _UsageError(f"--order {text!r} is not an integer: give an integer >= 1") from None
-    if order < 1:
-        raise _UsageError(f"--order {order} is invalid: give an integer >= 1")
+    if not 1 <= order <= MAX_ORDER:  # the engine's own bound, checked before any work
+        raise _UsageError(f"--order {order} is invalid: give an integer from 1 to {MAX_ORDER}")
     return order
 
 
@@ -119,13 +119,30 @@ def _parse_output(flag: str, text: str | None) -> Path | None:
     return path
 
 
-def _check_plot_backend(plot: str | None) -> None:
-    """A usage error when ``--plot`` is given and matplotlib is not installed."""
+def _check_plot(args) -> Path | None:
+    """``--plot FILE``, checked before any work: matplotlib installed, the path writable and not
+    a file perturb did not write (unless ``--force``), its extension a known format."""
+    plot = getattr(args, "plot", None)
     if plot is None:
-        return
+        return None
+    from perturb.report.written import check_file
+
+    target = check_file(plot, "--plot", force=getattr(args, "force", False), plot=True)
     try:
         import matplotlib  # noqa: F401
     except ImportError:
         raise _UsageError(
             f"--plot needs matplotlib: {install_hint('plot')}, or drop --plot"
         ) from None
+    return target
+
+
+def _save_plot(figure, target: Path) -> None:
+    """Save ``figure`` into ``target`` (checked by :func:`_check_plot`) in its extension's format."""
+    import io
+
+    from perturb.report.written import write_file
+
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format=target.suffix[1:].lower())
+    write_file(target, buffer.getvalue())

@@ -289,12 +289,23 @@ def slow_flow(
     jac = np.array(
         [[float(sp.diff(r, a).xreplace(subs)) for a in symbols] for r in rows], dtype=float
     )
+    if not np.all(np.isfinite(jac)):  # overflowed at these values: no stability to tell
+        nan = np.full(len(symbols), complex(math.nan, math.nan))
+        return SlowFlow(jac, nan, None, nan)
     eig = np.linalg.eigvals(jac) if jac.size else np.array([], dtype=complex)
     scale = max(float(np.max(np.abs(eig), initial=0.0)), math.ulp(1.0))
     top = float(np.max(eig.real, initial=-math.inf))
     stable = None if abs(top) <= SLOW_FLOW_ZERO * scale else top < 0
-    multipliers = np.array([cmath.exp(epsilon * complex(e)) for e in eig])
+    multipliers = np.array([_exp(epsilon * complex(e)) for e in eig])
     return SlowFlow(jac, eig, stable, multipliers)
+
+
+def _exp(z: complex) -> complex:
+    """``cmath.exp(z)``, NaN where it is past the floats (eps = 1e308: no error, no number)."""
+    try:
+        return cmath.exp(z)
+    except (OverflowError, ValueError):
+        return complex(math.nan, math.nan)
 
 
 def _lookup(mapping: Mapping, symbol: sp.Symbol):

@@ -7,7 +7,7 @@ JSON contract (``perturb families PROBLEM --format json``)::
                    "amplitudes": {"a_x": value, "b_y": value, ...},
                    "frequency": [Ω0, Ω1, ...],
                    "status": "SUCCESS" | "INCONSISTENT" | "UNDETERMINED" | ...,
-                   "message": str}],
+                   "message": str, "outside": str, "beyond": str}],
      "why": str}   # only when there is no family and the search could not list them
 
 A value (amplitude or frequency coefficient) is a JSON number when it is a number (exact integers
@@ -16,7 +16,9 @@ string of the sympy expression (``"3*a_x**2/8"``: it depends on a free amplitude
 ``frequency`` lists the coefficients Ω_k of Ω = Ω0 + εΩ1 + ε²Ω2 + … as far as they are determined.
 ``status`` is the name of :class:`~perturb.solution.Status`; ``message`` says at which order and why
 a construction stopped (``INCONSISTENT``), which unknowns stay open (``UNDETERMINED``), or, on
-success, the status's own sentence.
+success, the status's own sentence. ``outside`` says why a family's series is outside its domain
+at the problem's values (``perturb solve``'s check), ``beyond`` why it is beyond its estimated
+validity; each is empty when it is not (and when it was not checked).
 """
 
 from __future__ import annotations
@@ -39,8 +41,10 @@ def jsonable(value) -> int | float | str:
     return str(expr)
 
 
-def as_dict(families, problem: str) -> dict:
-    """The JSON contract above for ``families`` (a FamilyList) of ``problem``."""
+def as_dict(families, problem: str, flags=None) -> dict:
+    """The JSON contract above for ``families`` (a FamilyList) of ``problem``; ``flags`` are
+    ``(outside, beyond)`` of each family (:func:`perturb.domain.series_domain`), if checked."""
+    flags = list(flags) if flags is not None else [("", "")] * len(families.families)
     return {
         "problem": problem,
         "order": families.order,
@@ -53,14 +57,18 @@ def as_dict(families, problem: str) -> dict:
                 "frequency": [jsonable(w) for w in f.frequency],
                 "status": f.status.name,
                 "message": f.message,
+                "outside": outside,
+                "beyond": beyond,
             }
-            for f in families
+            for f, (outside, beyond) in zip(families, flags, strict=True)
         ],
     }
 
 
-def as_table(families, problem: str) -> str:
-    """One block per family: name, kind (free amplitudes), amplitudes, frequency, status."""
+def as_table(families, problem: str, flags=None) -> str:
+    """One block per family: name, kind (free amplitudes), amplitudes, frequency, status (and
+    ``flags``, as for :func:`as_dict`)."""
+    flags = list(flags) if flags is not None else [("", "")] * len(families.families)
     count = len(families.families)
     noun = "family" if count == 1 else "families"
     head = f"# {problem}: {count} {noun}, carried to order {families.order}"
@@ -70,7 +78,7 @@ def as_table(families, problem: str) -> str:
     if not families.families:
         why = families.why or "the amplitude equations have only the trivial root"
         lines.append(f"no family: {why}")
-    for f in families:
+    for f, (outside, beyond) in zip(families, flags, strict=True):
         kind = f.kind + (f" in {', '.join(f.free)}" if f.free else "")
         amplitudes = ", ".join(f"{k} = {v}" for k, v in f.amplitudes.items())
         eps = sp.Symbol("epsilon")
@@ -82,4 +90,8 @@ def as_table(families, problem: str) -> str:
             f"  Omega = {omega}",
             f"  status: {f.status.name}: {f.message}",
         ]
+        if outside:
+            lines.append(f"  OUTSIDE the series' domain at these values: {outside}")
+        elif beyond:
+            lines.append(f"  {beyond}")
     return "\n".join(lines)

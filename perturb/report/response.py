@@ -8,7 +8,13 @@ from perturb.report.latex import latex_comment
 from perturb.report.true_curve import true_curve_as_dict, true_curve_latex, true_curve_lines
 from perturb.response.measures import MEASURES
 
-__all__ = ["response_as_csv", "response_as_dict", "response_as_table", "response_latex"]
+__all__ = [
+    "flag_lines",
+    "response_as_csv",
+    "response_as_dict",
+    "response_as_table",
+    "response_latex",
+]
 
 _STABILITY = {True: "stable", False: "unstable", None: "marginal"}
 
@@ -234,6 +240,7 @@ def response_as_table(result) -> str:
     for failure in response.failures:
         lines.append(f"not solved: {failure}")
     lines.extend(true_curve_lines(result.true_curve, result.parameter))
+    lines.extend(flag_lines(result))
     return "\n".join(lines)
 
 
@@ -263,3 +270,40 @@ def response_latex(result) -> str:
         + "\n".join(rows)
         + "\n\\bottomrule\n\\end{tabular}\n"
     )
+
+
+def flag_lines(result) -> list[str]:
+    """Sentences about the points whose series is outside its domain (``series_ok`` false) or
+    beyond its validity: the series' own estimate of its error (``error``, per coordinate) more
+    than :data:`perturb._defaults.VALIDITY_ESTIMATE_LIMIT` of the point's amplitude."""
+    from perturb._defaults import VALIDITY_ESTIMATE_LIMIT
+
+    points = result.response.points
+    outside = [p for p in points if not p.series_ok]
+    beyond = []
+    for p in points:
+        if not p.series_ok:
+            continue
+        ratios = [
+            p.error[c] / size
+            for c, size in p.peak.items()
+            if c in p.error and math.isfinite(p.error[c]) and size > 0
+        ]
+        if ratios and max(ratios) > VALIDITY_ESTIMATE_LIMIT:
+            beyond.append((p, max(ratios)))
+    lines = []
+    if outside:
+        lines.append(
+            f"{len(outside)} of {len(points)} steady states are outside the series' domain: their "
+            f"amplitudes are not the motion's (e.g. at {result.parameter} = "
+            f"{outside[0].value:.6g}: {outside[0].note})"
+        )
+    if beyond:
+        point, ratio = max(beyond, key=lambda b: b[1])
+        lines.append(
+            f"{len(beyond)} of {len(points)} steady states are beyond the series' validity: its own "
+            f"estimate of their error is more than {VALIDITY_ESTIMATE_LIMIT:g} of the amplitude "
+            f"(up to {ratio:.2g} at {result.parameter} = {point.value:.6g}); check them with "
+            "--validate"
+        )
+    return lines

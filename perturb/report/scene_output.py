@@ -16,14 +16,17 @@ file                        written when ``[outputs]`` has
 ``NAME.png`` (``.pdf``...)  ``plots = ["NAME", ...]`` (``formats``: png, pdf, svg)
 ==========================  ==================================================
 
-matplotlib is imported only when a plot is asked for. Files of an earlier report in the same
-folder with these names, but not asked for this time, are removed, so that the folder holds only
-what the scene asks for; no other file is touched.
+matplotlib is imported only when a plot is asked for. The folder also holds the marker
+``.perturb-report.json`` (:mod:`perturb.report.written`): the scene reported and the files perturb
+wrote. Files of an earlier report of the scene that are not asked for this time are removed when
+perturb wrote them and they are unchanged, so that the folder holds what the scene asks for; a
+file perturb did not write is never removed or overwritten (a clash is refused before any work).
 """
 
 from __future__ import annotations
 
 import csv
+import hashlib
 import io
 import json
 import math
@@ -31,15 +34,23 @@ from pathlib import Path
 
 import numpy as np
 
-from perturb.errors import SceneError
+from perturb.errors import OutputError
 from perturb.report.latex import solution_document
 from perturb.report.response import response_as_csv, response_as_dict
 from perturb.report.sweep import sweep_as_csv
 from perturb.report.validation import validation_as_dict
 from perturb.report.workprecision import work_precision_as_csv
+from perturb.report.written import STORE_TOKEN, ReportFolder, claim_folder
 from perturb.scene.spec import MAP_PLOTS, PLOT_FORMATS, PLOT_NAMES, RESPONSE_PLOTS
 
-__all__ = ["SUMMARY", "prepare_folder", "report_files", "summary_markdown", "write_report"]
+__all__ = [
+    "SUMMARY",
+    "all_names",
+    "prepare_folder",
+    "report_files",
+    "summary_markdown",
+    "write_report",
+]
 
 #: The summary's file name (also printed by the CLI).
 SUMMARY = "summary.md"
@@ -60,26 +71,46 @@ _DATA_FILES = (
 ORIENTATION_FRACTIONS = (0.0, 0.25, 0.5, 0.75)
 
 
-def prepare_folder(path) -> Path:
-    """Create the report folder ``path`` (and its parents) and check that it can be written.
+def all_names() -> list[str]:
+    """Every name a report may write into its folder (files, plots and the sweep's store)."""
+    names = [*_DATA_FILES, SUMMARY, "scene.toml", "sweep.zarr"]
+    return names + [f"{plot}.{fmt}" for plot in PLOT_NAMES for fmt in PLOT_FORMATS]
+
+
+def prepare_folder(path, scene=None, *, force: bool = False) -> ReportFolder:
+    """Claim the report folder ``path`` for a report of ``scene``, before any work.
+
+    The folder is created if missing (with its parents). It may hold an earlier report of the
+    same scene file (recognised by the marker :data:`perturb.report.written.MARKER`), whose
+    files are replaced; anything perturb did not write is never removed or overwritten
+    (:func:`perturb.report.written.claim_folder`).
+
+    Parameters
+    ----------
+    path : str or path-like
+    scene : perturb.scene.Scene, optional
+        The scene reported (None: check the folder only).
+    force : bool
+        Replace perturb's own files of the report of another scene.
 
     Raises
     ------
-    perturb.errors.SceneError
-        The folder cannot be created or written (one line: the path, the reason, the fix).
+    perturb.errors.OutputError
+        The folder cannot be created or written, or it holds a file the report would write or
+        remove that perturb did not write (one line: the path, the file, the fix).
     """
-    folder = Path(path)
-    probe = folder / ".perturb-write-test"
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-        probe.write_bytes(b"")
-        probe.unlink()
-    except OSError as exc:
-        reason = exc.strerror or type(exc).__name__
-        raise SceneError(
-            f"--output {str(path)!r}: cannot write there ({reason}); choose a writable folder"
-        ) from None
-    return folder
+    names = report_files(scene) if scene is not None else []
+    return claim_folder(path, names, _scene_key(scene), known=all_names(), force=force)
+
+
+def _scene_key(scene) -> str:
+    """What a report is of: the scene file's resolved path (its text when it has no file)."""
+    if scene is None:
+        return ""
+    source = Path(scene.source)
+    if source.is_file():
+        return str(source.resolve())
+    return f"<text {hashlib.sha256(scene.text.encode()).hexdigest()[:16]}>"
 
 
 def report_files(scene) -> list[str]:
@@ -262,6 +293,9 @@ def _response_lines(result) -> list[str]:
         lines.append(f"- fold at {response.parameter} = {fold.value:.6g}{where}")
     for failure in response.failures:
         lines.append(f"- not solved: {failure}")
+    from perturb.report.response import flag_lines
+
+    lines += [f"- {line}" for line in flag_lines(result.response)]
     for shot in result.response.true:
         agree = "agree" if shot.stable_true == shot.stable_analytic else "DISAGREE"
         lines.append(
@@ -323,15 +357,15 @@ def write_report(result, folder) -> tuple[list[str], str]:
     Parameters
     ----------
     result : perturb.scene.run.SceneResult
-    folder : path
-        Created if missing (see :func:`prepare_folder`).
+    folder : path or perturb.report.written.ReportFolder
+        A folder claimed by :func:`prepare_folder` (a path is claimed here).
 
     Returns
     -------
     (list of str, str)
         The files written (in ``folder``) and the text of ``summary.md``.
     """
-    folder = prepare_folder(folder)
+    claimed = folder if isinstance(folder, ReportFolder) else prepare_folder(folder, result.scene)
     scene, out = result.scene, result.scene.outputs
     written: dict[str, bytes | str] = {"scene.toml": scene.text}
     notes: list[str] = []
@@ -369,20 +403,23 @@ def write_report(result, folder) -> tuple[list[str], str]:
     summary = summary_markdown(result, files)
     written[SUMMARY] = summary
     try:
-        _remove_stale(folder, set(files))
+        claimed.begin(files, claimed.stale)
         for name, content in written.items():
-            (folder / name).write_text(content, encoding="utf-8")
+            claimed.write(name, content)
         if "sweep.zarr" in files:
             from perturb.sweep.store import write_dataset
 
-            write_dataset(result.sweep, folder / "sweep.zarr")
+            token = claimed.store_token("sweep.zarr")
+            write_dataset(result.sweep, claimed.folder / "sweep.zarr", {STORE_TOKEN: token})
         for name, figure in figures.items():
             for fmt in out.formats:
-                figure.savefig(folder / f"{name}.{fmt}", format=fmt)
+                buffer = io.BytesIO()
+                figure.savefig(buffer, format=fmt)
+                claimed.write(f"{name}.{fmt}", buffer.getvalue())
     except OSError as exc:
-        raise SceneError(
-            f"--output {str(folder)!r}: cannot write there ({exc.strerror or exc}); choose a "
-            "writable folder"
+        raise OutputError(
+            f"--output {str(claimed.folder)!r}: cannot write there ({exc.strerror or exc}); "
+            "choose a writable folder"
         ) from None
     return files, summary
 
@@ -391,18 +428,3 @@ def _with_notes(result, notes: list[str]):
     from attrs import evolve
 
     return evolve(result, notes=(*result.notes, *notes))
-
-
-def _remove_stale(folder: Path, keep: set[str]) -> None:
-    """Remove files of an earlier report (names this module writes) that this one does not."""
-    ours = {*_DATA_FILES, SUMMARY, "scene.toml"}
-    ours |= {f"{plot}.{fmt}" for plot in PLOT_NAMES for fmt in PLOT_FORMATS}
-    for name in sorted(ours - keep):
-        path = folder / name
-        if path.is_file():
-            path.unlink()
-    store = folder / "sweep.zarr"
-    if "sweep.zarr" not in keep and store.is_dir():
-        from perturb.sweep.store import remove_store
-
-        remove_store(store)  # only a perturb sweep store (the report's own) is removed

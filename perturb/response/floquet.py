@@ -146,9 +146,17 @@ def stability_along(motion, series, x, params, eps, steps: int = MAGNUS_STEPS) -
     if x.shape[0] == 0:
         return Stability(np.zeros((0, 2 * motion.n), complex), np.zeros(0), ())
     phi, liouville = monodromy(motion, series, x, np.atleast_2d(params), np.atleast_1d(eps), steps)
-    values = np.linalg.eigvals(phi)
+    # a monodromy past the floats (an orbit of 10^9 time units, eps = 10): no multipliers, and
+    # no stability claimed either way
+    finite = np.all(np.isfinite(phi), axis=(-2, -1))
+    values = np.full(phi.shape[:-1], complex(math.nan, math.nan))
+    if np.any(finite):
+        values[finite] = np.linalg.eigvals(phi[finite])
     order = np.argsort(-np.abs(values), axis=1, kind="stable")
     values = np.take_along_axis(values, order, axis=1)
     largest = np.abs(values[:, 0])
-    stable = tuple(None if abs(m - 1.0) <= MARGINAL_MULTIPLIER else bool(m < 1.0) for m in largest)
+    stable = tuple(
+        None if not math.isfinite(m) or abs(m - 1.0) <= MARGINAL_MULTIPLIER else bool(m < 1.0)
+        for m in largest
+    )
     return Stability(values, liouville, stable)

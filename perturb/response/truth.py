@@ -22,6 +22,7 @@ import sympy as sp
 from perturb._defaults import DEFAULT_RTOL
 from perturb.oracle import SymbolicRHS, choose
 from perturb.oracle.forced import find_forced_orbit
+from perturb.progress import track
 from perturb.response.measures import peak_abs
 from perturb.system import EPS
 
@@ -143,23 +144,26 @@ def shoot_along(result, response, count: int, measure: str, tol: float) -> list[
     line = result.traced.line
     low, high = response.grid[0], response.grid[-1]
     out = []
+    picks = []
     for index, curve in enumerate(result.curves):
         folds = [s for s in result.special if s.kind == "fold" and _on_curve(curve, s)]
-        for k, why in choose_points(curve, folds, low, high, count, measure):
-            lam, u = float(curve.values[k]), curve.amplitudes[k]
-            entry = {
-                "value": lam,
-                "branch": name_at(result, lam, u, measure) or f"curve-{index + 1}",
-                "curve": index,
-                "reason": why,
-                "analytic": {c: float(curve.measures[measure][c][k]) for c in response.coordinates},
-                "stable_analytic": curve.stable[k],
-                "multipliers_analytic": tuple(complex(z) for z in curve.multipliers[k]),
-            }
-            shot = shoot_point(evaluator, line, u, lam)
-            entry.update(shot)
-            if shot["success"]:
-                entry["true"] = shot[measure]
-                entry["within_tol"] = bool(shot["orbit_error"] <= tol)
-            out.append(entry)
+        picks += [(index, curve, k, why)
+                  for k, why in choose_points(curve, folds, low, high, count, measure)]  # fmt: skip
+    for index, curve, k, why in track(picks, label=f"response {response.system}: true orbits"):
+        lam, u = float(curve.values[k]), curve.amplitudes[k]
+        entry = {
+            "value": lam,
+            "branch": name_at(result, lam, u, measure) or f"curve-{index + 1}",
+            "curve": index,
+            "reason": why,
+            "analytic": {c: float(curve.measures[measure][c][k]) for c in response.coordinates},
+            "stable_analytic": curve.stable[k],
+            "multipliers_analytic": tuple(complex(z) for z in curve.multipliers[k]),
+        }
+        shot = shoot_point(evaluator, line, u, lam)
+        entry.update(shot)
+        if shot["success"]:
+            entry["true"] = shot[measure]
+            entry["within_tol"] = bool(shot["orbit_error"] <= tol)
+        out.append(entry)
     return out

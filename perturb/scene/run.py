@@ -134,8 +134,9 @@ def _truth(model: Model, solution, t: np.ndarray, integrator) -> tuple[dict, str
     return {n: y[i] for i, n in enumerate(names)}, traj.integrator or solver.name, note
 
 
-def check_scene(scene: Scene, problem) -> None:
-    """Raise if ``scene`` asks ``problem`` for what it cannot give, before anything is computed.
+def check_scene(scene: Scene, problem, yes: bool = False) -> None:
+    """Raise if ``scene`` asks ``problem`` for what it cannot give, or for more work than it
+    should do unconfirmed (``yes``; :mod:`perturb.cost`), before anything is computed.
 
     Raises
     ------
@@ -144,10 +145,14 @@ def check_scene(scene: Scene, problem) -> None:
     perturb.errors.UnknownNameError
         An unknown ``[solve] integrator`` of a scene that integrates.
     perturb.errors.SceneError
-        A ``[response]`` of a problem that is not driven, or over a parameter it does not have.
+        A ``[response]`` of a problem that is not driven, over a parameter it does not have or
+        also set in ``[parameters]``; a ``[response]`` and
+        ``[sweep]`` estimated past :data:`perturb._defaults.CONFIRM_SECONDS` of work without
+        ``yes``.
     """
     model = as_model(problem)
     outputs = scene.outputs
+    _check_cost(scene, yes)
     if scene.response is not None and outputs.needs_response:
         from perturb.errors import InvalidParameterError
         from perturb.response.model import check_request, parse_sweep
@@ -157,6 +162,11 @@ def check_scene(scene: Scene, problem) -> None:
             check_request(problem, name)
         except InvalidParameterError as exc:
             raise scene.error(f"[response] {exc}") from None
+        if name in scene.parameters:
+            raise scene.error(
+                f"[response] sweep = {scene.response.sweep!r}: {name!r} is also set in "
+                "[parameters]; sweep it or set it, not both"
+            )
     if outputs.needs_euler and not has_euler_angles(model):
         asked = ["euler = true"] if outputs.euler else []
         asked += [f"plot {p!r}" for p in outputs.plots if p in ("euler", "orientation")]
@@ -172,7 +182,34 @@ def check_scene(scene: Scene, problem) -> None:
         choose(scene.integrator)  # an unknown name fails here, before any work
 
 
-def run_scene(scene: Scene, problem) -> SceneResult:
+def _check_cost(scene: Scene, yes: bool) -> None:
+    """The scene's expensive sections, estimated together (:func:`perturb.cost.check_cost`)."""
+    from perturb.cost import Cost, check_cost, response_cost, sweep_cost
+    from perturb.errors import InvalidParameterError
+
+    outputs = scene.outputs
+    cost = Cost("", 0, 0.0)
+    parts = []
+    if scene.response is not None and outputs.needs_response:
+        from perturb.response.model import parse_sweep
+
+        _, grid = parse_sweep(scene.response.sweep, "sweep")
+        parts.append(response_cost(len(grid), scene.order, scene.response.validate))
+    if scene.sweep is not None and outputs.needs_sweep:
+        from perturb.sweep.grid import Grid, parse_axis
+
+        size = Grid(tuple(parse_axis(a) for a in scene.sweep.grid)).size
+        parts.append(sweep_cost(size, scene.order, scene.sweep.validate))
+    for part in parts:
+        cost = part if not cost.what else cost + part
+    try:
+        check_cost(cost, yes)
+    except InvalidParameterError as exc:
+        fix = "perturb report --yes (yes=True in Python)"
+        raise scene.error(str(exc).replace("--yes (yes=True in Python)", fix)) from None
+
+
+def run_scene(scene: Scene, problem, yes: bool = False) -> SceneResult:
     """Compute what ``scene`` asks for, and nothing else (see the module docstring).
 
     Parameters
@@ -181,6 +218,8 @@ def run_scene(scene: Scene, problem) -> SceneResult:
         The parsed scene (:func:`perturb.scene.read_scene`).
     problem : perturb.validation.Model
         The scene's problem, already created with the scene's parameters (and family).
+    yes : bool
+        Confirm sections estimated past an hour of work (:mod:`perturb.cost`).
 
     Returns
     -------
@@ -196,7 +235,7 @@ def run_scene(scene: Scene, problem) -> SceneResult:
         An unknown integrator name (from the oracle, before any integration).
     """
     model = as_model(problem)
-    check_scene(scene, model)
+    check_scene(scene, model, yes)
     outputs = scene.outputs
 
     state: dict = {"notes": [], "computed": [], "seconds": {}}
@@ -240,7 +279,7 @@ def run_scene(scene: Scene, problem) -> SceneResult:
     if not failure and outputs.needs_work_precision:
         todo.append(("work_precision", lambda: _work_precision(scene, model)))
     if scene.sweep is not None and outputs.needs_sweep:  # each point says why it failed
-        todo.append(("sweep", lambda: _sweep(scene, model)))
+        todo.append(("sweep", lambda: _sweep(scene, model, yes)))
     if scene.response is not None and outputs.needs_response:  # failures are in the result
         todo.append(("response", lambda: _response(scene, problem)))
     for name, work in track(todo, label=f"report {model.label()}"):
@@ -298,7 +337,7 @@ def _work_precision(scene: Scene, model: Model):
     )
 
 
-def _sweep(scene: Scene, model: Model):
+def _sweep(scene: Scene, model: Model, yes: bool = False):
     from perturb.sweep.api import sweep
     from perturb.validation import DEFAULT_TOL
 
@@ -314,6 +353,7 @@ def _sweep(scene: Scene, model: Model):
         integrator=scene.integrator,
         derive=settings.derive,
         workers=settings.workers,
+        yes=yes,
     )
 
 

@@ -85,8 +85,9 @@ VALIDATED_MAPS = frozenset({"verdict_map", "error_map", "slope_map"})
 RESPONSE_PLOTS = frozenset({"frequency_response", "floquet_multipliers"})
 
 #: Points per branch a ``[response]`` may shoot (``validate``): each is a shooting with its
-#: Floquet multipliers, a few tenths of a second.
-RESPONSE_MAX_VALIDATE = 100
+#: Floquet multipliers, a few tenths of a second; ``perturb response --validate``'s own bound
+#: (``perturb.response.model.MAX_VALIDATE``; tests/scene checks they are one).
+RESPONSE_MAX_VALIDATE = 50
 
 #: Plots drawn beside the true motion: they need an integration of the original equations (the
 #: convergence plot the validation's ε scan, the work-precision plot the integrator runs).

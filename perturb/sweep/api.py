@@ -6,7 +6,12 @@ import math
 import time
 from collections.abc import Mapping, Sequence
 
-from perturb._defaults import DEFAULT_PERIODS, DEFAULT_TOL, SWEEP_CONNECT_SECONDS
+from perturb._defaults import (
+    DEFAULT_PERIODS,
+    DEFAULT_TOL,
+    SWEEP_CONNECT_SECONDS,
+    SWEEP_MAX_CONNECT_SECONDS,
+)
 from perturb._install import install_hint
 from perturb.errors import InvalidParameterError, MissingDependencyError, SweepError
 from perturb.sweep.derive import plan
@@ -158,58 +163,89 @@ def sweep(
     if output is not None:
         from perturb.sweep.store import SweepStore
 
-        SweepStore.check(output, spec, resume=resume, version=version)
+        if SweepStore.check(output, spec, resume=resume, version=version) is not False:
+            from perturb.sweep.lock import StoreLock
+
+            StoreLock(output).acquire().release()  # another driver at work: refused now
     extra = {"perturb_version": version, **dict(attrs or {})}
-    if isinstance(timeout, bool) or not (isinstance(timeout, int | float) and timeout > 0):
-        raise InvalidParameterError(f"`timeout` = {timeout!r} is invalid: give seconds > 0")
-    with Cluster(workers, scheduler, client, timeout) as cluster:
-        workers_now = cluster.n_workers()
-        derivation, _ = plan(spec.model, spec.grid.axes, spec.order, spec.derive)
-        job = SweepJob(spec, derivation, spec.fingerprint(version))
+    if isinstance(timeout, bool) or not (
+        isinstance(timeout, int | float) and 0 < timeout <= SWEEP_MAX_CONNECT_SECONDS
+    ):
+        raise InvalidParameterError(
+            f"`timeout` (--timeout) = {timeout!r} is invalid: give seconds > 0 and at most "
+            f"{SWEEP_MAX_CONNECT_SECONDS:g} (a scheduler that has not answered by then is not "
+            "coming)"
+        )
+    if workers is not None and (scheduler is not None or client is not None):
+        raise InvalidParameterError(
+            f"`workers` = {workers!r}: the cluster's own workers run the tasks with a scheduler "
+            "or a client; drop workers"
+        )
+    if output is None:
+        from perturb.sweep.memory import check_memory
 
-        def size() -> int:
-            return chunk_points(pilot_seconds(job), spec.grid.size, workers_now)
+        check_memory(spec)  # the results are kept here: they must fit
+    sink = None
+    try:
+        with Cluster(workers, scheduler, client, timeout) as cluster:
+            workers_now = cluster.n_workers()
+            derivation, _ = plan(spec.model, spec.grid.axes, spec.order, spec.derive)
+            job = SweepJob(spec, derivation, spec.fingerprint(version))
 
+            def size() -> int:
+                return chunk_points(pilot_seconds(job), spec.grid.size, workers_now)
+
+            if output is not None:
+                sink = SweepStore.prepare(
+                    output, job, resume=resume, version=version, chunk_points=size, extra=extra
+                )
+            else:
+                from perturb.sweep.memory import MemoryResult
+
+                sink = MemoryResult(
+                    job, Chunking.of(spec.grid.shape, size(), job.fill_first()), extra
+                )
+            pending = sink.pending()
+            session = sink.begin_session() if output is not None else 1
+            done = spec.grid.size - sum(_chunk_size(sink.chunking, n) for n in pending)
+            clock = time.perf_counter()
+            stats = run_tasks(
+                cluster, job, sink.chunking, pending, sink.write, session=session, done=done,
+                label=f"sweep {spec.label}",
+            )  # fmt: skip
+            elapsed = time.perf_counter() - clock
         if output is not None:
-            sink = SweepStore.prepare(
-                output, job, resume=resume, version=version, chunk_points=size, extra=extra
-            )
-        else:
-            from perturb.sweep.memory import MemoryResult
-
-            sink = MemoryResult(job, Chunking.of(spec.grid.shape, size(), job.fill_first()), extra)
-        pending = sink.pending()
-        session = sink.begin_session() if output is not None else 1
-        done = spec.grid.size - sum(_chunk_size(sink.chunking, n) for n in pending)
-        clock = time.perf_counter()
-        stats = run_tasks(
-            cluster, job, sink.chunking, pending, sink.write, session=session, done=done,
-            label=f"sweep {spec.label}",
-        )  # fmt: skip
-        elapsed = time.perf_counter() - clock
+            sink.finish()
+            left = sink.pending()  # the store's own count, not the tasks'
+    finally:
+        if output is not None and sink is not None:
+            sink.close()
     if output is not None:
-        sink.finish()
         from perturb.sweep.store import open_dataset
 
         dataset = open_dataset(output)
     else:
+        left = [n for n, _ in stats.lost]
         dataset = sink.dataset()
+    missing = sum(_chunk_size(sink.chunking, n) for n in left)
     # this run's figures (not stored): wall seconds of the tasks, their CPU on the workers, the
     # seconds spent writing here, the points computed
     dataset.attrs.update(
         seconds=elapsed,
         task_cpu_seconds=stats.cpu,
         write_seconds=stats.writing,
-        points_computed=sum(_chunk_size(sink.chunking, n) for n in pending)
-        - sum(_chunk_size(sink.chunking, n) for n, _ in stats.lost),
+        points_computed=sum(_chunk_size(sink.chunking, n) for n in pending) - missing,
     )
-    if stats.lost:
-        number, reason = stats.lost[0]
+    if left:
+        reasons = dict(stats.lost)
+        number = next((n for n in left if n in reasons), left[0])
+        reason = reasons.get(number, "its task did not finish (the cluster lost it)")
         error = SweepError(
-            f"{len(stats.lost)} chunk(s) of the sweep could not be computed (e.g. chunk {number}: "
-            f"{reason}); every other point is written"
+            f"{missing} of {spec.grid.size} points ({len(left)} of {sink.chunking.n_chunks} "
+            f"chunks) are not written (e.g. chunk {number}: {reason}); every other point is "
+            "written"
             + (
-                "; run again with --resume (resume=True in Python) to retry them"
+                "; run again with --resume (resume=True in Python) to compute them"
                 if output is not None
                 else ""
             )

@@ -29,7 +29,9 @@ from attrs import frozen
 
 from perturb._defaults import (
     SWEEP_CHUNKS_PER_WORKER,
+    SWEEP_CONNECT_RETRY,
     SWEEP_CONNECT_SECONDS,
+    SWEEP_HANDSHAKE_BYTES,
     SWEEP_MAX_CHUNK_POINTS,
     SWEEP_OVERHEAD_SHARE,
     SWEEP_PILOT_GROWTH,
@@ -38,6 +40,7 @@ from perturb._defaults import (
     SWEEP_PILOT_VALIDATIONS,
     SWEEP_TASK_OVERHEAD_SECONDS,
     SWEEP_TASK_SECONDS,
+    SWEEP_WORKERS_PER_CORE,
 )
 from perturb.errors import InvalidParameterError
 from perturb.progress import notify
@@ -198,15 +201,7 @@ class Cluster:
         from distributed import Client
 
         if self.address is not None:
-            try:
-                self.client = Client(self.address, timeout=self.timeout, set_as_default=False)
-            except (OSError, TimeoutError, ValueError, TypeError) as exc:
-                reason = " ".join(str(exc).split()) or type(exc).__name__
-                raise InvalidParameterError(
-                    f"--scheduler (scheduler=) {self.address!r}: no Dask scheduler answered within "
-                    f"{self.timeout:g} s ({reason}); start one with `dask scheduler` "
-                    "and check the address (tcp://HOST:PORT)"
-                ) from None
+            self.client = _connect(self.address, self.timeout)
             return self
         import dask
         from distributed import LocalCluster
@@ -216,14 +211,24 @@ class Cluster:
             raise InvalidParameterError(
                 f"--workers (workers=) {n!r} is invalid: give a whole number >= 1"
             )
-        with dask.config.set({PRE_SPAWN: _pre_spawn_environment()}):
+        cores = os.cpu_count() or 1
+        if n > SWEEP_WORKERS_PER_CORE * cores:
+            raise InvalidParameterError(
+                f"--workers (workers=) {n} is more than {SWEEP_WORKERS_PER_CORE} worker processes "
+                f"per core of this machine ({cores} cores): give at most "
+                f"{SWEEP_WORKERS_PER_CORE * cores}, or run on a cluster with --scheduler"
+            )
+        private = {PRE_SPAWN: _pre_spawn_environment(), **NO_HTTP_ROUTES}
+        with dask.config.set(private):
             self._cluster = LocalCluster(
                 n_workers=n,
                 threads_per_worker=1,
                 processes=True,
-                dashboard_address=None,
+                host="127.0.0.1",
+                dashboard_address="127.0.0.1:0",  # nothing served there (NO_HTTP_ROUTES)
                 silence_logs=logging.ERROR,
                 env=_worker_environment(),
+                security=_private(),
             )
         self.client = Client(self._cluster, set_as_default=False)
         return self
@@ -242,6 +247,133 @@ class Cluster:
             with contextlib.suppress(Exception):
                 self._cluster.close()
 
+
+def _private():
+    """Credentials made for this cluster alone (:meth:`distributed.security.Security.temporary`):
+    its scheduler and workers speak TLS and accept only peers holding them, so that another
+    user of this machine cannot connect to the ports and run code as this one.
+
+    Raises
+    ------
+    perturb.errors.MissingDependencyError
+        The ``cryptography`` package (which makes the credentials) is not installed.
+    """
+    from distributed.security import Security
+
+    try:
+        return Security.temporary()
+    except ImportError:
+        from perturb.errors import MissingDependencyError
+
+        raise MissingDependencyError(
+            "the local cluster needs cryptography for its private TLS credentials: pip install "
+            "'perturb[sweep]' (or cryptography), or run on a cluster with --scheduler"
+        ) from None
+
+
+def _refused(address: str, timeout: float, reason: str) -> InvalidParameterError:
+    return InvalidParameterError(
+        f"--scheduler (scheduler=) {address!r}: no Dask scheduler answered within {timeout:g} s "
+        f"({reason}); start one with `dask scheduler` and check the address (tcp://HOST:PORT)"
+    )
+
+
+def _probe(address: str, timeout: float) -> None:
+    """Check, within ``timeout`` seconds, that a Dask scheduler listens at the TCP ``address``:
+    it sends its handshake as soon as a connection opens (an 8-byte frame length, then the
+    frames), while a server of another kind is silent or sends something else. Other schemes
+    (``tls://``...) are left to the client."""
+    import socket
+    import struct
+    from urllib.parse import urlsplit
+
+    scheme, _, rest = address.partition("://")
+    if not rest:
+        scheme, rest = "tcp", address
+    if scheme != "tcp":
+        return
+    try:
+        parts = urlsplit(f"//{rest}")
+        host, port = parts.hostname, parts.port
+    except ValueError as exc:
+        raise _refused(address, timeout, f"the address is malformed: {exc}") from None
+    if not host or port is None:
+        raise _refused(address, timeout, "give the host and the port, tcp://HOST:PORT")
+    deadline = time.monotonic() + timeout
+    while True:  # a scheduler starting up refuses connections for a moment: retried
+        try:
+            data = _first_bytes(host, port, deadline)
+            break
+        except ConnectionRefusedError as exc:
+            if time.monotonic() + SWEEP_CONNECT_RETRY > deadline:
+                raise _refused(address, timeout, " ".join(str(exc).split())) from None
+            time.sleep(SWEEP_CONNECT_RETRY)
+        except (OSError, TimeoutError, ConnectionError) as exc:
+            reason = " ".join(str(exc).split()) or type(exc).__name__
+            if isinstance(exc, socket.timeout | TimeoutError) and "not Dask" not in reason:
+                reason = "it accepts connections but says nothing: not a Dask scheduler"
+            raise _refused(address, timeout, reason) from None
+    (length,) = struct.unpack("<Q", data)
+    if not 0 < length <= SWEEP_HANDSHAKE_BYTES:
+        raise _refused(address, timeout, "it answers, but it is not a Dask scheduler")
+
+
+def _first_bytes(host: str, port: int, deadline: float) -> bytes:
+    """The first 8 bytes a server at ``host:port`` sends when a connection opens (by
+    ``deadline``, a time of :func:`time.monotonic`)."""
+    import socket
+
+    left = max(deadline - time.monotonic(), 0.01)
+    with socket.create_connection((host, port), timeout=left) as sock:
+        data = b""
+        while len(data) < 8:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                raise TimeoutError("it accepts connections but says nothing: not Dask")
+            sock.settimeout(left)
+            chunk = sock.recv(8 - len(data))
+            if not chunk:
+                raise ConnectionError("it closed the connection: not a Dask scheduler")
+            data += chunk
+    return data
+
+
+def _connect(address: str, timeout: float):
+    """A client of the scheduler at ``address``, connected within ``timeout`` seconds in all
+    (the probe and the client's own connection), or a one-line refusal."""
+    import threading
+
+    from distributed import Client
+
+    deadline = time.monotonic() + timeout
+    _probe(address, timeout)
+    left = max(deadline - time.monotonic(), 0.1)
+    outcome: dict = {}
+
+    def connect():
+        try:
+            outcome["client"] = Client(address, timeout=left, set_as_default=False)
+        except BaseException as exc:  # noqa: BLE001 - reported below, in one line
+            outcome["error"] = exc
+
+    thread = threading.Thread(target=connect, daemon=True)
+    thread.start()
+    thread.join(left)
+    if "client" in outcome:
+        return outcome["client"]
+    error = outcome.get("error")
+    reason = (
+        " ".join(f"{type(error).__name__}: {error}".split())
+        if error is not None
+        else "the connection did not complete"
+    )
+    raise _refused(address, timeout, reason[:200])
+
+
+#: No pages on the HTTP servers of the local cluster's scheduler and workers (Dask starts them
+#: whatever the dashboard: info, JSON, metrics and a proxy to the workers, readable by any user of
+#: the machine); they listen on 127.0.0.1 at a free port and answer nothing.
+NO_HTTP_ROUTES = {"distributed.scheduler.http.routes": [], "distributed.worker.http.routes": []}
 
 #: Dask's setting of the variables its nanny sets before it starts a worker process.
 PRE_SPAWN = "distributed.nanny.pre-spawn-environ"

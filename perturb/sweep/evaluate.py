@@ -24,7 +24,7 @@ import sympy as sp
 
 from perturb._defaults import SWEEP_AMPLITUDE_SAMPLES, SWEEP_DOMAIN_MARGIN
 from perturb._lambdify import numpy_lambdify
-from perturb.domain import DomainCheck, series_domain
+from perturb.domain import DomainCheck, next_terms, series_domain
 from perturb.solution import PeriodicSolution, SolutionFailed
 from perturb.system import Regime
 
@@ -290,6 +290,13 @@ class DomainScreen:
             clear &= self._clear(sizes, zeros)
         return clear, freq, own
 
+    @staticmethod
+    def estimates(freq: np.ndarray, own) -> np.ndarray:
+        """Each point's :attr:`perturb.domain.DomainCheck.estimate` from the screen's sizes."""
+        rows = [next_terms(freq), *(next_terms(sizes) for sizes in own)]
+        with np.errstate(all="ignore"):
+            return np.max(np.vstack(rows), axis=0) if rows else np.zeros(freq.shape[-1])
+
     def check(self, parameter_values, values: Mapping[str, np.ndarray], omega) -> list:
         """For each point, its :class:`perturb.domain.DomainCheck`: built from the screen's
         numbers when the point is clearly inside the domain (``ok``, no reasons), else
@@ -301,6 +308,7 @@ class DomainScreen:
         pv = np.atleast_1d(np.asarray(parameter_values, dtype=float))
         clear, freq, own = self.screen(pv, values, omega)
         omega = np.broadcast_to(np.asarray(omega, dtype=float), pv.shape)
+        estimates = self.estimates(freq, own)
         names = self.solution.coordinates
         out: list = []
         for i in range(pv.size):
@@ -313,7 +321,11 @@ class DomainScreen:
                     max([0.0, *(t[k] for t in per_coordinate.values() if k < len(t))])
                     for k in range(depth)
                 ]
-                out.append(DomainCheck(True, (), omega[i], overall, freq[:, i], per_coordinate))
+                out.append(
+                    DomainCheck(
+                        True, (), omega[i], overall, freq[:, i], per_coordinate, estimates[i]
+                    )
+                )
                 continue
             point = {name: float(np.asarray(a).ravel()[i]) for name, a in values.items()}
             out.append(series_domain(self.solution, float(pv[i]), point))

@@ -25,7 +25,7 @@ from collections.abc import Iterable, Iterator, Sequence
 import numpy as np
 from attrs import field, frozen
 
-from perturb._defaults import SCENE_SUGGESTION_CUTOFF, SWEEP_CONFIRM_POINTS, SWEEP_MAX_POINTS
+from perturb._defaults import SCENE_SUGGESTION_CUTOFF, SWEEP_MAX_POINTS
 from perturb.errors import InvalidParameterError, UnknownNameError
 
 __all__ = ["Axis", "Chunking", "Grid", "check_names", "check_size", "parse_axis"]
@@ -185,17 +185,11 @@ def check_names(axes: Sequence[Axis], known: Iterable[str], problem: str, fixed=
 
 def check_size(size: int, yes: bool) -> None:
     """Raise for a grid past :data:`SWEEP_MAX_POINTS`, or past :data:`SWEEP_CONFIRM_POINTS`
-    without confirmation (the message says how many points and how to confirm)."""
-    if size > SWEEP_MAX_POINTS:
-        raise InvalidParameterError(
-            f"the grid has {size:,} points, more than {SWEEP_MAX_POINTS:,}; give fewer "
-            "points per axis"
-        )
-    if size > SWEEP_CONFIRM_POINTS and not yes:
-        raise InvalidParameterError(
-            f"the grid has {size:,} points (more than {SWEEP_CONFIRM_POINTS:,}); check the "
-            "axes and confirm with --yes (yes=True in Python)"
-        )
+    without confirmation (the message says how many points and how to confirm): the points
+    part of :func:`perturb.cost.check_cost`, the one rule of expensive requests."""
+    from perturb.cost import Cost, check_cost
+
+    check_cost(Cost(f"{size:,} points", size, 0.0), yes)
 
 
 @frozen

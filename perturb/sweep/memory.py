@@ -7,11 +7,13 @@ import json
 
 import numpy as np
 
+from perturb._defaults import SWEEP_MEMORY_BYTES, SWEEP_TEXT_BYTES
+from perturb.errors import InvalidParameterError
 from perturb.sweep.grid import Chunking
 from perturb.sweep.quantities import check_names, stored_name, variables
 from perturb.sweep.spec import STORE_FORMAT, SweepJob
 
-__all__ = ["MemoryResult", "dataset_of"]
+__all__ = ["MemoryResult", "check_memory", "dataset_of", "result_bytes"]
 
 
 def dataset_of(coords: dict, data: dict, attrs: dict):
@@ -22,6 +24,38 @@ def dataset_of(coords: dict, data: dict, attrs: dict):
     variables = {name: xr.Variable(dims, values, attributes) for name, (dims, values, attributes)
                  in data.items()}  # fmt: skip
     return xr.Dataset(variables, coords=coords, attrs=attrs)
+
+
+def result_bytes(spec) -> int:
+    """Bytes the results of ``spec``'s sweep take in memory: every variable's values (a text
+    value counted at :data:`SWEEP_TEXT_BYTES`), for every point."""
+    names = len(spec.model.state_names())
+    sizes = {"component": names, "time": len(spec.times), "multiplier": names,
+             "check": len(check_names())}  # fmt: skip
+    per_point = 0
+    for var in variables(spec.validate):
+        count = int(np.prod([sizes[d] for d in var.dims])) if var.dims else 1
+        width = SWEEP_TEXT_BYTES if var.dtype == "str" else np.dtype(var.dtype).itemsize
+        per_point += count * width
+    return per_point * spec.grid.size
+
+
+def check_memory(spec) -> None:
+    """Raise unless the results of ``spec``'s sweep fit in memory (:data:`SWEEP_MEMORY_BYTES`):
+    a larger sweep writes a Zarr store instead.
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        One line: the points, the memory they would take, the fix.
+    """
+    need = result_bytes(spec)
+    if need > SWEEP_MEMORY_BYTES:
+        raise InvalidParameterError(
+            f"the grid's {spec.grid.size:,} points would take about {need / 2**30:,.3g} GiB in "
+            f"memory (more than {SWEEP_MEMORY_BYTES / 2**30:g} GiB): write them to a store, "
+            "--format zarr --output STORE (output= in Python), which holds one chunk at a time"
+        )
 
 
 class MemoryResult:

@@ -15,13 +15,29 @@ from collections.abc import Sequence
 import numpy as np
 from attrs import field, frozen
 
-from perturb._defaults import DEFAULT_PERIODS, DEFAULT_TOL, MAX_ORDER, MAX_TIMES
+from perturb._defaults import (
+    DEFAULT_PERIODS,
+    DEFAULT_TOL,
+    MAX_ORDER,
+    MAX_OUTPUT_SAMPLES,
+    MAX_TIMES,
+    SAMPLES_PER_PERIOD,
+    SWEEP_FAMILY_PROBES,
+)
+from perturb.cost import check_cost, sweep_cost
 from perturb.errors import InvalidParameterError, PerturbError, bad_value
 from perturb.sweep.derive import Derivation
 from perturb.sweep.grid import Grid, check_names, check_size
 from perturb.validation.model import Model
 
-__all__ = ["RESERVED_DIMS", "STORE_FORMAT", "SweepJob", "SweepSpec", "check_spec"]
+__all__ = [
+    "RESERVED_DIMS",
+    "STORE_FORMAT",
+    "SweepJob",
+    "SweepSpec",
+    "check_family",
+    "check_spec",
+]
 
 #: Version of the store's layout (bumped when variables or attributes change meaning).
 STORE_FORMAT = 1
@@ -213,8 +229,15 @@ def check_spec(
             "with_parameters gives none): it cannot be swept"
         )
     order = _order(order)
+    check_cost(sweep_cost(grid.size, order, bool(validate)), bool(yes))
     tol = _positive("tol", tol, f"pass a positive relative tolerance such as {DEFAULT_TOL}")
     periods = _positive("periods", periods, "pass a positive number of periods, e.g. 10")
+    if validate and periods * SAMPLES_PER_PERIOD > MAX_OUTPUT_SAMPLES:  # validate's own rule
+        raise bad_value(
+            "periods", periods,
+            f"at most {MAX_OUTPUT_SAMPLES // SAMPLES_PER_PERIOD} periods (the validation's "
+            "trajectory horizon)",
+        )  # fmt: skip
     try:
         times = _times(times)
     except (TypeError, ValueError):
@@ -237,4 +260,44 @@ def check_spec(
         periods=periods,
         integrator=integrator,
         derive=derive,
+    )
+
+
+def check_family(model: Model, name: str, grid: Grid, order: int) -> Model:
+    """``model`` following the family ``name`` (at a point of the grid where it exists: the
+    swept values are replaced at every point), once the family is known to exist somewhere on
+    the grid: at the model's own values, or else at one of :data:`SWEEP_FAMILY_PROBES` points
+    spread over the grid (a driven problem's ``upper`` branch exists only past the fold, so the
+    family is looked for along the grid, not at the default values alone). A point where the
+    family does not exist says so in its status.
+
+    Raises
+    ------
+    perturb.errors.UnknownNameError
+        The family exists at none of these points (the message lists the names found).
+    """
+    from perturb.errors import UnknownNameError
+
+    found: list[str] = []
+    candidates = [model]
+    size = grid.size
+    picks = np.unique(np.linspace(0, size - 1, min(SWEEP_FAMILY_PROBES, size)).round().astype(int))
+    for index in picks:
+        try:
+            candidates.append(model.with_parameters(**grid.point(int(index))))
+        except (PerturbError, ValueError):
+            continue  # a point the problem refuses: it says so in its own status
+    for candidate in candidates:
+        try:
+            families = candidate.families(order)
+        except (PerturbError, ValueError):
+            continue
+        names = [f.name for f in families]
+        if name in names:  # the swept values are replaced at every point: this one is as good
+            return candidate.with_family(name)
+        found += [n for n in names if n not in found]
+    raise UnknownNameError(
+        f"`family` = {name!r} is a family at none of the grid's points probed (its first, last "
+        f"and {len(picks) - 2 if len(picks) > 2 else 0} between) nor at the problem's values: "
+        f"choose from {found}"
     )

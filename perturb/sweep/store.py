@@ -8,16 +8,22 @@ are one write per variable. The group's attributes name the problem, its fixed p
 order, the grid, the settings, the perturb version and the sweep's fingerprint.
 
 A chunk's ``session`` is written last: it is the commit mark. ``--resume`` computes exactly the
-chunks some of whose points still have session 0 — no point twice, none lost — after checking
-that the store holds this very sweep (same fingerprint). A store is never overwritten: a path
-that holds anything else (another sweep, other data, a file) is refused.
+chunks some of whose points still have session 0, or whose files are missing, unreadable or not
+finite where the status promises a number (:meth:`SweepStore.sound`) — no point twice, none lost —
+after checking that the store holds this very sweep (same fingerprint). Every chunk is written to
+disk, even one of fill values, so that a missing file always means a lost chunk. One driver at a
+time writes a store (:mod:`perturb.sweep.lock`); a store whose creation was cut short is marked
+``creating`` and replaced by the same sweep. A store is never overwritten: a path that holds
+anything else (another sweep, other data, a file) is refused.
 
 Only this module (with :mod:`perturb.sweep.driver`) imports zarr and xarray.
 """
 
 from __future__ import annotations
 
+import contextlib
 import json
+import math
 import warnings
 from datetime import UTC, datetime
 from pathlib import Path
@@ -28,11 +34,15 @@ from perturb.errors import InvalidParameterError
 from perturb.sweep.grid import Chunking
 from perturb.sweep.quantities import TIMINGS, check_names, stored_name, variables
 from perturb.sweep.spec import STORE_FORMAT, SweepJob
+from perturb.sweep.status import PointStatus, code_of
 
-__all__ = ["SweepStore", "open_dataset", "remove_store", "write_dataset"]
+__all__ = ["SweepStore", "open_dataset", "write_dataset"]
 
 #: The group attribute that marks a perturb sweep store (its value: the store format).
 MARK = "perturb_sweep"
+#: The group attribute saying whether the store's layout is complete: written first as
+#: ``creating`` (with the mark and the fingerprint), ``ready`` once every array exists.
+STATE, CREATING, READY = "store_state", "creating", "ready"
 
 
 def _zarr():
@@ -66,36 +76,51 @@ def _attrs_of(path: Path) -> dict | None:
 
 
 class SweepStore:
-    """An open sweep store (see the module docstring)."""
+    """An open sweep store (see the module docstring), locked for this process until
+    :meth:`close`."""
 
-    def __init__(self, path: Path, group, chunking: Chunking, swept: tuple[str, ...]):
+    def __init__(self, path: Path, group, chunking: Chunking, swept, lock=None, validate=False):
         self.path = path
         self.group = group
         self.chunking = chunking
-        self.swept = swept
-        self._arrays = {name: group[name] for name in group.array_keys()}
+        self.swept = tuple(swept)
+        self.lock = lock
+        self.validate = validate
+        with _writing_every_chunk():
+            reopened = _zarr().open_group(str(path), mode="r+")
+            self._arrays = {name: reopened[name] for name in reopened.array_keys()}
 
     # ------------------------------------------------------------------ opening
     @staticmethod
-    def check(path, spec, *, resume: bool, version: str) -> bool:
-        """Raise unless ``path`` can take this sweep: new (its folder exists), or — with
-        ``resume`` — a store of this very sweep. Returns whether the store exists.
+    def check(path, spec, *, resume: bool, version: str) -> bool | str:
+        """Raise unless ``path`` can take this sweep: new (its folder exists), a store of this
+        very sweep (with ``resume``), or this sweep's store whose creation was cut short (it is
+        replaced: it holds no result). Returns False (new), True (to resume) or ``"replace"``.
 
         Raises
         ------
         perturb.errors.InvalidParameterError
             ``path`` holds something else than this sweep (another sweep, other data, a file),
-            or a sweep without ``resume``; its folder does not exist.
+            or a sweep without ``resume``, or nothing with ``resume``; its folder does not exist.
         """
         path = Path(path)
-        if path.exists():
-            attrs = _attrs_of(path) if path.is_dir() else None
+        if path.exists() or path.is_symlink():
+            attrs = _attrs_of(path) if path.is_dir() and not path.is_symlink() else None
             if attrs is None:
                 raise _refuse(
                     path,
                     "exists and is not a perturb sweep store",
                     "choose a new path (a sweep never overwrites other data)",
                 )
+            if attrs.get(STATE) == CREATING:
+                if attrs.get("fingerprint") != spec.fingerprint(version):
+                    raise _refuse(
+                        path,
+                        "holds the unfinished creation of another sweep (it was cut short and "
+                        "holds no result)",
+                        "remove it or choose a new path",
+                    )
+                return "replace"
             if not resume:
                 raise _refuse(
                     path,
@@ -108,41 +133,88 @@ class SweepStore:
         parent = path.parent if str(path.parent) else Path(".")
         if not parent.is_dir():
             raise _refuse(path, "its folder does not exist", "create the folder first")
+        if resume:  # a path mistyped must not start a sweep afresh unasked
+            raise _refuse(
+                path,
+                "holds no sweep to continue (--resume)",
+                "check the path, or drop --resume (resume=False) to start the sweep",
+            )
         return False
 
     @classmethod
     def prepare(
         cls, path, job: SweepJob, *, resume: bool, version: str, chunk_points, extra: dict
     ) -> SweepStore:
-        """Create the store at ``path``, or open it to resume ``job`` (checked by :meth:`check`).
+        """Create the store at ``path``, or open it to resume ``job`` (checked by :meth:`check`),
+        and lock it (:class:`perturb.sweep.lock.StoreLock`) until :meth:`close`.
 
         ``chunk_points`` is called (with no argument) for the points per chunk only when the
         store is created; ``extra`` goes into the attributes (the problem as named, ...).
+
+        Raises
+        ------
+        perturb.errors.InvalidParameterError
+            As :meth:`check`; another process is writing the store now.
         """
+        from perturb.sweep.lock import StoreLock
+
         path = Path(path)
-        if cls.check(path, job.spec, resume=resume, version=version):
-            return cls._open(path)
-        return cls._create(path, job, job.key, version, chunk_points(), extra)  # the fingerprint
+        created = cls.check(path, job.spec, resume=resume, version=version) is False
+        if created:
+            try:
+                path.mkdir()
+            except FileExistsError:
+                raise _refuse(
+                    path, "was created by another process just now", "choose a new path"
+                ) from None
+            except OSError as exc:
+                raise _refuse(
+                    path, f"cannot be created ({exc.strerror or exc})", "choose a writable path"
+                ) from None
+        lock = StoreLock(path).acquire()
+        try:
+            if created:
+                return cls._create(path, job, version, chunk_points(), extra, lock)
+            # checked again under the lock: another driver may have changed it meanwhile
+            state = cls.check(path, job.spec, resume=resume, version=version)
+            if state is True:
+                return cls._open(path, lock, job.spec.validate)
+            _empty_folder(path)  # this sweep's store, its creation cut short: made again
+            return cls._create(path, job, version, chunk_points(), extra, lock)
+        except BaseException:
+            if created:  # nothing of it is a result: what this run made of it goes
+                import shutil
+
+                shutil.rmtree(path, ignore_errors=True)
+            lock.release()
+            raise
 
     @classmethod
-    def _open(cls, path: Path) -> SweepStore:
+    def _open(cls, path: Path, lock, validate: bool) -> SweepStore:
         zarr = _zarr()
         group = zarr.open_group(str(path), mode="r+")
         attrs = dict(group.attrs)
         grid = json.loads(attrs["grid"])
         shape = tuple(len(axis["values"]) for axis in grid)
         chunking = Chunking(shape, attrs["chunk"])
-        return cls(path, group, chunking, tuple(axis["name"] for axis in grid))
+        names = tuple(axis["name"] for axis in grid)
+        return cls(path, group, chunking, names, lock, validate)
 
     @classmethod
-    def _create(cls, path, job, fingerprint, version, points, extra) -> SweepStore:
+    def _create(cls, path, job, version, points, extra, lock) -> SweepStore:
         zarr = _zarr()
         spec = job.spec
         grid = spec.grid
         chunking = Chunking.of(grid.shape, points, job.fill_first())
         names = tuple(spec.model.state_names())
+        attributes = {
+            MARK: STORE_FORMAT,
+            STATE: CREATING,  # until every array is made: a cut creation is recognised
+            "fingerprint": job.key,
+            "problem": spec.label,
+        }
         try:
-            group = zarr.open_group(str(path), mode="w-")
+            group = zarr.open_group(str(path), mode="w-", attributes=attributes)
         except Exception as exc:  # noqa: BLE001 - any reason it cannot be created
             raise _refuse(path, f"cannot be created ({exc})", "choose a writable path") from None
         dims = {
@@ -170,9 +242,6 @@ class SweepStore:
             )
         group.attrs.update(
             {
-                MARK: STORE_FORMAT,
-                "fingerprint": fingerprint,
-                "problem": spec.label,
                 "model_class": type(spec.model).__qualname__,
                 "order": spec.order,
                 "perturb_version": version,
@@ -186,21 +255,68 @@ class SweepStore:
                 "sessions": 0,
                 "complete": False,
                 **extra,
+                STATE: READY,
             }
         )
         _consolidate(path)
-        return cls(path, group, chunking, grid.names)
+        return cls(path, group, chunking, grid.names, lock, spec.validate)
+
+    def close(self) -> None:
+        """Release the store's lock (the results stay)."""
+        if self.lock is not None:
+            self.lock.release()
+            self.lock = None
 
     # ------------------------------------------------------------------ progress of the sweep
-    def pending(self) -> list[int]:
-        """The chunks not written yet (some point with session 0), in order."""
+    def pending(self, verify: bool = True) -> list[int]:
+        """The chunks not written yet, in order: some point with session 0 — or, with
+        ``verify``, a chunk of any variable missing, unreadable, or not finite where the point's
+        status promises a number (:meth:`sound`). Such a chunk is computed again."""
         session = self._arrays[stored_name("session", self.swept)]
-        done = np.asarray(session[...]) > 0
         out = []
         for number in self.chunking:
-            if not np.all(done[self.chunking.region(number)]):
+            region = self.chunking.region(number)
+            try:
+                written = bool(np.all(np.asarray(session[region]) > 0))
+            except Exception:  # noqa: BLE001 - an unreadable session chunk: not written
+                written = False
+            if not written or (verify and not self.sound(number)):
                 out.append(number)
         return out
+
+    def sound(self, number: int) -> bool:
+        """Whether every variable's chunk ``number`` is on disk, readable, and finite where the
+        point's status is ``ok`` (ε, the period, the frequency; the verdict when validated)."""
+        region = self.chunking.region(number)
+        where = tuple(int(s.start // c) for s, c in zip(region, self.chunking.chunk, strict=True))
+        values = {}
+        for name, array in self._arrays.items():
+            dims = tuple(array.metadata.dimension_names or ())
+            if dims[: len(self.swept)] != self.swept or name in self.swept:
+                continue  # a coordinate
+            key = array.metadata.encode_chunk_key(where + (0,) * (array.ndim - len(where)))
+            if not (self.path / name / key).is_file():
+                return False
+            try:
+                values[name] = np.asarray(array[region])
+            except Exception:  # noqa: BLE001 - corrupt: computed again
+                return False
+        try:
+            status = values[stored_name("status", self.swept)]
+        except KeyError:
+            return False
+        if np.any(status < 0):
+            return False
+        ok = status == code_of(PointStatus.OK)
+        for name in ("epsilon", "period", "frequency"):
+            array = values.get(stored_name(name, self.swept))
+            if array is None or not np.all(np.isfinite(array[ok])):
+                return False
+        if self.validate:
+            verdict = values.get(stored_name("verdict", self.swept))
+            if verdict is None or np.any(verdict[ok] < 0):
+                return False
+        return True
 
     def begin_session(self) -> int:
         """Count a new run of the sweep; returns its number (1 for the first)."""
@@ -224,11 +340,39 @@ class SweepStore:
                 values = values.astype(str)
             array[region + (slice(None),) * (values.ndim - len(block))] = values
 
+    def points_written(self) -> int:
+        """Points of the chunks written and sound (the store's own count)."""
+        pending = self.pending()
+        return math.prod(self.chunking.shape) - sum(_size(self.chunking, n) for n in pending)
+
     def finish(self) -> None:
         """Mark the store complete when every chunk is written."""
         if not self.pending():
             self.group.attrs.update({"complete": True})
             _consolidate(self.path)
+
+
+def _size(chunking: Chunking, number: int) -> int:
+    return math.prod(s.stop - s.start for s in chunking.region(number))
+
+
+def _empty_folder(path: Path) -> None:
+    """Remove what a cut creation of this sweep's store left in ``path`` (the folder stays)."""
+    import shutil
+
+    for child in path.iterdir():
+        if child.is_dir() and not child.is_symlink():
+            shutil.rmtree(child)
+        else:
+            child.unlink()
+
+
+@contextlib.contextmanager
+def _writing_every_chunk():
+    """Arrays opened inside write every chunk, even one equal to the fill value: a chunk missing
+    on disk then always means one not written (or lost), never one of fill values."""
+    with _zarr().config.set({"array.write_empty_chunks": True}):
+        yield
 
 
 def _coordinate(group, name: str, values: np.ndarray) -> None:
@@ -263,36 +407,24 @@ def _difference(attrs: dict, spec, version: str) -> str:
     return f"holds another sweep ({what} differ), so --resume cannot continue it there"
 
 
-def write_dataset(dataset, path) -> None:
-    """Write a sweep's Dataset (kept in memory) as a store at ``path``, replacing only a perturb
-    sweep store already there (a report folder's own ``sweep.zarr``).
+def write_dataset(dataset, path, attrs: dict | None = None) -> None:
+    """Write a sweep's Dataset (kept in memory) as a new store at ``path`` (a report folder's
+    ``sweep.zarr``), with ``attrs`` added to its attributes (the report's mark of its store).
 
     Raises
     ------
     perturb.errors.InvalidParameterError
-        ``path`` holds something else.
+        ``path`` exists (nothing is ever written over it).
     """
-    import shutil
-
     path = Path(path)
-    if path.exists():
-        if not (path.is_dir() and _attrs_of(path) is not None):
-            raise _refuse(path, "exists and is not a perturb sweep store", "move it away")
-        shutil.rmtree(path)
+    if path.exists() or path.is_symlink():
+        raise _refuse(path, "exists", "move it away (a store is never overwritten)")
+    if attrs:
+        dataset = dataset.copy()
+        dataset.attrs.update(attrs)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # consolidated metadata in Zarr format 3 (see above)
         dataset.to_zarr(str(path), mode="w-", consolidated=True)
-
-
-def remove_store(path) -> bool:
-    """Remove the perturb sweep store at ``path`` (nothing else); returns whether it did."""
-    import shutil
-
-    path = Path(path)
-    if path.is_dir() and _attrs_of(path) is not None:
-        shutil.rmtree(path)
-        return True
-    return False
 
 
 def open_dataset(path):

@@ -19,7 +19,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from perturb.domain import series_domain
+from perturb._defaults import VALIDITY_ESTIMATE_LIMIT
+from perturb.domain import DomainCheck, series_domain
 from perturb.errors import PerturbError
 from perturb.sweep.evaluate import (
     DomainScreen,
@@ -166,6 +167,8 @@ def _store_evaluation(out, k: int, result: dict) -> None:
 def _domain(point: _Point, check) -> None:
     """The point's domain check (kept for its validation), and its status."""
     point.domain = check
+    if check.ok and check.beyond_validity:  # flagged in the point's warnings
+        point.note([check.validity_note()])
     if not check.ok:
         reasons = "; ".join(check.reasons)
         point.fail(PointStatus.OUTSIDE_DOMAIN, f"the series is outside its domain: {reasons}")
@@ -300,7 +303,8 @@ def _columns_evaluated(job, solution, found, valid, statuses, out) -> bool:
         warnings.simplefilter("always")
         try:
             result = evaluate_group(solution, pv, values, np.asarray(job.spec.times))
-            clear = _screen(solution).screen(pv, values, result["omega"])[0]
+            clear, freq, own = _screen(solution).screen(pv, values, result["omega"])
+            estimates = DomainScreen.estimates(freq, own)
         except (SolutionFailed, PerturbError, ValueError, ArithmeticError):
             return False
     finite = np.all(np.isfinite(result["state"])) and np.all(np.isfinite(result["period"]))
@@ -308,14 +312,20 @@ def _columns_evaluated(job, solution, found, valid, statuses, out) -> bool:
         return False
     for name in ("period", "frequency", "amplitude", "state"):
         out[name][valid] = result[name]
+    for i in np.flatnonzero(clear & ~(estimates <= VALIDITY_ESTIMATE_LIMIT)):
+        check = DomainCheck(True, (), math.nan, (), (), {}, float(estimates[i]))
+        out["warnings"][valid[i]] = check.validity_note()  # inside, beyond its validity
     for i in np.flatnonzero(~clear):
         point = {name: float(column[i]) for name, column in values.items()}
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             check = series_domain(solution, float(pv[i]), point)
         k = valid[i]
-        if caught:
-            out["warnings"][k] = "; ".join(dict.fromkeys(str(w.message) for w in caught))
+        notes = [str(w.message) for w in caught]
+        if check.ok and check.beyond_validity:
+            notes.append(check.validity_note())
+        if notes:
+            out["warnings"][k] = "; ".join(dict.fromkeys(notes))
         if not check.ok:
             statuses[k] = PointStatus.OUTSIDE_DOMAIN
             reasons = "; ".join(check.reasons)

@@ -25,6 +25,7 @@ from perturb._defaults import (
 from perturb.domain import DomainCheck, series_domain
 from perturb.errors import PerturbError, bad_value
 from perturb.oracle import Integrator, Trajectory
+from perturb.progress import track
 from perturb.validation.checks import (
     analytic_states,
     component_errors,
@@ -132,7 +133,7 @@ def _report(base: dict, outcome: Verdict, sentence: str, **fields) -> Validation
 def _scan(model, eps, order, integrator, rtol, stiff, budget) -> tuple[SlopeFit | None, str]:
     """The one-period error along ε × SLOPE_FACTORS (the problem's own small parameter rescaled)."""
     eps_grid, err_grid = [], []
-    for factor in SLOPE_FACTORS:
+    for factor in track(SLOPE_FACTORS, label=f"validate {model.label()}: order check"):
         try:
             variant = model.with_epsilon(eps * factor)
         except (PerturbError, ValueError):

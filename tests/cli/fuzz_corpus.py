@@ -1,7 +1,9 @@
-"""The CLI fuzz corpus (issue 10): every subcommand x every option x hostile values.
+"""The CLI fuzz corpus (issues 10 and 31): every subcommand x every option x hostile values.
 
 Shared by ``tests/cli/test_cli_fuzz.py`` (a derandomized hypothesis sample, in process) and
 ``benchmarks/fuzz_cli.py`` (the whole corpus, each invocation in a fresh process with a time limit).
+The newer surfaces' own corpus, with the user's files and the folders they run in, is
+``tests/cli/hostile_corpus.py``.
 
 Each invocation is judged by :func:`judge`, which returns the list of broken promises:
 a traceback, an exit code other than 0/1/2, an exit 2 whose stderr is not one line naming what was
@@ -48,6 +50,9 @@ OPTIONS = {
     "validate": ("--order", "--integrator", "--periods", "--format", "--tol"),
     "work-precision": ("--periods", "--orders", "--repeat", "--format", "--plot"),
     "reproduce": ("--format", "--output"),
+    "families": ("--order", "--format", "--output"),
+    "response": ("--order", "--validate", "--format", "--plot", "--sweep", "--output"),
+    "sweep": ("--order", "--workers", "--timeout", "--periods", "--tol", "--times", "--format"),
 }
 SET_NAMES = ("eps", "amplitude", "mu", "bogus", "", "eps=1")
 
@@ -57,6 +62,8 @@ SET_NAMES = ("eps", "amplitude", "mu", "bogus", "", "eps=1")
 BASES = {
     "reproduce": ["reproduce", "paper"],
     "work-precision": ["work-precision", "duffing", "--periods", "2", "--repeat", "1"],
+    "response": ["response", "forced-duffing", "--sweep", "Omega=1.0:1.1:3"],
+    "sweep": ["sweep", "duffing", "--grid", "eps=0.1,0.2", "--format", "csv", "--workers", "1"],
 }
 
 

@@ -16,7 +16,7 @@ from tests.cli.fuzz_corpus import corpus, judge
 
 #: Commands whose valid runs take seconds each (integrations, sweeps, the paper): their hostile
 #: variants are sampled, their valid ones are left to the benchmark runner.
-SLOW = ("work-precision", "reproduce")
+SLOW = ("work-precision", "reproduce", "response", "sweep")
 
 CASES = [argv for argv in corpus() if not (argv and argv[0] in SLOW)]
 
@@ -44,6 +44,12 @@ def test_the_cli_keeps_its_promises(capsys, argv):
         ["work-precision", "duffing", "--orders", "nan"],
         ["reproduce", "paper", "--output", ""],
         ["reproduce", "paper", "--format", "xml"],
+        ["response", "forced-duffing", "--sweep", "Omega=1.0:1.1:3", "--validate", "1e308"],
+        ["response", "forced-duffing", "--sweep", "Omega=1.0:1.1:3", "--plot", ""],
+        ["response", "forced-duffing", "--sweep", "Omega=1.0:1.1:3", "--order", "nan"],
+        ["sweep", "duffing", "--grid", "eps=0.1,0.2", "--format", "csv", "--workers", "0"],
+        ["sweep", "duffing", "--grid", "eps=0.1,0.2", "--format", "csv", "--timeout", "inf"],
+        ["sweep", "duffing", "--grid", "eps=0.1,0.2", "--format", "csv", "--times", "nan"],
     ],
 )
 def test_slow_commands_refuse_hostile_values_at_once(capsys, argv):

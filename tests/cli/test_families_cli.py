@@ -7,7 +7,7 @@ import pytest
 from perturb.cli import main
 
 #: The keys of one family in the JSON contract, exactly.
-FAMILY_KEYS = {"name", "kind", "amplitudes", "frequency", "status", "message"}
+FAMILY_KEYS = {"name", "kind", "amplitudes", "frequency", "status", "message", "outside", "beyond"}
 
 
 def run(capsys, *argv):

@@ -16,6 +16,7 @@ import pytest
 
 from perturb.cli import main
 from perturb.oracle.base import IntegratorBase
+from perturb.report.written import MARKER
 from perturb.scene import parse_scene, run_scene
 from problems import get_problem
 
@@ -123,7 +124,7 @@ def test_a_plot_free_scene_never_imports_matplotlib(tmp_path):
     )
     assert run.stdout.strip().splitlines()[-1] == "False"
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == sorted(
-        ["scene.toml", "summary.md", "solution.csv", "solution.json", "validation.json"]
+        [MARKER, "scene.toml", "summary.md", "solution.csv", "solution.json", "validation.json"]
     )
 
 
@@ -145,7 +146,9 @@ def test_the_folder_holds_exactly_what_was_asked(capsys, tmp_path, outputs, file
     folder = tmp_path / "out"
     code, out, err = _report(capsys, scene, folder)
     assert code == 0, err
-    assert sorted(p.name for p in folder.iterdir()) == sorted(["scene.toml", "summary.md", *files])
+    assert sorted(p.name for p in folder.iterdir()) == sorted(
+        [MARKER, "scene.toml", "summary.md", *files]
+    )
     assert (folder / "scene.toml").read_text(encoding="utf-8") == scene.read_text(encoding="utf-8")
     summary = (folder / "summary.md").read_text(encoding="utf-8")
     assert out == summary and "# duffing: order 2" in summary
@@ -161,7 +164,7 @@ def test_a_second_report_removes_the_files_no_longer_asked(capsys, tmp_path):
     code, _, _ = _report(capsys, _scene(tmp_path, "latex = true\n"), folder)
     assert code == 0
     assert sorted(p.name for p in folder.iterdir()) == [
-        "notes.txt", "scene.toml", "solution.tex", "summary.md"]  # fmt: skip
+        MARKER, "notes.txt", "scene.toml", "solution.tex", "summary.md"]  # fmt: skip
 
 
 def test_duffing_scene_end_to_end(capsys, tmp_path):
@@ -269,7 +272,7 @@ def test_disk_fast_spin_scene_end_to_end(capsys, tmp_path):
     plots = ["time_series", "error", "phase", "convergence", "work_precision", "euler",
              "orientation"]  # fmt: skip
     assert sorted(p.name for p in folder.iterdir()) == sorted(
-        ["scene.toml", "summary.md", "solution.csv", "solution.json", "euler.csv",
+        [MARKER, "scene.toml", "summary.md", "solution.csv", "solution.json", "euler.csv",
          "validation.json", "work_precision.csv", "solution.tex", *[f"{p}.png" for p in plots]]
     )  # fmt: skip
     euler = np.genfromtxt(folder / "euler.csv", delimiter=",", names=True)

@@ -124,9 +124,18 @@ def test_resume_reads_the_chunks_back(tmp_path):
     job_spec = check_spec(get_problem("duffing").create(), [parse_axis("eps=0.05:0.1:5")])
     job = SweepJob(job_spec, Derivation(DeriveMode.OWN, "test"), "k")
     store.write(1, run_chunk(job, store.chunking.indices(1), session=1))
-    reopened = SweepStore.prepare(tmp_path / "s.zarr", SweepJob(job_spec, job.derivation, job_spec.fingerprint("0.1.0")),
-                                  resume=True, version="0.1.0", chunk_points=lambda: 99, extra={})  # fmt: skip
+    again = SweepJob(job_spec, job.derivation, job_spec.fingerprint("0.1.0"))
+
+    def reopen():
+        return SweepStore.prepare(tmp_path / "s.zarr", again, resume=True, version="0.1.0",
+                                  chunk_points=lambda: 99, extra={})  # fmt: skip
+
+    with pytest.raises(InvalidParameterError, match="another perturb sweep is writing"):
+        reopen()  # the first is still open: one writer at a time
+    store.close()
+    reopened = reopen()
     assert reopened.chunking.chunk == (2,) and reopened.pending() == [0, 2]
+    reopened.close()
 
 
 def test_points_as_csv_and_json(tmp_path):

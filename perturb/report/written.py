@@ -1,0 +1,464 @@
+"""What perturb wrote, so that it never removes or overwrites what it did not write.
+
+Two kinds of output:
+
+**A file** (``--output FILE`` of the commands that print, ``--plot FILE``). :func:`check_file`
+runs before any work: the path is not empty, not a folder, its folder exists and can be written,
+its plot format is known; an existing, non-empty file is refused (one line, exit 2) unless perturb
+wrote it — or ``force`` is given. :func:`write_file` writes atomically (a temporary file in the
+same folder moved into place) and records what it wrote in this user's record of outputs,
+``outputs-written.json`` in perturb's cache folder (``PERTURB_CACHE_DIR``, kept private): the
+resolved path, the size and the SHA-256 of the content. "Perturb wrote it" means the file now
+holds exactly what perturb last wrote there; a file the user changed since is the user's again.
+With the cache off (``PERTURB_CACHE_DIR=off``) there is no record, and every existing non-empty
+file needs ``force``.
+
+**A report folder** (``perturb report SCENE --output DIR``). The folder holds a marker,
+``.perturb-report.json``, naming the scene it reports and, for each file perturb wrote there, its
+SHA-256 (a Zarr store: a token also kept in the store's attributes). :func:`claim_folder` runs
+before any work: a new or empty folder is taken; a folder holding an earlier report of the same
+scene file is taken; the report of another scene needs ``force``; and in every case a file the
+report would write or remove that perturb did not write (or that changed since) is a clash — one
+line naming it, exit 2 — which ``force`` does not override: ``force`` replaces perturb's own files
+only. Files of other names are never touched.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import json
+import os
+import stat
+import tempfile
+import uuid
+from collections.abc import Iterable
+from pathlib import Path
+
+from perturb.errors import OutputError
+
+__all__ = [
+    "MARKER",
+    "ReportFolder",
+    "check_file",
+    "claim_folder",
+    "is_ours",
+    "write_file",
+]
+
+#: The marker file of a report folder.
+MARKER = ".perturb-report.json"
+#: The record of single files written, in the cache folder.
+RECORD = "outputs-written.json"
+#: Entries kept in the record (the oldest are forgotten first: their files then need ``force``).
+RECORD_ENTRIES = 4096
+#: The marker's format (bump when its layout changes).
+MARKER_FORMAT = 1
+#: The attribute of a report's Zarr store holding its token.
+STORE_TOKEN = "perturb_report_token"
+
+#: Plot formats by file extension (matplotlib's savefig formats that perturb's plots are drawn to).
+PLOT_EXTENSIONS = ("png", "pdf", "svg", "eps", "ps", "jpg", "jpeg", "tif", "tiff", "webp")
+
+
+# ---------------------------------------------------------------------------------- hashing
+def _digest_file(path: Path) -> str | None:
+    """The SHA-256 of the regular file ``path`` (None if it is not one or cannot be read)."""
+    try:
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | os.O_NONBLOCK)
+    except OSError:
+        return None
+    with os.fdopen(fd, "rb") as fh:
+        if not stat.S_ISREG(os.fstat(fh.fileno()).st_mode):
+            return None
+        digest = hashlib.sha256()
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def _digest(data: bytes) -> str:
+    return hashlib.sha256(data).hexdigest()
+
+
+def _bytes(content: bytes | str) -> bytes:
+    return content.encode("utf-8") if isinstance(content, str) else bytes(content)
+
+
+def _atomic_write(path: Path, data: bytes) -> None:
+    """``data`` into ``path`` by a temporary file in its folder moved into place (never torn)."""
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+        mode = stat.S_IMODE(os.stat(path).st_mode) if path.exists() else 0o666 & ~_umask()
+        os.chmod(tmp, mode)
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+# ---------------------------------------------------------------------------------- the record
+def _record_path() -> Path | None:
+    """The record of single files, when the cache folder is set, ours and private."""
+    from perturb.cache import cache_dir
+
+    folder = cache_dir()
+    if folder is None:
+        return None
+    try:
+        folder.mkdir(mode=0o700, parents=True, exist_ok=True)
+        info = os.stat(folder)
+    except OSError:
+        return None
+    if hasattr(os, "geteuid") and info.st_uid != os.geteuid():
+        return None
+    if info.st_mode & (stat.S_IWGRP | stat.S_IWOTH) and not info.st_mode & stat.S_ISVTX:
+        return None
+    return folder / RECORD
+
+
+def _read_record(path: Path | None) -> dict:
+    if path is None:
+        return {}
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+    files = data.get("files") if isinstance(data, dict) else None
+    return files if isinstance(files, dict) else {}
+
+
+@contextlib.contextmanager
+def _locked(path: Path):
+    """An exclusive lock beside ``path`` (two perturb processes update the record in turn)."""
+    lock = path.with_name(path.name + ".lock")
+    fd = os.open(lock, os.O_RDWR | os.O_CREAT, 0o600)
+    try:
+        try:
+            import fcntl
+
+            fcntl.flock(fd, fcntl.LOCK_EX)
+        except ImportError:  # pragma: no cover - not POSIX: last writer wins
+            pass
+        yield
+    finally:
+        os.close(fd)
+
+
+def _remember(path: Path, data: bytes) -> None:
+    record = _record_path()
+    if record is None:
+        return
+    with contextlib.suppress(OSError), _locked(record):
+        files = _read_record(record)
+        files.pop(str(path), None)
+        files[str(path)] = {"sha256": _digest(data), "size": len(data)}
+        while len(files) > RECORD_ENTRIES:
+            files.pop(next(iter(files)))
+        _atomic_write(record, json.dumps({"format": 1, "files": files}).encode())
+
+
+def is_ours(path) -> bool:
+    """Whether the file ``path`` holds exactly what perturb last wrote there (an empty file
+    counts as ours: there is nothing in it to lose)."""
+    path = Path(path).resolve()
+    try:
+        size = path.stat().st_size
+    except OSError:
+        return False
+    if size == 0 and path.is_file():
+        return True
+    entry = _read_record(_record_path()).get(str(path))
+    if not isinstance(entry, dict) or entry.get("size") != size:
+        return False
+    return _digest_file(path) == entry.get("sha256")
+
+
+# ---------------------------------------------------------------------------------- one file
+def check_file(path, flag: str = "--output", *, force: bool = False, plot: bool = False) -> Path:
+    """Check, before any work, that perturb may write the file ``path`` (see the module notes).
+
+    Parameters
+    ----------
+    path : str or path-like
+    flag : str
+        The option named in messages (``--output``, ``--plot``).
+    force : bool
+        Overwrite an existing file that perturb did not write.
+    plot : bool
+        The file is a plot: its extension must name a format (:data:`PLOT_EXTENSIONS`).
+
+    Returns
+    -------
+    pathlib.Path
+
+    Raises
+    ------
+    perturb.errors.OutputError
+        One line naming the option, the path and the fix.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> folder = tempfile.mkdtemp()
+    >>> check_file(f"{folder}/out.json").name
+    'out.json'
+    >>> check_file(f"{folder}/plot.xyz", "--plot", plot=True)
+    Traceback (most recent call last):
+    ...
+    perturb.errors.OutputError: --plot '.../plot.xyz': the format 'xyz' is unknown: give a file name ending in .png, .pdf, .svg, .eps, .ps, .jpg, .jpeg, .tif, .tiff or .webp
+    """
+    text = str(path)
+    if not text.strip():
+        raise OutputError(
+            f"{flag} {text!r}: name a file, e.g. {flag} result{'.png' if plot else '.txt'}"
+        )
+    target = Path(text).expanduser()
+    folder = target.parent
+    if target.is_dir():
+        raise OutputError(
+            f"{flag} {text!r} is a folder: give a file path, e.g. {text.rstrip('/')}/out"
+        )
+    if plot:
+        extension = target.suffix[1:].lower()
+        if extension not in PLOT_EXTENSIONS:
+            what = f"the format {extension!r} is unknown" if extension else "it has no extension"
+            names = ", ".join(f".{e}" for e in PLOT_EXTENSIONS[:-1])
+            raise OutputError(
+                f"{flag} {text!r}: {what}: give a file name ending in {names} or "
+                f".{PLOT_EXTENSIONS[-1]}"
+            )
+    if not folder.is_dir():
+        raise OutputError(
+            f"{flag} {text!r}: the folder {str(folder)!r} does not exist: create it first or "
+            "give a path in an existing folder"
+        )
+    if not os.access(folder, os.W_OK) or not _can_create(folder):
+        raise OutputError(
+            f"{flag} {text!r}: the folder {str(folder)!r} cannot be written: choose another"
+        )
+    if target.exists() or target.is_symlink():
+        if not target.is_file():
+            raise OutputError(
+                f"{flag} {text!r} exists and is not a regular file: choose another path"
+            )
+        if not force and not is_ours(target):
+            raise OutputError(
+                f"{flag} {text!r} exists and was not written by perturb (or was changed since): "
+                "perturb does not overwrite it; choose another path, or pass --force to replace it"
+            )
+    return target
+
+
+def _can_create(folder: Path) -> bool:
+    """Whether a file can be created in ``folder`` (a probe with a fresh name, removed at once)."""
+    try:
+        with tempfile.NamedTemporaryFile(dir=folder, prefix=".perturb-probe-"):
+            return True
+    except OSError:
+        return False
+
+
+def write_file(path, content: bytes | str) -> None:
+    """Write ``content`` into ``path`` atomically and record it as written by perturb.
+
+    Raises
+    ------
+    perturb.errors.OutputError
+        The file cannot be written (the reason and the fix).
+    """
+    target = Path(path).expanduser()
+    data = _bytes(content)
+    try:
+        _atomic_write(target, data)
+    except OSError as exc:
+        raise OutputError(
+            f"{str(path)!r}: cannot be written ({exc.strerror or exc}); choose a writable path"
+        ) from None
+    _remember(target.resolve(), data)
+
+
+# ---------------------------------------------------------------------------------- a folder
+class ReportFolder:
+    """A report folder claimed by :func:`claim_folder`: writes its files and keeps the marker."""
+
+    def __init__(self, folder: Path, scene: str, files: dict, stores: dict):
+        self.folder = folder
+        self.scene = scene
+        self.files = dict(files)  # name -> sha256 (None: claimed, being written)
+        self.stores = dict(stores)  # name -> token
+        self.stale: list[str] = []  # perturb's files of an earlier report not written this time
+
+    def _save(self) -> None:
+        marker = {
+            "perturb_report": MARKER_FORMAT,
+            "scene": self.scene,
+            "files": self.files,
+            "stores": self.stores,
+        }
+        _atomic_write(self.folder / MARKER, json.dumps(marker, indent=1).encode())
+
+    def begin(self, names: Iterable[str], stale: Iterable[str] = ()) -> None:
+        """Claim ``names`` in the marker (before writing them), remove ``stale`` ones (ours)."""
+        for name in stale:
+            self._remove(name)
+        for name in names:
+            self.files.setdefault(name, None)
+        self._save()
+
+    def _remove(self, name: str) -> None:
+        path = self.folder / name
+        if name in self.stores:
+            if path.is_dir():
+                import shutil
+
+                shutil.rmtree(path)
+            self.stores.pop(name)
+        else:
+            with contextlib.suppress(FileNotFoundError):
+                path.unlink()
+            self.files.pop(name, None)
+
+    def write(self, name: str, content: bytes | str) -> None:
+        data = _bytes(content)
+        _atomic_write(self.folder / name, data)
+        self.files[name] = _digest(data)
+        self._save()
+
+    def store_token(self, name: str) -> str:
+        """A fresh token for the store ``name`` (kept in its attributes and in the marker)."""
+        if (self.folder / name).is_dir():
+            self._remove(name)
+        token = uuid.uuid4().hex
+        self.stores[name] = token
+        self.files.pop(name, None)
+        self._save()
+        return token
+
+
+def _read_marker(folder: Path) -> dict | None:
+    try:
+        data = json.loads((folder / MARKER).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    if not (isinstance(data, dict) and data.get("perturb_report") == MARKER_FORMAT):
+        return None
+    files, stores = data.get("files"), data.get("stores", {})
+    if not (isinstance(files, dict) and isinstance(stores, dict)):
+        return None
+    return data
+
+
+def _store_token(path: Path) -> str | None:
+    """The token in the attributes of the Zarr store at ``path`` (format 2 or 3), if any."""
+    for meta, key in (("zarr.json", "attributes"), (".zattrs", None)):
+        try:
+            data = json.loads((path / meta).read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            continue
+        attrs = data.get(key, {}) if key else data
+        if isinstance(attrs, dict):
+            return attrs.get(STORE_TOKEN)
+    return None
+
+
+def claim_folder(
+    folder,
+    names: Iterable[str],
+    scene: str,
+    *,
+    known: Iterable[str] = (),
+    force: bool = False,
+) -> ReportFolder:
+    """Check, before any work, that a report may be written into ``folder``; create it.
+
+    Parameters
+    ----------
+    folder : str or path-like
+    names : iterable of str
+        The files (and stores) this report writes.
+    scene : str
+        What the report is of (the scene file's resolved path): a folder holding the report of
+        another needs ``force``.
+    known : iterable of str
+        Every name a report may write: those of an earlier report of ours not written this time
+        are removed (only if perturb wrote them and they are unchanged).
+    force : bool
+        Replace perturb's own files from the report of another scene.
+
+    Returns
+    -------
+    ReportFolder
+
+    Raises
+    ------
+    perturb.errors.OutputError
+        The path is empty, a file, cannot be created or written; a file to be written or
+        removed was not written by perturb (or changed since); the report of another scene
+        without ``force``.
+    """
+    text = str(folder)
+    if not text.strip():
+        raise OutputError(f"--output {text!r}: name a folder, e.g. --output report")
+    path = Path(text).expanduser()
+    if path.exists() and not path.is_dir():
+        raise OutputError(f"--output {text!r} is an existing file: name a folder")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OutputError(
+            f"--output {text!r}: cannot write there (the folder cannot be created: "
+            f"{exc.strerror or exc}); choose a writable folder"
+        ) from None
+    if not os.access(path, os.W_OK) or not _can_create(path):
+        raise OutputError(
+            f"--output {text!r}: cannot write there (the folder is not writable); choose a writable folder"
+        )
+    names = list(names)
+    marker = _read_marker(path)
+    if (path / MARKER).exists() and marker is None:
+        raise OutputError(
+            f"--output {text!r}: {MARKER} there is not a marker perturb wrote; move it away or "
+            "choose another folder"
+        )
+    ours_files, ours_stores = {}, {}
+    if marker is not None:
+        for name, digest in marker["files"].items():
+            if not isinstance(name, str) or "/" in name:
+                continue
+            current = _digest_file(path / name)
+            if current is not None and (digest is None or digest == current):
+                ours_files[name] = current
+        for name, token in marker["stores"].items():
+            if (
+                isinstance(name, str)
+                and (path / name).is_dir()
+                and _store_token(path / name) == token
+            ):
+                ours_stores[name] = token
+        if marker.get("scene") != scene and not force:
+            raise OutputError(
+                f"--output {text!r} holds the report of another scene ({marker.get('scene')}): "
+                "choose another folder, or pass --force to replace perturb's files there"
+            )
+    ours = set(ours_files) | set(ours_stores)
+    stale = [n for n in known if n not in names and n in ours]
+    for name in names:
+        target = path / name
+        if (target.exists() or target.is_symlink()) and name not in ours:
+            raise OutputError(
+                f"--output {text!r}: {name} there was not written by perturb (or was changed "
+                "since); perturb never overwrites it: move it away or choose another folder"
+            )
+    claimed = ReportFolder(path, scene, ours_files, ours_stores)
+    claimed.stale = stale
+    return claimed
