@@ -69,3 +69,24 @@ def pytest_runtest_call(item):
     funcargs = getattr(item, "funcargs", {}).values()
     clients = [v for v in funcargs if type(v).__module__.startswith("distributed.client")]
     _seed_noise(item.nodeid, clients)
+
+
+#: The clone's top level when the session began: a test that writes a file there (an ``--output``
+#: taken relative to the working folder) would leave it in a user's clone.
+_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+_ROOT_ENTRIES = set(os.listdir(_ROOT))
+
+
+def pytest_sessionfinish(session, exitstatus):
+    """Fail the session when a test left a new entry at the clone's top level."""
+    left = sorted(
+        name
+        for name in set(os.listdir(_ROOT)) - _ROOT_ENTRIES
+        if not name.startswith(".") and not name.endswith(".egg-info") and name != "__pycache__"
+    )
+    if left:
+        session.config.get_terminal_writer().line(
+            f"tests wrote into the clone's top level: {left} (write into tmp_path instead)",
+            red=True,
+        )
+        session.exitstatus = pytest.ExitCode.TESTS_FAILED

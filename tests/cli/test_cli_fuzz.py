@@ -21,6 +21,12 @@ SLOW = ("work-precision", "reproduce", "response", "sweep")
 CASES = [argv for argv in corpus() if not (argv and argv[0] in SLOW)]
 
 
+@pytest.fixture(autouse=True)
+def _in_a_scratch_folder(tmp_path, monkeypatch):
+    """``--output -1`` is a valid file name: written in a folder of the test's, not the clone."""
+    monkeypatch.chdir(tmp_path)
+
+
 @settings(
     max_examples=60,
     deadline=None,
