@@ -276,6 +276,10 @@ SWEEP_MEMORY_BYTES = 2 * 2**30
 #: string object of a few dozen characters.
 SWEEP_TEXT_BYTES = 80
 
+#: Times the chunks of a sweep whose scattered job was lost with a worker (the only one holding it)
+#: are sent again with the job scattered afresh: killing workers again and again, a sweep still ends.
+SWEEP_RESCATTERS = 3
+
 #: Seconds to wait for an existing Dask scheduler (``--scheduler``) before giving up with one
 #: line (exit 2): a scheduler on the network answers in well under a second.
 SWEEP_CONNECT_SECONDS = 10.0

@@ -38,6 +38,7 @@ from perturb._defaults import (
     SWEEP_PILOT_POINTS,
     SWEEP_PILOT_SECONDS,
     SWEEP_PILOT_VALIDATIONS,
+    SWEEP_RESCATTERS,
     SWEEP_TASK_OVERHEAD_SECONDS,
     SWEEP_TASK_SECONDS,
     SWEEP_WORKERS_PER_CORE,
@@ -443,51 +444,66 @@ def run_tasks(
     ``done`` points are already written (for the progress report).
     """
     from distributed import as_completed
+    from distributed.client import FutureCancelledError
 
     client = cluster.client
-    # the job once to every worker, not inside every task (an axis of 10^6 values is 9 MB)
-    blob = client.scatter(pack(job), broadcast=True, hash=False)
-    token = uuid.uuid4().hex[:8]
+    packed = pack(job)
     total = math.prod(chunking.shape)
-    futures = {}
-    for number in pending:
-        future = client.submit(
-            run_packed,
-            blob,
-            job.key,
-            chunking.shape,
-            chunking.chunk,
-            number,
-            session,
-            key=f"perturb-sweep-{job.key[:10]}-{token}-{number}",
-            pure=False,
-        )
-        futures[future] = number
-    lost: list[tuple[int, str]] = []
+    lost: dict[int, str] = {}
     cpu = writing = 0.0
     tasks = 0
     notify(label, done, total)
-    try:
-        for future in as_completed(futures, loop=client.loop):
-            number = futures[future]
-            try:
-                # a result lost with its worker after it finished is recomputed: this waits for it
-                result = future.result()
-            except Exception as exc:  # noqa: BLE001 - a chunk that kept killing its workers
-                lost.append((number, " ".join(f"{type(exc).__name__}: {exc}".split())))
-                continue
-            cpu += result.get("cpu", 0.0)
-            clock = time.perf_counter()
-            write(number, result)
-            writing += time.perf_counter() - clock
-            tasks += 1
-            done += _points(chunking, number)
-            notify(label, done, total)
-            future.release()
-    except BaseException:
-        client.cancel(list(futures))
-        raise
-    return RunStats(tuple(lost), tasks, cpu, writing)
+    rounds = 0
+    while pending:
+        # the job once to every worker, not inside every task (an axis of 10^6 values is 9 MB)
+        blob = client.scatter(packed, broadcast=True, hash=False)
+        token = uuid.uuid4().hex[:8]
+        futures = {}
+        for number in pending:
+            future = client.submit(
+                run_packed,
+                blob,
+                job.key,
+                chunking.shape,
+                chunking.chunk,
+                number,
+                session,
+                key=f"perturb-sweep-{job.key[:10]}-{token}-{number}",
+                pure=False,
+            )
+            futures[future] = number
+        orphaned: list[int] = []
+        try:
+            for future in as_completed(futures, loop=client.loop):
+                number = futures[future]
+                try:
+                    # a result lost with its worker after it finished is recomputed: this waits
+                    result = future.result()
+                except FutureCancelledError as exc:
+                    # the scattered job went down with the only worker holding it (a worker that
+                    # joined after the scatter has no copy): not the chunk's fault, sent again
+                    orphaned.append(number)
+                    lost[number] = " ".join(f"{type(exc).__name__}: {exc}".split())
+                    continue
+                except Exception as exc:  # noqa: BLE001 - a chunk that kept killing its workers
+                    lost[number] = " ".join(f"{type(exc).__name__}: {exc}".split())
+                    continue
+                cpu += result.get("cpu", 0.0)
+                clock = time.perf_counter()
+                write(number, result)
+                writing += time.perf_counter() - clock
+                tasks += 1
+                done += _points(chunking, number)
+                notify(label, done, total)
+                future.release()
+        except BaseException:
+            client.cancel(list(futures))
+            raise
+        rounds += 1
+        pending = orphaned if rounds <= SWEEP_RESCATTERS else []
+        for number in pending:
+            del lost[number]
+    return RunStats(tuple(sorted(lost.items())), tasks, cpu, writing)
 
 
 def _call_packed(blob: bytes, key: str, function, args: tuple):

@@ -135,6 +135,35 @@ def test_a_worker_killed_mid_sweep_loses_nothing(client, tmp_path):
     client.wait_for_workers(2, timeout=HANG_GUARD)
 
 
+def test_the_only_worker_killed_mid_sweep_loses_nothing(tmp_path):
+    """The scattered job dies with the only worker holding it: its chunks are sent again with the
+    job scattered afresh, not reported as lost (CI saw this when a worker that joined after the
+    scatter outlived the one killed)."""
+    from distributed import Client, LocalCluster
+
+    problem = get_problem("duffing").create()
+    store = tmp_path / "only.zarr"
+    result: dict = {}
+    cluster = LocalCluster(
+        n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None,
+        silence_logs=50,
+    )  # fmt: skip
+    with cluster, Client(cluster, set_as_default=False) as one:
+
+        def run():
+            result["ds"] = perturb.sweep(problem, DUFFING, validate=True, client=one, output=store)
+
+        thread = threading.Thread(target=run)
+        thread.start()
+        _wait_for(lambda: _written(store) > 0 or not thread.is_alive(), HANG_GUARD, "a chunk")
+        (pid,) = one.run(os.getpid).values()
+        os.kill(pid, signal.SIGKILL)  # the nanny starts a new worker, without the job
+        thread.join(HANG_GUARD)
+    assert not thread.is_alive() and "ds" in result
+    assert _written(store) == 4 * 3
+    assert_same(xr.open_zarr(store), reference(problem, DUFFING, validate=True))
+
+
 def test_an_interrupted_driver_resumes_where_it_stopped(tmp_path, capsys):
     store = tmp_path / "interrupted.zarr"
     axes = ["eps=0.02:0.2:6", "amplitude=0.6:1.4:6"]
