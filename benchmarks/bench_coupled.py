@@ -122,8 +122,8 @@ def _first_order(problem):
     """The forced chain's first-order rows at the problem's values (pi divided out), their
     unknowns, and the parameter values."""
     from perturb.method.driven import amplitude_equations as driven_equations
-    from perturb.response.branches import exact_number
-    from perturb.response.roots import _primitive
+    from perturb.steady.branches import exact_number
+    from perturb.steady.roots import _primitive
 
     equations = driven_equations(problem.system(), 0)
     values = problem.symbol_values()
@@ -159,8 +159,8 @@ def _newton(rows, unknowns, known) -> tuple[int, int, int]:
 
 
 def forced_row(n: int, omega: float, budget: float, shoot: bool, sweep: str) -> str:
-    from perturb.response.census import distinct_orbits, shift_symmetry
     from perturb.response.model import problem_response
+    from perturb.steady.census import distinct_orbits, shift_symmetry
     from tests.coupled.census import seeded
 
     problem = forced_chain_of(n).create(Omega=omega)

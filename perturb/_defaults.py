@@ -587,7 +587,7 @@ AT_REST = 1e-12
 #: the forced pair's four unknowns took 1.2 s that way against 0.06 s as typed).
 PIVOT_GROWTH = 1
 
-# -- perturb.response.singular
+# -- perturb.steady.singular
 #: A singular point is a branch point when :math:`|w\cdot P_\lambda| \le` this times
 #: :math:`|P_\lambda|` (w of unit length): symmetry makes the product zero exactly, the roots come
 #: from a certified isolation to 2**-128, so their rounding leaves ~1e-15; a fold's is of order 1.

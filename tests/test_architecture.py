@@ -4,7 +4,11 @@ Every import is scanned, at module level and inside functions, by parsing the so
 
 1. ``perturb`` never imports ``problems`` (problems depend on the engine, never the reverse);
 2. nothing imports the leaves ``perturb.report`` and ``perturb.cli`` except the CLI itself (and tests);
-3. no source file of the package grows past a size that signals two concerns in one room.
+3. no source file of the package grows past a size that signals two concerns in one room;
+4. the analytic rooms (the series, its steady states, continuation, roots) never import the rooms
+   that check them (oracle, validation, the response curve with its true orbits), and validation
+   never imports the response curve: no arrow runs back up;
+5. no two files of the package import each other (a circle hidden by a function-level import).
 """
 
 from __future__ import annotations
@@ -166,6 +170,52 @@ def test_only_the_sweep_room_imports_dask_xarray_zarr():
     assert not offenders, "only the sweep room imports its extra:\n" + "\n".join(offenders)
 
 
+#: Rooms that derive by the series alone, and the rooms above them they must never import.
+ANALYTIC_ROOMS = ("perturb.steady", "perturb.method", "perturb.continuation", "perturb.algebra")
+CHECKING_ROOMS = ("perturb.oracle", "perturb.validation", "perturb.response")
+
+
+def upward_importers(paths, module=None) -> list[str]:
+    """Files of an analytic room that import a checking room, and validation importing the
+    response curve (rule 4)."""
+    out = []
+    for path, line, name in _imports_of(paths, module):
+        own = module or _module_name(path)
+        analytic = any(_is_under(own, room) for room in ANALYTIC_ROOMS)
+        if (analytic and any(_is_under(name, room) for room in CHECKING_ROOMS)) or (
+            _is_under(own, "perturb.validation") and _is_under(name, "perturb.response")
+        ):
+            out.append(f"{_relative(path)}:{line} imports {name}")
+    return out
+
+
+def mutual_importers(paths) -> list[str]:
+    """Pairs of files that import each other (rule 5); a package and its own modules aside (an
+    ``__init__`` re-exports them)."""
+    modules = {_module_name(path): path for path in paths}
+    imported = {
+        module: {name for _, name in _imports(path)} & set(modules)
+        for module, path in modules.items()
+    }
+    pairs = []
+    for first, names in imported.items():
+        for second in sorted(names):
+            if first < second and first in imported.get(second, ()):
+                if not (_is_under(second, first) or _is_under(first, second)):
+                    pairs.append(f"{first} <-> {second}")
+    return pairs
+
+
+def test_no_arrow_runs_back_up():
+    offenders = upward_importers(_perturb_sources())
+    assert not offenders, "an analytic room imports a checking room:\n" + "\n".join(offenders)
+
+
+def test_no_two_files_import_each_other():
+    offenders = mutual_importers(_perturb_sources())
+    assert not offenders, "files that import each other:\n" + "\n".join(offenders)
+
+
 def test_every_rule_lists_every_offender_it_is_shown(tmp_path):
     """Each rule, given planted offenders, names each of them (a rule that finds nothing finds
     nothing wrong either)."""
@@ -184,6 +234,14 @@ def test_every_rule_lists_every_offender_it_is_shown(tmp_path):
         "first.py:2 imports xarray",
         "second.py:3 imports dask.array",
     ]
+    assert upward_importers([second], "perturb.steady.sample") == []
+    third = tmp_path / "third.py"
+    third.write_text("def f():\n    from perturb.oracle import shoot\n")
+    assert upward_importers([third], "perturb.steady.sample") == [
+        "third.py:2 imports perturb.oracle",
+        "third.py:2 imports perturb.oracle.shoot",
+    ]
+    assert upward_importers([third], "perturb.response.sample") == []
     # the exemptions: the CLI may use problems, the sweep driver its extra
     assert problems_importers(planted, "perturb.cli.main") == []
     assert sweep_extra_importers(planted, "perturb.sweep.driver") == []

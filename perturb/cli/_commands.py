@@ -220,7 +220,7 @@ def _select_family(problem, name: str | None, order):
     order = _parse_order(order) if isinstance(order, str) else order
     families = problem.families(order)
     if name not in families.names and problem.system().excitation is not None:
-        from perturb.response.branches import count_name
+        from perturb.steady.branches import count_name
 
         if count_name(name):  # a driven branch that exists elsewhere, not here: the run fails
             return problem.with_family(name)  # (exit 1, with the branches there are)

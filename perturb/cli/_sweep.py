@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import json
 import sys
-from collections import Counter
 from pathlib import Path
 
 from perturb._install import install_hint
@@ -50,10 +49,11 @@ def _check_output(args) -> None:
 
 def _summary(ds, label: str, store: str | None) -> str:
     from perturb.sweep.status import PointStatus, member_of
+    from perturb.sweep.store import code_counts
     from perturb.validation import Verdict
 
     size = int(ds["session"].size)
-    statuses = _counts(ds["status"])
+    statuses = code_counts(ds["status"])
     parts = [
         f"{member_of(PointStatus, code).name.lower().replace('_', ' ')} {n}"
         for code, n in sorted(statuses.items())
@@ -64,7 +64,7 @@ def _summary(ds, label: str, store: str | None) -> str:
         f"{ds.attrs.get('seconds', 0.0):.1f} s; points: {', '.join(parts)}"
     ]
     if "verdict" in ds:
-        verdicts = _counts(ds["verdict"])
+        verdicts = code_counts(ds["verdict"])
         counts = [
             f"{member_of(Verdict, code).label} {n}"
             for code, n in sorted(verdicts.items())
@@ -74,19 +74,6 @@ def _summary(ds, label: str, store: str | None) -> str:
     if store is not None:
         lines.append(f"written to {store} (open it with xarray.open_zarr)")
     return "\n".join(lines)
-
-
-def _counts(variable) -> Counter:
-    """How many points hold each code, counted chunk by chunk for a store read lazily (a store
-    of 10^10 points is never loaded whole)."""
-    data = variable.data
-    if hasattr(data, "compute"):
-        import dask
-        import dask.array as da
-
-        values, counts = dask.compute(*da.unique(data.ravel(), return_counts=True))
-        return Counter({int(v): int(n) for v, n in zip(values, counts, strict=True)})
-    return Counter(int(c) for c in data.ravel())
 
 
 def _dims(ds):

@@ -19,7 +19,6 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import sympy as sp
-from attrs import frozen
 
 from perturb._defaults import NUMERIC_ZERO, PROBE_DIGITS
 from perturb.algebra.budget import solve_bounded
@@ -27,6 +26,7 @@ from perturb.algebra.certified import certified_real_roots
 from perturb.algebra.msolve import install_advice
 from perturb.algebra.rootset import RootStatus
 from perturb.errors import InvalidSystemError
+from perturb.method.component import Component
 from perturb.method.exact import probe_values, rational_form, vanishes
 
 __all__ = [
@@ -36,23 +36,6 @@ __all__ = [
     "same_component",
     "solution_components",
 ]
-
-
-@frozen
-class Component:
-    """One root of the amplitude equations: values of the solved unknowns, the free amplitudes.
-
-    Parameters
-    ----------
-    values : dict
-        ``{unknown: value}``; values may depend on the ``free`` symbols and on unknowns the
-        equations leave to later orders.
-    free : tuple of sympy.Symbol
-        The generating amplitudes the root leaves free (empty: an isolated root).
-    """
-
-    values: dict
-    free: tuple
 
 
 def _factors(poly: sp.Expr, unknowns: Sequence[sp.Symbol]) -> list[sp.Expr]:

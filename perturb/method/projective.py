@@ -149,7 +149,7 @@ def projective_components(eqs, unknowns, scale, amplitudes, seconds: float, pair
     from perturb.algebra.certified import certified_real_roots
     from perturb.algebra.rootset import RootStatus
     from perturb.errors import InvalidSystemError
-    from perturb.method.components import Component
+    from perturb.method.component import Component
     from perturb.method.exact import rational_form
 
     unknowns = list(unknowns)
@@ -421,7 +421,7 @@ def exact_modes(system, generating, known: dict, scale, unknowns, eqs, seconds: 
     from perturb.algebra.certified import certified_real_roots
     from perturb.algebra.rootset import RootStatus
     from perturb.errors import InvalidSystemError
-    from perturb.method.components import Component
+    from perturb.method.component import Component
     from perturb.method.exact import vanishes
 
     if system.excitation is not None or scale is None:

@@ -6,7 +6,7 @@ import math
 
 from perturb.report.latex import latex_comment
 from perturb.report.true_curve import true_curve_as_dict, true_curve_latex, true_curve_lines
-from perturb.response.measures import MEASURES
+from perturb.steady.measures import MEASURES
 
 __all__ = [
     "flag_lines",

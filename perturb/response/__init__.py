@@ -4,7 +4,7 @@
 :mod:`perturb.method.driven` for every real root at each value (:func:`real_roots`).
 """
 
-from perturb.response.branches import (
+from perturb.steady.branches import (
     BranchPoint,
     SteadyState,
     branch_names,
@@ -12,14 +12,14 @@ from perturb.response.branches import (
     branches_at,
     steady_state,
 )
-from perturb.response.curve import (
+from perturb.steady.curve import (
     Fold,
     FrequencyResponse,
     ResponsePoint,
     trace_branches,
 )
-from perturb.response.roots import RootSet, RootStatus, real_roots
-from perturb.response.sampled import frequency_response
+from perturb.steady.roots import RootSet, RootStatus, real_roots
+from perturb.steady.sampled import frequency_response
 
 __all__ = [
     "BranchPoint",

@@ -3,10 +3,10 @@
 :func:`problem_response` sweeps a user-facing parameter (the excitation frequency ``Omega``, a
 forcing level, the detuning ``sigma``…) of a driven problem. The amplitude equations are derived
 once for the problem's symbolic system, and every order-N branch is continued along the sweep
-from the certified first-order census (:mod:`perturb.response.continued`: its folds, branch
+from the certified first-order census (:mod:`perturb.steady.continued`: its folds, branch
 points and Neimark-Sacker points located on the order-N curves, its stability from the Floquet
 multipliers along the order-N series). The backbone is the free engine's frequency of the
-system's conservative, unforced part (:mod:`perturb.response.backbone`). With ``validate`` > 0
+system's conservative, unforced part (:mod:`perturb.steady.backbone`). With ``validate`` > 0
 the true orbit is shot at points of every branch chosen by arclength
 (:mod:`perturb.response.truth`).
 
@@ -24,8 +24,8 @@ from attrs import field, frozen
 
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import amplitude_equations
-from perturb.response.backbone import Backbone, backbone
-from perturb.response.curve import (
+from perturb.steady.backbone import Backbone, backbone
+from perturb.steady.curve import (
     FrequencyResponse,
 )
 
@@ -180,7 +180,7 @@ def problem_response(
     """The frequency response of a driven ``problem`` over ``grid`` values of ``parameter``.
 
     Every branch is the order-N one, continued from the certified first-order census through its
-    folds (:mod:`perturb.response.continued`); stability from the Floquet multipliers of the
+    folds (:mod:`perturb.steady.continued`); stability from the Floquet multipliers of the
     variational equation along the order-N series.
 
     Parameters
@@ -199,7 +199,7 @@ def problem_response(
         ``MAX_VALIDATE``).
     measure : str
         The amplitude measure the branches are named and drawn by: ``peak`` (max ``|x|``),
-        ``first-harmonic`` or ``initial`` (:data:`perturb.response.measures.MEASURES`).
+        ``first-harmonic`` or ``initial`` (:data:`perturb.steady.measures.MEASURES`).
     tol : float, optional
         The relative orbit error above which a shot point is marked (default ``DEFAULT_TOL``).
     true : int
@@ -219,16 +219,16 @@ def problem_response(
         validation budget beyond ``MAX_VALIDATE``.
     """
     from perturb._defaults import DEFAULT_TOL
-    from perturb.response.continued import continued_response
-    from perturb.response.line import line_of_problem
-    from perturb.response.sampled import response_of
+    from perturb.steady.continued import continued_response
+    from perturb.steady.line import line_of_problem
+    from perturb.steady.sampled import response_of
 
     system = check_request(problem, parameter)
     grid = _check_grid(parameter, grid)
     check_measure(measure)
     check_validate(validate)
     tol = DEFAULT_TOL if tol is None else check_tol(tol)
-    from perturb.response.line import excitation_frequency
+    from perturb.steady.line import excitation_frequency
 
     for value in grid:  # the problem's own checks at every grid value (one line, exit 2)
         variant = problem.with_parameters(**{parameter: float(value)})
@@ -266,8 +266,8 @@ MAX_VALIDATE = 50
 
 
 def check_measure(measure: str) -> str:
-    """``measure`` if it is one of :data:`perturb.response.measures.MEASURES`, else one line."""
-    from perturb.response.measures import MEASURES
+    """``measure`` if it is one of :data:`perturb.steady.measures.MEASURES`, else one line."""
+    from perturb.steady.measures import MEASURES
 
     if measure not in MEASURES:
         raise bad_value(

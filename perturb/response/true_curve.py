@@ -218,8 +218,8 @@ def _follow(setup, equations, name, candidates, curves, covered, budget):
 
 def _analytic_state(setup, lam: float, name: str, point) -> np.ndarray:
     """The order-N state at t = 0 of the analytic branch point ``point`` at λ (the seed): its
-    series with the point's amplitudes put in (:func:`~perturb.response.branches.branch_solution`)."""
-    from perturb.response.branches import BranchPoint, branch_solution
+    series with the point's amplitudes put in (:func:`~perturb.steady.branches.branch_solution`)."""
+    from perturb.steady.branches import BranchPoint, branch_solution
     from perturb.validation import state_along
 
     branch = BranchPoint(

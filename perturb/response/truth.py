@@ -7,7 +7,7 @@ the curve's ends — where a response curve goes wrong, not its first points.
 
 Each is shot with the period fixed (:func:`perturb.oracle.find_forced_orbit`, seeded by the
 order-N state), its orbit sampled over one period and its amplitude measured the way the curve's
-is (the trigonometric interpolant of the samples, :func:`perturb.response.measures.peak_abs`), so
+is (the trigonometric interpolant of the samples, :func:`perturb.steady.measures.peak_abs`), so
 that the true point is drawn where the truth is. The orbit error is the largest distance of the
 analytic orbit from the true one over the period, relative to the true amplitude.
 """
@@ -23,7 +23,7 @@ from perturb._defaults import DEFAULT_RTOL
 from perturb.oracle import SymbolicRHS, choose
 from perturb.oracle.forced import find_forced_orbit
 from perturb.progress import track
-from perturb.response.measures import peak_abs
+from perturb.steady.measures import peak_abs
 from perturb.system import EPS
 
 __all__ = ["choose_points", "shoot_point"]
@@ -138,7 +138,7 @@ def shoot_along(result, response, count: int, measure: str, tol: float) -> list[
     """Shoot ``count`` points of every curve of a continued response (:func:`choose_points`):
     one dict each, with the analytic and true amplitudes by ``measure``, the multipliers of both,
     the orbit error and whether it is within ``tol``."""
-    from perturb.response.sampled import name_at
+    from perturb.steady.sampled import name_at
 
     evaluator = result.evaluator
     line = result.traced.line

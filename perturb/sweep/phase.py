@@ -14,12 +14,12 @@ grid, run on Dask (:func:`perturb.sweep.driver.run_calls`), the maps kept as an
   continuation located on the row: folds, branch points, Neimark-Sacker and period-doubling
   points — the boundaries of the map where they cross the row.
 * **The proved count**: at every point the certified first-order census
-  (:func:`perturb.response.census.census`: every real root of the amplitude equations isolated in
+  (:func:`perturb.steady.census.census`: every real root of the amplitude equations isolated in
   a box that holds exactly one, distinct orbits counted once): ``n_first_order``, and the stable
   ones by the first-order slow flow (Malkin: the Jacobian's eigenvalues in the left half-plane):
   ``n_stable_first_order`` — the first-order phase diagram, point by point, with nothing
   continued (HarmonicBalance.jl's, with a certificate for every root). On each row the exact
-  first-order folds and branch points (:func:`perturb.response.singular.singular_points`: the
+  first-order folds and branch points (:func:`perturb.steady.singular.singular_points`: the
   real solutions of {P₁ = 0, det J = 0}, told apart by the left null vector of J) are its
   boundaries.
 * **Columns** (x fixed, optional): the same along y; their counts at every point are a second
@@ -54,7 +54,7 @@ class _FirstOrder:
     def __init__(self, problem):
         from perturb._lambdify import numpy_lambdify
         from perturb.method.driven import amplitude_equations
-        from perturb.response.census import shift_symmetry
+        from perturb.steady.census import shift_symmetry
 
         self.equations = amplitude_equations(problem.system(), 0)
         system = self.equations.system
@@ -68,8 +68,8 @@ class _FirstOrder:
     def count(self, variant) -> tuple[int, int]:
         """``(states, stable)`` at ``variant``'s values (certified roots; Malkin's stability)."""
         from perturb.method.driven import SLOW_FLOW_ZERO
-        from perturb.response.branches import exact_number
-        from perturb.response.census import census, distinct_orbits
+        from perturb.steady.branches import exact_number
+        from perturb.steady.census import census, distinct_orbits
 
         values = variant.symbol_values()
         fixed = {p: exact_number(values[p.name]) for p in self.parameters}
@@ -87,8 +87,8 @@ class _FirstOrder:
 
     def singular(self, variant, along: str, low: float, high: float) -> tuple[list, str]:
         """The exact first-order folds and branch points on the line, ``[(kind, value)]``."""
-        from perturb.response.branches import exact_number
-        from perturb.response.singular import singular_points
+        from perturb.steady.branches import exact_number
+        from perturb.steady.singular import singular_points
 
         values = variant.symbol_values()
         (low_values, high_values) = (

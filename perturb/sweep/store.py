@@ -25,6 +25,7 @@ import contextlib
 import json
 import math
 import warnings
+from collections import Counter
 from datetime import UTC, datetime
 from pathlib import Path
 
@@ -36,7 +37,7 @@ from perturb.sweep.quantities import TIMINGS, check_names, stored_name, variable
 from perturb.sweep.spec import STORE_FORMAT, SweepJob
 from perturb.sweep.status import PointStatus, code_of
 
-__all__ = ["SweepStore", "open_dataset", "write_dataset"]
+__all__ = ["SweepStore", "code_counts", "open_dataset", "write_dataset"]
 
 #: The group attribute that marks a perturb sweep store (its value: the store format).
 MARK = "perturb_sweep"
@@ -432,3 +433,16 @@ def open_dataset(path):
     import xarray as xr
 
     return xr.open_zarr(str(path))
+
+
+def code_counts(variable) -> Counter:
+    """How many points hold each code, counted chunk by chunk for a store read lazily (a store
+    of 10^10 points is never loaded whole)."""
+    data = variable.data
+    if hasattr(data, "compute"):
+        import dask
+        import dask.array as da
+
+        values, counts = dask.compute(*da.unique(data.ravel(), return_counts=True))
+        return Counter({int(v): int(n) for v, n in zip(values, counts, strict=True)})
+    return Counter(int(c) for c in data.ravel())

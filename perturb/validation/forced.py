@@ -4,7 +4,7 @@ A driven model's true response is found by shooting with the period **given**
 (:func:`perturb.oracle.find_forced_orbit`: no section, no trivial multiplier). Its period error is
 zero by construction, so the verdict's fourth measurement is instead **stability**: the analytic
 stability of the branch (the Floquet multipliers along the order-N orbit,
-:mod:`perturb.response.floquet`) against the true orbit's Floquet multipliers (stable when all lie inside the unit circle).
+:mod:`perturb.steady.floquet`) against the true orbit's Floquet multipliers (stable when all lie inside the unit circle).
 """
 
 from __future__ import annotations
@@ -87,10 +87,10 @@ def _failed(names, message, status=None, integrator="") -> OrbitCheck:
 
 def analytic_stability(model: Model, solution) -> bool | None:
     """The analytic verdict on ``solution``'s branch: the Floquet multipliers of the variational
-    equation along the order-N orbit (:mod:`perturb.response.floquet`, the response's own)."""
+    equation along the order-N orbit (:mod:`perturb.steady.floquet`, the response's own)."""
     from perturb.method.driven import amplitude_equations
-    from perturb.response.evaluate import PointEvaluator
-    from perturb.response.line import line_of_values
+    from perturb.steady.evaluate import PointEvaluator
+    from perturb.steady.line import line_of_values
 
     system = model.system()
     equations = amplitude_equations(system, max(int(solution.order), 1))

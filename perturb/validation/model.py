@@ -467,7 +467,7 @@ class SystemModel(Model):
             key = (*key, repr(sorted(self.symbol_values().items())), self.parameter_value())
         if key not in _SOLUTIONS:
             if self.quasilinear.excitation is not None:
-                from perturb.response import steady_state
+                from perturb.steady import steady_state
 
                 state = steady_state(self.quasilinear, self.symbol_values(), self.epsilon(), order)
                 _SOLUTIONS[key] = state.solution(self.options.get("family"))

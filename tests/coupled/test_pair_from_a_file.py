@@ -122,7 +122,7 @@ def test_a_response_that_could_not_be_enumerated_is_never_no_root():
     never read "only the trivial root" then (the issue's false answer)."""
     from perturb.method.driven import amplitude_equations
     from perturb.report.families import as_dict, as_table
-    from perturb.response.branches import SteadyState
+    from perturb.steady.branches import SteadyState
     from problems import get_problem
 
     equations = amplitude_equations(get_problem("coupled-duffings").system(), 1)

@@ -20,7 +20,7 @@ from scipy.optimize import brentq
 
 from perturb.report.phase import phase_as_dict, phase_as_table
 from perturb.response.model import problem_response
-from perturb.response.singular import singular_points
+from perturb.steady.singular import singular_points
 from perturb.sweep.phase import FIRST_ORDER, ORDER_N, _assemble, _FirstOrder, phase_line
 from problems import get_problem
 

@@ -13,7 +13,7 @@ import pytest
 import sympy as sp
 
 from perturb.response.model import problem_response
-from perturb.response.roots import real_roots
+from perturb.steady.roots import real_roots
 from problems import get_problem
 
 AX, BX, AY, BY = sp.symbols("a_x b_x a_y b_y")

@@ -28,9 +28,9 @@ import numpy as np
 import pytest
 
 from perturb.method.driven import amplitude_equations
-from perturb.response.continued import continued_response
-from perturb.response.line import line_of_problem
 from perturb.response.truth import shoot_point
+from perturb.steady.continued import continued_response
+from perturb.steady.line import line_of_problem
 from problems import get_problem, load_problem
 
 SAFETY = 2.0

@@ -21,9 +21,9 @@ import pytest
 from scipy.integrate import quad, solve_ivp
 
 from perturb.method.driven import amplitude_equations
-from perturb.response.compiled import compiled_motion, compiled_series
-from perturb.response.floquet import stability_along
 from perturb.response.model import problem_response
+from perturb.steady.compiled import compiled_motion, compiled_series
+from perturb.steady.floquet import stability_along
 from problems import get_problem, load_problem
 
 LIOUVILLE = 1e-10

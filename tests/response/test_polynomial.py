@@ -14,7 +14,7 @@ import sympy as sp
 from hypothesis import given
 from hypothesis import strategies as st
 
-from perturb.response.polynomial import compile_polynomials
+from perturb.steady.polynomial import compile_polynomials
 
 ROUNDING = 1e-12
 X, Y, P, Q = sp.symbols("x y p q")

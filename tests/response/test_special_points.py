@@ -15,10 +15,10 @@ import pytest
 
 from perturb.cli import main
 from perturb.method.driven import amplitude_equations
-from perturb.response.continued import continued_response
-from perturb.response.line import line_of_problem
 from perturb.response.model import problem_response
 from perturb.response.truth import shoot_point
+from perturb.steady.continued import continued_response
+from perturb.steady.line import line_of_problem
 from problems import get_problem, load_problem
 
 BISECT = 1e-9

@@ -64,7 +64,7 @@ def plot_frequency_response(result, *, coordinate: str | None = None, ax=None, t
     response = result.response
     coordinate = coordinate or response.coordinates[0]
     measure = getattr(response, "measure", "initial")
-    from perturb.response.measures import MEASURES
+    from perturb.steady.measures import MEASURES
 
     with publication_style():
         if ax is None:

@@ -19,10 +19,10 @@ import numpy as np
 from perturb._defaults import MAGNUS_DRAW_STEPS, MAGNUS_STEPS
 from perturb.continuation import ContinuationStatus, continue_curve
 from perturb.continuation.newton import newton_fixed
-from perturb.response.compiled import compiled_displacement, compiled_motion, compiled_series
-from perturb.response.floquet import stability_along
-from perturb.response.measures import compiled_terms, peak_abs, series_estimate
-from perturb.response.traced import HOMOTOPY_MARGIN, _homotopy, homotopy_steps, line_equations
+from perturb.steady.compiled import compiled_displacement, compiled_motion, compiled_series
+from perturb.steady.floquet import stability_along
+from perturb.steady.measures import compiled_terms, peak_abs, series_estimate
+from perturb.steady.traced import HOMOTOPY_MARGIN, _homotopy, homotopy_steps, line_equations
 
 __all__ = ["PointEvaluator"]
 

@@ -2,7 +2,7 @@
 
 Where two first-order roots meet, :math:`P_1(u, \\lambda) = 0` and :math:`\\det J = 0`
 (:math:`J = \\partial P_1/\\partial u`, u the amplitudes, λ the swept parameter): the real solutions
-of that system in (u, λ) are found exactly (:func:`perturb.response.roots.real_roots`: certified).
+of that system in (u, λ) are found exactly (:func:`perturb.steady.roots.real_roots`: certified).
 Each is one of two things, read off the left null vector w of J (:math:`w^T J = 0`):
 
 * a **fold** (saddle-node) when :math:`w \\cdot \\partial P_1/\\partial\\lambda \\ne 0`: the branch
@@ -22,7 +22,7 @@ import numpy as np
 import sympy as sp
 
 from perturb._defaults import BRANCH_POINT_TOL, SAME_POINT
-from perturb.response.roots import RootStatus, real_roots
+from perturb.steady.roots import RootStatus, real_roots
 
 __all__ = ["SingularPoints", "singular_points"]
 
@@ -61,7 +61,7 @@ def singular_points(
     low, high : float
     coordinates : sequence of str
     seconds : float, optional
-        The certified solver's budget (default that of :func:`~perturb.response.roots.real_roots`).
+        The certified solver's budget (default that of :func:`~perturb.steady.roots.real_roots`).
 
     Returns
     -------

@@ -10,7 +10,7 @@ Three amplitude measures of a coordinate x(s) = Σ_j c_j cos js + s_j sin js (al
 
 The size of each order's term, ε^k Σ_j √(c_kj² + s_kj²) (a bound on its largest value), must
 decrease from the first order on (:func:`series_estimate`); the error estimate of a point is the
-last correction (:mod:`perturb.response.evaluate`).
+last correction (:mod:`perturb.steady.evaluate`).
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
-from perturb.response.compiled import _compile, _key, variables
+from perturb.steady.compiled import _compile, _key, variables
 from perturb.system import EPS
 
 __all__ = ["MEASURES", "SeriesTerms", "compiled_terms", "peak_abs", "series_estimate"]

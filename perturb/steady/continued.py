@@ -1,10 +1,10 @@
 """The order-N response over a sweep, read off its continued curves (issue 29).
 
 :func:`continued_response` traces every order-N branch through a window a little wider than the
-sweep (:func:`perturb.response.traced.trace`), reads every branch at each grid value, and
+sweep (:func:`perturb.steady.traced.trace`), reads every branch at each grid value, and
 evaluates every point in one batch from the compiled series: its amplitude measures
-(:mod:`perturb.response.measures`), the series' own estimate, and its Floquet multipliers along
-the order-N orbit (:mod:`perturb.response.floquet`). The curves themselves, densely, come back for
+(:mod:`perturb.steady.measures`), the series' own estimate, and its Floquet multipliers along
+the order-N orbit (:mod:`perturb.steady.floquet`). The curves themselves, densely, come back for
 the figure; their folds and branch points, and the Neimark-Sacker and period-doubling points where
 the multipliers cross the unit circle, are located on them, inside the sweep or just beside it.
 """
@@ -19,9 +19,9 @@ from attrs import field, frozen
 
 from perturb._defaults import WINDOW_MARGIN
 from perturb.continuation import TestFunction, locate_on_curve
-from perturb.response.census import same_orbit
-from perturb.response.evaluate import PointEvaluator
-from perturb.response.traced import trace
+from perturb.steady.census import same_orbit
+from perturb.steady.evaluate import PointEvaluator
+from perturb.steady.traced import trace
 
 __all__ = ["Continued", "ResponseCurve", "SpecialResponse", "continued_response", "window_of"]
 
@@ -150,7 +150,7 @@ def _dedupe(found: list[SpecialResponse], harmonics, group) -> list[SpecialRespo
 
 def continued_response(equations, order: int, line, grid) -> Continued:
     """Every order-N point at each grid value, the dense curves and their special points (see
-    the module notes); ``line`` the sweep's :class:`~perturb.response.line.ParameterLine`."""
+    the module notes); ``line`` the sweep's :class:`~perturb.steady.line.ParameterLine`."""
     grid = np.asarray(grid, dtype=float)
     low, high = window_of(line, float(grid[0]), float(grid[-1]))
     traced = trace(equations, order, line, low, high)

@@ -2,7 +2,7 @@
 on a line of parameters, and which responses are one orbit.
 
 The first-order amplitude equations P₁ = 0 at exact rational parameter values have finitely many
-real roots, each isolated with a certificate (:func:`perturb.response.roots.real_roots`); on a line
+real roots, each isolated with a certificate (:func:`perturb.steady.roots.real_roots`); on a line
 of parameters p(λ) = p₀ + λ·dp the first-order folds are the real solutions of {P₁ = 0,
 det ∂P₁/∂u = 0} in (u, λ), found by the same solver. Both are kept in the disk cache: a sweep
 repeated costs no census.
@@ -23,7 +23,7 @@ import numpy as np
 import sympy as sp
 
 from perturb.cache import cached
-from perturb.response.roots import RootStatus, real_roots
+from perturb.steady.roots import RootStatus, real_roots
 
 __all__ = ["census", "distinct_orbits", "line_folds", "orbit_images", "shift_symmetry"]
 

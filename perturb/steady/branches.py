@@ -1,10 +1,10 @@
 """The steady-state branches of a driven system at one parameter point, and their solutions.
 
 :func:`branches_at` finds every order-N branch at the given values: the certified first-order
-census at the point (exact rationals, :func:`~perturb.response.roots.real_roots`) seeds the
-continuation of each branch in the detuning around it (:mod:`perturb.response.traced`), carried
+census at the point (exact rationals, :func:`~perturb.steady.roots.real_roots`) seeds the
+continuation of each branch in the detuning around it (:mod:`perturb.steady.traced`), carried
 to order N; stability from the Floquet multipliers along each order-N orbit
-(:mod:`perturb.response.floquet`);
+(:mod:`perturb.steady.floquet`);
 :func:`branch_solution` is the :class:`~perturb.PeriodicSolution` of one branch (its amplitudes put
 in), which evaluates, validates and exports like any other; :func:`branch_names` names them.
 """
@@ -22,8 +22,8 @@ import sympy as sp
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import AmplitudeEquations
 from perturb.method.family_names import response_shape
-from perturb.response.exact import exact_number
 from perturb.solution import PeriodicSolution, Status
+from perturb.steady.exact import exact_number
 
 __all__ = [
     "BranchPoint",
@@ -53,7 +53,7 @@ class BranchPoint:
         From the Floquet multipliers along the order-N orbit (None: the largest on the unit
         circle, a fold or an undamped system).
     eigenvalues, multipliers : tuple of complex
-        The Floquet multipliers (:mod:`perturb.response.floquet`) and their exponents per unit ε
+        The Floquet multipliers (:mod:`perturb.steady.floquet`) and their exponents per unit ε
         (log μ / ε: the slow flow's eigenvalues they stand for).
     first_order : dict
         Empty: no point keeps first-order amplitudes (kept for the JSON contract).
@@ -62,7 +62,7 @@ class BranchPoint:
         window that failed.
     peak, first_harmonic, error : dict
         max ``|x|`` over a period, the resonant harmonic's amplitude and the series' error estimate
-        of each resonant coordinate (:mod:`perturb.response.measures`).
+        of each resonant coordinate (:mod:`perturb.steady.measures`).
     series_ok : bool
     liouville : float
         exp(∮ div f dt) along the orbit: the product of the multipliers.
@@ -108,7 +108,7 @@ def branches_at(
     The first-order equations are solved for every real root at the point (certified); each
     first-order branch through it is followed in the detuning σ over a window around the point,
     carried to order N by the homotopy in the truncation and continued at order N through its
-    folds (:func:`perturb.response.traced.trace`); the order-N curves are read at the point. A
+    folds (:func:`perturb.steady.traced.trace`); the order-N curves are read at the point. A
     first-order root with no order-N branch over it gives none, and an order-N branch whose
     first-order counterpart turned before the point is found (softening beyond the first-order
     fold). Stability from the Floquet multipliers along each order-N orbit.
@@ -119,9 +119,9 @@ def branches_at(
         The branches sorted by amplitude (max ``|x|``), and "" or why the roots could not be
         enumerated (then the list is empty: never a silent drop).
     """
-    from perturb.response.evaluate import PointEvaluator
-    from perturb.response.line import excitation_frequency, line_of_values
-    from perturb.response.traced import trace
+    from perturb.steady.evaluate import PointEvaluator
+    from perturb.steady.line import excitation_frequency, line_of_values
+    from perturb.steady.traced import trace
 
     fixed = _fixed(equations, values)
     floats = {k.name: float(v) for k, v in fixed.items()}

@@ -1,8 +1,8 @@
 """Every order-N branch on a line of parameters, continued from the certified first-order census.
 
 1. **Seeds.** The first-order equations are solved for every real root, with a certificate, at
-   the ends of the window (:func:`perturb.response.census.census`), and their exact folds on the
-   line are found (:func:`~perturb.response.census.line_folds`): every first-order branch in the
+   the ends of the window (:func:`perturb.steady.census.census`), and their exact folds on the
+   line are found (:func:`~perturb.steady.census.line_folds`): every first-order branch in the
    window either crosses one of its ends or is a closed curve inside it, which has folds.
 2. **First-order curves.** Each seed not already on a curve is continued both ways through the
    window (:func:`perturb.continuation.continue_both`).
@@ -12,7 +12,7 @@
    later, reached continuously: never a jump to another or a spurious root); the order-N point
    is continued both ways. An order-N
    curve met twice is kept once, under the time shifts that map a response onto itself
-   (:func:`~perturb.response.census.same_orbit`). No order-N point is a first-order one.
+   (:func:`~perturb.steady.census.same_orbit`). No order-N point is a first-order one.
 4. **Reading.** :meth:`Traced.at` gives every order-N point at given λ, each on its curve.
 
 A first-order curve that cannot be lifted, and an order-N curve that stops inside the window
@@ -27,9 +27,9 @@ from attrs import field, frozen
 
 from perturb._defaults import AMPLITUDE_CAP, LIFT_TRIES
 from perturb.continuation import ContinuationStatus, CurveEquations, continue_both, continue_curve
-from perturb.response.census import census, distinct_orbits, line_folds, same_orbit
-from perturb.response.compiled import compiled_displacement
-from perturb.response.exact import exact_number
+from perturb.steady.census import census, distinct_orbits, line_folds, same_orbit
+from perturb.steady.compiled import compiled_displacement
+from perturb.steady.exact import exact_number
 from perturb.system import EPS
 
 __all__ = ["Branch", "Traced", "line_equations", "trace"]
@@ -37,7 +37,7 @@ __all__ = ["Branch", "Traced", "line_equations", "trace"]
 
 @frozen
 class Branch:
-    """One order-N curve of the response (its λ in μ, see :mod:`perturb.response.line`) and the
+    """One order-N curve of the response (its λ in μ, see :mod:`perturb.steady.line`) and the
     first-order curve it was lifted from."""
 
     curve: object = field(eq=False)
@@ -217,7 +217,7 @@ def trace(
     n = len(equations.amplitudes)
     symbols = {p.name: p for p in equations.system.parameters}
     harmonics = tuple(equations.harmonics)
-    from perturb.response.census import shift_symmetry
+    from perturb.steady.census import shift_symmetry
 
     group = equations.system.excitation.p * shift_symmetry(equations.system)
     first_eqs = line_equations(compiled_displacement(equations, 0), line, n)

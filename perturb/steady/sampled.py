@@ -1,8 +1,8 @@
-"""A continued response as a :class:`~perturb.response.curve.FrequencyResponse`: its points at the
+"""A continued response as a :class:`~perturb.steady.curve.FrequencyResponse`: its points at the
 grid values, named; its folds and special points; what failed.
 
 Points at each grid value are sorted by the chosen amplitude measure of the first resonant
-coordinate and named by count (:func:`perturb.response.branches.branch_names`): ``lower``,
+coordinate and named by count (:func:`perturb.steady.branches.branch_names`): ``lower``,
 ``middle``, ``upper``… A point whose series' terms do not decrease keeps its place and says so
 in ``note`` (``series_ok`` False): it is a root of the order-N equations where the series is
 outside its domain, drawn apart and never silently taken for a motion.
@@ -17,10 +17,10 @@ import numpy as np
 
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import AmplitudeEquations
-from perturb.response.branches import branch_names
-from perturb.response.continued import Continued, continued_response
-from perturb.response.curve import Fold, FrequencyResponse, ResponsePoint
-from perturb.response.exact import exact_number
+from perturb.steady.branches import branch_names
+from perturb.steady.continued import Continued, continued_response
+from perturb.steady.curve import Fold, FrequencyResponse, ResponsePoint
+from perturb.steady.exact import exact_number
 
 __all__ = ["frequency_response", "frequency_response_on", "name_at", "response_of"]
 
@@ -102,7 +102,7 @@ def frequency_response_on(equations, order: int, line, grid, *, system: str, val
 
 def name_at(result: Continued, lam: float, u, measure: str) -> str | None:
     """The name (by count, as at a grid value) of the order-N point ``u`` at λ = ``lam``."""
-    from perturb.response.census import same_orbit
+    from perturb.steady.census import same_orbit
 
     traced = result.traced
     here = traced.at([lam])[0]
@@ -171,7 +171,7 @@ def frequency_response(
     >>> [round(fold.value, 4) for fold in response.folds if fold.inside]
     [0.8497]
     """
-    from perturb.response.line import line_of_values
+    from perturb.steady.line import line_of_values
 
     system = equations.system
     names = {p.name: p for p in system.parameters}

@@ -4,13 +4,13 @@ Jacobian of the equations of motion — evaluated at any point without deriving 
 * :func:`compiled_displacement`: the rows of :math:`D_N`
   (:meth:`perturb.method.driven.AmplitudeEquations.displacement`) as polynomials in (amplitudes,
   system parameters, ε), with their gradients
-  (:class:`~perturb.response.polynomial.CompiledPolynomials`, kept in the disk cache);
+  (:class:`~perturb.steady.polynomial.CompiledPolynomials`, kept in the disk cache);
 * :func:`compiled_series`: the cosine and sine coefficients of every harmonic of every coordinate
   of the order-N series, summed over the orders, as polynomials in the same variables;
 * :func:`compiled_motion`: the Jacobian of the first-order equations of motion of the driven
   system, (ẋ, ẍ) = (v, −ω²x + f(x, v, θ)), with respect to the state, as numpy functions of
   (state, θ, parameters, ε), for the variational equation along the series
-  (:mod:`perturb.response.floquet`).
+  (:mod:`perturb.steady.floquet`).
 
 Rows that are not polynomial in these variables (a parameter under a square root) are lambdified
 instead, behind the same two methods.
@@ -24,7 +24,7 @@ from attrs import field, frozen
 
 from perturb._lambdify import numpy_lambdify
 from perturb.cache import cached
-from perturb.response.polynomial import CompiledPolynomials, compile_polynomials
+from perturb.steady.polynomial import CompiledPolynomials, compile_polynomials
 from perturb.system import EPS
 
 __all__ = ["Motion", "Series", "compiled_displacement", "compiled_motion", "compiled_series"]

@@ -58,7 +58,7 @@ def free_system(system: QuasilinearSystem) -> QuasilinearSystem | None:
     --------
     >>> import sympy as sp
     >>> from perturb import EPS, Excitation, QuasilinearSystem
-    >>> from perturb.response.backbone import free_system
+    >>> from perturb.steady.backbone import free_system
     >>> x, xdot, th, z, g, F, s = sp.symbols("x xdot theta zeta gamma F sigma")
     >>> forced = QuasilinearSystem([x], [xdot], [1],
     ...     [EPS * (-2 * z * xdot - g * x**3 + F * sp.cos(th))], parameters=[z, g, F, s],
@@ -133,7 +133,7 @@ def backbone(
 def _measured(solution, coordinate, eps, values, amplitude, amplitudes, measure) -> np.ndarray:
     """The free series' ``measure`` at each of its amplitude parameters (max ``|x|`` over a period,
     or its first harmonic), all in one vectorised evaluation."""
-    from perturb.response.measures import peak_abs
+    from perturb.steady.measures import peak_abs
 
     index = [c.name for c in solution.system.coordinates].index(coordinate)
     _, cos, sin = solution.coefficients(eps, {**values, amplitude.name: amplitudes})

@@ -5,10 +5,10 @@ level …) the response holds every branch of the **order-N** amplitude equation
 (:func:`perturb.method.driven.amplitude_equations`, derived once with every parameter symbolic):
 the first-order equations are solved for every real root with exact rational coefficients at the
 window's ends (the count is proved), their exact folds found, and every branch is continued by
-pseudo-arclength through its folds at order N (:mod:`perturb.response.traced`,
+pseudo-arclength through its folds at order N (:mod:`perturb.steady.traced`,
 :mod:`perturb.continuation`), then read at the grid values. Each point is judged stable or not by
-its Floquet multipliers along the order-N orbit (:mod:`perturb.response.floquet`), measured by
-max ``|x|``, its first harmonic and its initial values (:mod:`perturb.response.measures`).
+its Floquet multipliers along the order-N orbit (:mod:`perturb.steady.floquet`), measured by
+max ``|x|``, its first harmonic and its initial values (:mod:`perturb.steady.measures`).
 
 The **folds** (saddle-node points, where a branch turns and the response jumps), branch points
 and Neimark-Sacker points are located on the order-N curves, inside the sweep or just beside it.
@@ -22,7 +22,7 @@ import math
 
 from attrs import field, frozen
 
-from perturb.response.branches import BranchPoint
+from perturb.steady.branches import BranchPoint
 
 __all__ = ["Fold", "FrequencyResponse", "ResponsePoint", "trace_branches"]
 
@@ -53,7 +53,7 @@ class ResponsePoint:
         Empty, or what to know about the point (the series outside its domain there).
     peak, first_harmonic : dict
         Of each resonant coordinate, from the whole order-N series: max ``|x|`` over a period, and
-        the amplitude of the harmonic it resonates at (:mod:`perturb.response.measures`);
+        the amplitude of the harmonic it resonates at (:mod:`perturb.steady.measures`);
         ``norms`` is the initial-value norm.
     error : dict
         The series' own estimate of its state's error, per coordinate (NaN: none).
@@ -97,13 +97,13 @@ class ResponsePoint:
     @property
     def trivial(self) -> bool:
         """Every resonant coordinate at rest (x = 0)."""
-        from perturb.response.branches import TRIVIAL
+        from perturb.steady.branches import TRIVIAL
 
         return all(n <= TRIVIAL for n in self.norms.values())
 
     def amplitude(self, coordinate: str | None = None, measure: str = "initial") -> float:
         """``coordinate``'s amplitude by ``measure`` (``peak``, ``first-harmonic`` or
-        ``initial``; :data:`perturb.response.measures.MEASURES`)."""
+        ``initial``; :data:`perturb.steady.measures.MEASURES`)."""
         table = {"peak": self.peak, "first-harmonic": self.first_harmonic, "initial": self.norms}
         values = table[measure] or self.norms
         return next(iter(values.values())) if coordinate is None else values[coordinate]
@@ -154,9 +154,9 @@ class FrequencyResponse:
     special : tuple
         Every located special point of the order-N curves (folds, branch points,
         Neimark-Sacker and period-doubling points), inside the sweep or just beside it
-        (:class:`perturb.response.continued.SpecialResponse`).
+        (:class:`perturb.steady.continued.SpecialResponse`).
     curves : tuple
-        The continued order-N curves, densely (:class:`perturb.response.continued.ResponseCurve`).
+        The continued order-N curves, densely (:class:`perturb.steady.continued.ResponseCurve`).
     measure : str
         The amplitude measure the response is drawn and its branches named by.
     """
