@@ -601,3 +601,232 @@ SAME_POINT = 1e-9
 #: {P1 = 0, det J = 0} takes seconds to tens of seconds; past it the line's boundaries are missing
 #: and said so in ``failures``).
 SINGULAR_SECONDS = 120.0
+
+# -- perturb.workprecision
+#: Tolerance of the reference when heyoka's extended precision is unavailable: one decade below the
+#: tightest compared tolerance.
+REFERENCE_RTOL = 1e-13
+
+#: Timed runs per point after the warm-up (the best is reported); 3 removes most scheduling noise.
+DEFAULT_REPEAT = 3
+
+# -- perturb.solution
+#: Parameter sets whose coefficients a solution keeps (:meth:`PeriodicSolution.coefficients`): a
+#: validation asks at its own set and at the sets of its order check (four values of epsilon).
+RECENT_COEFFICIENTS = 8
+
+#: Coefficients with more operations than this are shown as computed: factoring them would take
+#: longer than anyone waits for a printout.
+DISPLAY_SIMPLIFY_MAX_OPS = 4000
+
+# -- perturb.response.model
+#: Most points ``--validate`` shoots on each branch besides the ones it always shoots (largest
+#: amplitude, fold sides, ends): each is a shooting with variational equations, 0.05-0.5 s.
+MAX_VALIDATE = 50
+
+# -- perturb.response.true_partings
+#: Amplitudes below this are the trivial response x = 0 (as the analytic branches' TRIVIAL).
+TRIVIAL_AMPLITUDE = 1e-12
+
+# -- perturb.response.true_curve
+#: Seeds tried on one analytic branch before it is given up (each costs an analytic solution at
+#: its value and a Newton correction).
+SEED_TRIES = 3
+
+# -- perturb.response.truth
+#: Samples of the true orbit over one period: its trigonometric interpolant holds harmonics up to
+#: 511, whose coefficients for a smooth weakly nonlinear orbit are at rounding long before that.
+TRUTH_SAMPLES = 1024
+
+#: How far beside a fold its two checked points lie, as a fraction of the curve's arclength in
+#: the sweep (at least one continuation step): off the fold's singular Newton matrix, near enough
+#: to show the branch's end.
+FOLD_SIDE = 0.01
+
+# -- perturb.response.hysteresis
+#: Samples per forcing period of the envelope.
+SAMPLES_PER_FORCING_PERIOD = 40
+
+#: The window (a fraction of the sweep's periods) over which a jump's change is measured.
+JUMP_WINDOW = 0.05
+
+#: Forcing periods the response settles for at the start frequency before the ramp begins.
+SETTLE_PERIODS = 400
+
+# -- perturb.sweep.evaluate
+#: A sampled component whose step from the end of the period back to its start exceeds this many
+#: times its largest step within the period does not return: it is not periodic (no amplitude).
+#: A smooth periodic component's steps differ by O(1) factors, a phase's wrap by the sample count.
+NOT_PERIODIC_STEP = 8.0
+
+#: Rows computed at once: the Newton steps' temporaries (4096 complex numbers, 64 KiB) stay below
+#: the size from which malloc maps fresh pages from the system for each array — which a Dask
+#: worker's MALLOC_TRIM_THRESHOLD_ makes it do for every large one (the temporaries of a whole
+#: chunk made the amplitudes 4 times slower on a worker than here); measured best of 512 to 4096.
+SWEEP_SAMPLE_BLOCK = 4096
+
+#: Newton steps that polish an extreme of a trigonometric polynomial found on the samples (the
+#: sample is within half a spacing; Newton converges quadratically from there).
+SWEEP_NEWTON_STEPS = 4
+
+# -- perturb.algebra.triangular
+#: Separating linear forms tried on a component whose lex basis is not in shape position.
+SEPARATING_FORMS = 3
+
+#: Digits of the floats given beside the exact values.
+TRIANGULAR_DIGITS = 30
+
+# -- perturb.algebra.msolve
+#: Threads given to msolve. One: on 2 cores shared with other work, ``-t 2`` made the same
+#: chain-of-4 solve take 0.5-19.5 s from run to run against 0.6-1.0 s with one thread.
+MSOLVE_THREADS = 1
+
+#: Digits beyond those a root's size needs, in its Newton refinement (``_refined``).
+GUARD_DIGITS = 15
+
+#: Newton steps of a refinement; from msolve's midpoint (38 correct digits) a few suffice.
+MSOLVE_NEWTON_STEPS = 8
+
+# -- perturb.algebra.rootset
+#: Digits of a root handed to the construction when it is not known exactly (the later orders
+#: are then computed in floats of this precision; msolve's boxes are narrower than 1e-38).
+NUMBER_DIGITS = 30
+
+# -- perturb.algebra.split
+#: Pieces one system may be cut into before the cutting stops (each is then solved as it is).
+SPLIT_MAX_PIECES = 256
+
+# -- perturb.cli._parser
+#: The default order of ``perturb response``: the curve is continued, so order 3 costs about
+#: what order 1 does, and at the forced Duffing's defaults it places the jump-down fold within
+#: 1.1e-4 of the true one (order 1: 5e-3 beyond it; tests/response/test_special_points.py).
+RESPONSE_ORDER = 3
+
+# -- perturb.solution
+#: Points per block in the scalar evaluation: small enough for the block's complex work arrays to
+#: stay in the L2 cache (16384 complex numbers = 256 KiB), which makes in-place Horner ~3x faster.
+EVAL_BLOCK = 1 << 14
+
+# -- perturb.continuation.events
+#: Where the corrector fails at the secant's point (exactly on a branch point, where the bordered
+#: matrix is singular), the point is moved this fraction of the way to the bracket's far end, then
+#: further: any point off the singular one will do, the bracket still holds the zero.
+NUDGES = (1e-6, 1e-3, 0.1)
+
+# -- perturb.algebra.split
+#: Terms of the value of a linear pivot put in while cutting (longer ones wait for the leaf:
+#: putting the frequency correction into every piece cost 8 of the 10 s of the chain of 6).
+SHORT_PIVOT = 2
+
+# -- perturb.algebra.certified
+#: Digits of an irrational exact root's approximation, carried through the back-substitution
+#: (the construction is handed 30, :data:`~perturb.algebra.rootset.NUMBER_DIGITS`).
+LIFT_DIGITS = 40
+
+#: With ``backend="auto"`` each piece is first given this long on the exact route (exact
+#: radicals, the same values as without the extra), then msolve: the chain of 3's piece takes
+#: 0.5 s exactly, the chain of 4's runs past 60 s, which msolve isolates in 0.4 s.
+EXACT_FIRST_SECONDS = 2.0
+
+#: Digits to which a root with inexact values must satisfy a continuum's equations to count as a
+#: point of it (its values carry at least 30, NUMBER_DIGITS; cubic equations: scale**3).
+ON_DIGITS = 20
+
+# -- perturb.steady.measures
+#: Samples of one period on which the largest |x| is found before Newton polishes it: 256 resolve
+#: the harmonics of an order-12 series of a cubic system (up to 3^12 is not reached: a series'
+#: harmonics grow like the order times the nonlinearity's degree, ~40) with several samples each.
+PEAK_SAMPLES = 256
+
+#: Terms below this fraction of the largest one do not count in the check that the terms
+#: decrease: far from resonance the detuning makes them comparable (ε σ ~ 0.5 at the forced
+#: Duffing's Ω = 1.46) while each is 1e-5 of the amplitude, a change no figure and no tolerance
+#: sees; a diverging series is flagged as soon as its terms reach it.
+NEGLIGIBLE_TERM = 1e-4
+
+#: Newton steps polishing an extreme from the nearest sample (quadratic from half a spacing).
+PEAK_NEWTON = 5
+
+# -- perturb.steady.line
+#: Relative step of the centred differences of a map that is not affine (eps^(1/3)).
+MAP_STEP = 6e-6
+
+# -- perturb.steady.polynomial
+#: Rows with at most this many (monomial, variable) pairs are generated as Python code
+#: (:meth:`CompiledPolynomials.function`): a few thousand float operations, tens of microseconds;
+#: beyond it numpy's arrays win.
+GENERATED_MAX_TERMS = 4000
+
+# -- perturb.steady.roots
+#: Budget of one parameter point's equations: a driven system's response equations (two to four
+#: unknowns, low degree) take milliseconds; when it is spent the status says so with the size.
+RESPONSE_SECONDS = 60.0
+
+# -- perturb.steady.traced
+#: The homotopy's range beyond [0, 1]: it is followed until it leaves it, so that τ = 1 is read
+#: inside the curve.
+HOMOTOPY_MARGIN = 0.05
+
+#: The homotopy's initial and largest steps, as fractions of 1 + the amplitude it starts from: its
+#: arclength runs in the amplitudes as much as in τ, and a root moves by O(ε) of its size.
+HOMOTOPY_STEP = 0.02
+
+HOMOTOPY_MAX_STEP = 0.1
+
+# -- perturb.steady.census
+#: Two responses whose amplitudes (or one's image) agree to this relative distance are one orbit:
+#: far above the census' isolation width and the corrector's tolerance, far below any two
+#: distinct branches.
+CENSUS_SAME_ORBIT = 1e-7
+
+#: Largest fraction 1/G of the forcing period tried as a symmetry of the equations: beyond the
+#: largest harmonic a driven system's forcing has (MAX_RESONANCE_INTEGER) with room to spare.
+MAX_SHIFT_DIVISOR = 24
+
+#: Points (state, θ, parameters and ε drawn in [0.2, 0.6], a fixed seed: the same everywhere) at which
+#: a shift of θ is tried, and the agreement that counts as invariant: the rounding of a
+#: right-hand side of size O(1) is ~1e-15, a term that moves under the shift moves it by O(1).
+SYMMETRY_PROBES = 3
+
+SYMMETRY_SEED = 20_290
+
+SYMMETRY_TOL = 1e-9
+
+#: Budget of the exact first-order folds on a line: a driven system's take 0.5-4 s (the absorber's
+#: five unknowns); a budget spent leaves the census at interior points to find closed branches.
+FOLD_SECONDS = 30.0
+
+# -- perturb.steady.evaluate
+#: An order-N point whose Newton step to the order-(N−1) equations moves it by less than this
+#: fraction of its amplitudes has a counterpart one order lower (the orders' roots differ by
+#: O(ε^N) away from folds); a longer move is decided by the homotopy in the truncation.
+LOWER_LEAP = 0.5
+
+#: The homotopy back to order N − 1 stays within this many times the point's amplitude.
+LOWER_CAP = 4.0
+
+#: Along a continued curve the order-(N−1) counterpart is tried at every this-many points, and at
+#: every point between two that disagree: consecutive points are a step apart (at most 2 % of
+#: the window), far closer than the features of a lower order's curve.
+ALONG_STRIDE = 4
+
+# -- perturb.steady.continued
+#: A fold and a branch point this close (relative, in λ and amplitudes) are one point: a
+#: pitchfork, where the branch crossing the other turns in λ too.
+SAME_CONTINUED_POINT = 1e-6
+
+# -- perturb.steady.branches
+#: The window in the detuning σ around one point over which its branches are followed: at least
+#: this wide on each side, and this share of |σ| (the order-N folds lie O(ε σ-scale) from the
+#: first-order ones: 4 in σ for the forced Duffing's defaults at order 1, where ε a² ~ 0.5).
+SINGLE_POINT_WINDOW = 2.0
+
+SINGLE_POINT_SHARE = 0.5
+
+# -- perturb.workprecision
+#: Steps per unit time of the RK4 runs: a factor 2 apart, from visibly inaccurate (error ~1e-3 on
+#: unit-frequency oscillators over 10 periods) to the round-off plateau.
+RK4_STEPS = (10, 20, 40, 80, 160, 320)
+
+#: Tolerances of the scipy runs: from engineering accuracy to three digits above round-off.
+SCIPY_TOLERANCES = (1e-6, 1e-8, 1e-10, 1e-12)

@@ -12,7 +12,12 @@ import sympy as sp
 from attrs import field, frozen
 
 from perturb._checks import as_mapping, as_real_array
-from perturb._defaults import NEAR_RESONANCE
+from perturb._defaults import (
+    DISPLAY_SIMPLIFY_MAX_OPS,
+    EVAL_BLOCK,
+    NEAR_RESONANCE,
+    RECENT_COEFFICIENTS,
+)
 from perturb._install import install_hint
 from perturb._lambdify import numpy_lambdify
 from perturb.errors import AccuracyWarning, InvalidParameterError, PerturbError, bad_value
@@ -453,15 +458,6 @@ class PeriodicSolution:
         return self.evaluate(np.zeros(()), parameter_value, values)
 
 
-#: Parameter sets whose coefficients a solution keeps (:meth:`PeriodicSolution.coefficients`): a
-#: validation asks at its own set and at the sets of its order check (four values of epsilon).
-RECENT_COEFFICIENTS = 8
-
-#: Points per block in the scalar evaluation: small enough for the block's complex work arrays to
-#: stay in the L2 cache (16384 complex numbers = 256 KiB), which makes in-place Horner ~3x faster.
-EVAL_BLOCK = 1 << 14
-
-
 def _evaluate_scalar(omega: float, coeffs: np.ndarray, t: np.ndarray) -> np.ndarray:
     """State at times ``t`` for scalar parameters: blocked, in-place Horner in exp(i Omega t)."""
     n, nh = coeffs.shape[:2]
@@ -483,11 +479,6 @@ def _evaluate_scalar(omega: float, coeffs: np.ndarray, t: np.ndarray) -> np.ndar
             out[n + i, lo : lo + EVAL_BLOCK] = -omega * dacc.imag  # Re(i Omega dacc)
     out += 0.0  # turns the -0.0 of vanishing velocities into 0.0 (for printing)
     return out.reshape((2 * n,) + t.shape)
-
-
-#: Coefficients with more operations than this are shown as computed: factoring them would take
-#: longer than anyone waits for a printout.
-DISPLAY_SIMPLIFY_MAX_OPS = 4000
 
 
 def _display(expr: sp.Expr) -> sp.Expr:

@@ -30,6 +30,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 from attrs import frozen
 
+from perturb._defaults import DEFAULT_REPEAT, REFERENCE_RTOL, RK4_STEPS, SCIPY_TOLERANCES
 from perturb.cache import bypassed
 from perturb.errors import bad_value
 from perturb.oracle import RK4, Heyoka, Scipy, choose, heyoka_available
@@ -44,22 +45,9 @@ from perturb.validation import (
 
 __all__ = ["WorkPoint", "WorkPrecision", "work_precision"]
 
-#: Steps per unit time of the RK4 runs: a factor 2 apart, from visibly inaccurate (error ~1e-3 on
-#: unit-frequency oscillators over 10 periods) to the round-off plateau.
-RK4_STEPS = (10, 20, 40, 80, 160, 320)
 
 #: The scipy methods compared (the explicit high-order one, the default one, two stiff ones).
 SCIPY_METHODS = ("DOP853", "RK45", "Radau", "LSODA")
-
-#: Tolerances of the scipy runs: from engineering accuracy to three digits above round-off.
-SCIPY_TOLERANCES = (1e-6, 1e-8, 1e-10, 1e-12)
-
-#: Tolerance of the reference when heyoka's extended precision is unavailable: one decade below the
-#: tightest compared tolerance.
-REFERENCE_RTOL = 1e-13
-
-#: Timed runs per point after the warm-up (the best is reported); 3 removes most scheduling noise.
-DEFAULT_REPEAT = 3
 
 
 @frozen

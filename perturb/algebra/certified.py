@@ -7,7 +7,7 @@ import time
 import sympy as sp
 from attrs import evolve
 
-from perturb._defaults import PIVOT_GROWTH
+from perturb._defaults import EXACT_FIRST_SECONDS, LIFT_DIGITS, ON_DIGITS, PIVOT_GROWTH
 from perturb.algebra.budget import solve_bounded
 from perturb.algebra.msolve import INSTALL_HINT, msolve_binary, msolve_real_roots
 from perturb.algebra.rootset import RootSet, RootStatus
@@ -19,16 +19,6 @@ __all__ = ["BACKENDS", "certified_real_roots"]
 
 #: The routes: ``auto`` is msolve when the extra is installed, else the exact sympy route.
 BACKENDS = ("auto", "msolve", "sympy")
-#: Digits of an irrational exact root's approximation, carried through the back-substitution
-#: (the construction is handed 30, :data:`~perturb.algebra.rootset.NUMBER_DIGITS`).
-LIFT_DIGITS = 40
-#: With ``backend="auto"`` each piece is first given this long on the exact route (exact
-#: radicals, the same values as without the extra), then msolve: the chain of 3's piece takes
-#: 0.5 s exactly, the chain of 4's runs past 60 s, which msolve isolates in 0.4 s.
-EXACT_FIRST_SECONDS = 2.0
-#: Digits to which a root with inexact values must satisfy a continuum's equations to count as a
-#: point of it (its values carry at least 30, NUMBER_DIGITS; cubic equations: scale**3).
-ON_DIGITS = 20
 
 
 def _check(eqs, unknowns) -> None:

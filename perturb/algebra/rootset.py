@@ -6,11 +6,9 @@ import enum
 
 from attrs import field, frozen
 
-__all__ = ["NUMBER_DIGITS", "RootSet", "RootStatus"]
+from perturb._defaults import NUMBER_DIGITS
 
-#: Digits of a root handed to the construction when it is not known exactly (the later orders
-#: are then computed in floats of this precision; msolve's boxes are narrower than 1e-38).
-NUMBER_DIGITS = 30
+__all__ = ["NUMBER_DIGITS", "RootSet", "RootStatus"]
 
 
 class RootStatus(enum.Enum):

@@ -29,13 +29,9 @@ import time
 import sympy as sp
 from attrs import evolve, field, frozen
 
-__all__ = ["Piece", "cut", "frequency_eliminants", "psd_linear_forms", "sign_symmetry"]
+from perturb._defaults import SHORT_PIVOT, SPLIT_MAX_PIECES
 
-#: Pieces one system may be cut into before the cutting stops (each is then solved as it is).
-MAX_PIECES = 256
-#: Terms of the value of a linear pivot put in while cutting (longer ones wait for the leaf:
-#: putting the frequency correction into every piece cost 8 of the 10 s of the chain of 6).
-SHORT_PIVOT = 2
+__all__ = ["Piece", "cut", "frequency_eliminants", "psd_linear_forms", "sign_symmetry"]
 
 
 class BudgetSpent(Exception):
@@ -413,7 +409,7 @@ def cut(eqs, unknowns, *, members=(), deadline: float | None = None) -> list[Pie
         piece = _normalise(stack.pop())
         if piece is None:
             continue
-        if len(leaves) + len(stack) >= MAX_PIECES:
+        if len(leaves) + len(stack) >= SPLIT_MAX_PIECES:
             leaves.append(piece)
             continue
         pieces = _cut_by_symmetry(piece)

@@ -28,15 +28,11 @@ from itertools import combinations
 
 import sympy as sp
 
+from perturb._defaults import SEPARATING_FORMS, TRIANGULAR_DIGITS
 from perturb.algebra.rootset import RootSet, RootStatus
 from perturb.algebra.size import SystemSize
 
 __all__ = ["eliminate_linear", "exact_real_roots", "ideal_dimension"]
-
-#: Separating linear forms tried on a component whose lex basis is not in shape position.
-SEPARATING_FORMS = 3
-#: Digits of the floats given beside the exact values.
-FLOAT_DIGITS = 30
 
 
 class _Undecided(Exception):
@@ -299,7 +295,7 @@ def exact_real_roots(eqs, unknowns) -> RootSet:
     )
     exact = [exact[i] for i in order]
     certificates = [certificates[i] for i in order]
-    floats = [{u: float(sp.N(v, FLOAT_DIGITS)) for u, v in root.items()} for root in exact]
+    floats = [{u: float(sp.N(v, TRIANGULAR_DIGITS)) for u, v in root.items()} for root in exact]
     if not exact:
         return result(
             RootStatus.NO_REAL_ROOT, "every root is complex (isolation found none)", dimension=0

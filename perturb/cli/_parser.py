@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 
+from perturb._defaults import RESPONSE_ORDER
 from perturb.cli._errors import _UsageError
 
 _EPILOG = """examples:
@@ -214,12 +215,6 @@ def _build_parser() -> argparse.ArgumentParser:
             help="no progress bar on stderr (it is shown only on a terminal anyway)",
         )
     return parser
-
-
-#: The default order of ``perturb response``: the curve is continued, so order 3 costs about
-#: what order 1 does, and at the forced Duffing's defaults it places the jump-down fold within
-#: 1.1e-4 of the true one (order 1: 5e-3 beyond it; tests/response/test_special_points.py).
-RESPONSE_ORDER = 3
 
 
 def _add_response(sub) -> None:

@@ -58,8 +58,9 @@ def _check_domain(result) -> None:
 
 
 def _cmd_response(args) -> int:
+    from perturb._defaults import MAX_VALIDATE
     from perturb.report import response_as_csv, response_as_dict, response_as_table
-    from perturb.response.model import MAX_VALIDATE, problem_response
+    from perturb.response.model import problem_response
     from problems import load_problem
 
     cls = load_problem(args.problem)

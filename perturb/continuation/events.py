@@ -16,7 +16,7 @@ from collections.abc import Callable
 import numpy as np
 from attrs import field, frozen
 
-from perturb._defaults import EVENT_MAX_ITER, EVENT_TOL
+from perturb._defaults import EVENT_MAX_ITER, EVENT_TOL, NUDGES
 from perturb.continuation.newton import bordered, correct, tangent
 from perturb.continuation.special import SpecialPoint
 
@@ -28,11 +28,6 @@ __all__ = [
     "locate_on_curve",
     "point_on_segment",
 ]
-
-#: Where the corrector fails at the secant's point (exactly on a branch point, where the bordered
-#: matrix is singular), the point is moved this fraction of the way to the bracket's far end, then
-#: further: any point off the singular one will do, the bracket still holds the zero.
-NUDGES = (1e-6, 1e-3, 0.1)
 
 
 @frozen

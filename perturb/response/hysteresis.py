@@ -18,17 +18,11 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._defaults import JUMP_WINDOW, SAMPLES_PER_FORCING_PERIOD, SETTLE_PERIODS
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.oracle import SymbolicRHS, choose
 
 __all__ = ["SweepRun", "slow_sweep"]
-
-#: Samples per forcing period of the envelope.
-SAMPLES_PER_FORCING_PERIOD = 40
-#: The window (a fraction of the sweep's periods) over which a jump's change is measured.
-JUMP_WINDOW = 0.05
-#: Forcing periods the response settles for at the start frequency before the ramp begins.
-SETTLE_PERIODS = 400
 
 
 @frozen

@@ -22,6 +22,7 @@ from collections.abc import Sequence
 import numpy as np
 from attrs import field, frozen
 
+from perturb._defaults import MAX_VALIDATE
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import amplitude_equations
 from perturb.steady.backbone import Backbone, backbone
@@ -258,11 +259,6 @@ def problem_response(
     return ProblemResponse(
         problem.name, parameter, response, branch_names_, spine, true_points, curves
     )
-
-
-#: Most points ``--validate`` shoots on each branch besides the ones it always shoots (largest
-#: amplitude, fold sides, ends): each is a shooting with variational equations, 0.05-0.5 s.
-MAX_VALIDATE = 50
 
 
 def check_measure(measure: str) -> str:

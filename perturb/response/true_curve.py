@@ -40,6 +40,7 @@ import numpy as np
 
 from perturb._defaults import (
     DEFAULT_TOL,
+    SEED_TRIES,
     TRUE_CURVE_MULTIPLIER_TOL,
     TRUE_CURVE_POINTS,
     TRUE_CURVE_SAME_ORBIT,
@@ -169,11 +170,6 @@ def _seeds(response, names):
         top = max(max(p.norms.values(), default=0.0) for p in branch)
         out.append((name, candidates, np.array([top])))
     return out
-
-
-#: Seeds tried on one analytic branch before it is given up (each costs an analytic solution at
-#: its value and a Newton correction).
-SEED_TRIES = 3
 
 
 def _follow(setup, equations, name, candidates, curves, covered, budget):

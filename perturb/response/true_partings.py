@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 
+from perturb._defaults import TRIVIAL_AMPLITUDE
 from perturb.response.true_family import OutsideDomain
 from perturb.response.true_results import Parting
 
@@ -71,10 +72,6 @@ def _analytic(point, coordinate: str, measure: str) -> float:
     if measure == "initial":
         return float(point.norms[coordinate])
     return float(point.amplitude(coordinate, measure))
-
-
-#: Amplitudes below this are the trivial response x = 0 (as the analytic branches' TRIVIAL).
-TRIVIAL_AMPLITUDE = 1e-12
 
 
 def _crossings(name, rows, tol) -> list[Parting]:

@@ -19,7 +19,7 @@ import math
 import numpy as np
 import sympy as sp
 
-from perturb._defaults import DEFAULT_RTOL
+from perturb._defaults import DEFAULT_RTOL, FOLD_SIDE, TRUTH_SAMPLES
 from perturb.oracle import SymbolicRHS, choose
 from perturb.oracle.forced import find_forced_orbit
 from perturb.progress import track
@@ -27,14 +27,6 @@ from perturb.steady.measures import peak_abs
 from perturb.system import EPS
 
 __all__ = ["choose_points", "shoot_point"]
-
-#: Samples of the true orbit over one period: its trigonometric interpolant holds harmonics up to
-#: 511, whose coefficients for a smooth weakly nonlinear orbit are at rounding long before that.
-TRUE_SAMPLES = 1024
-#: How far beside a fold its two checked points lie, as a fraction of the curve's arclength in
-#: the sweep (at least one continuation step): off the fold's singular Newton matrix, near enough
-#: to show the branch's end.
-FOLD_SIDE = 0.01
 
 
 def choose_points(curve, folds, low: float, high: float, count: int, measure: str) -> list:
@@ -94,18 +86,18 @@ def shoot_point(evaluator, line, u: np.ndarray, lam: float) -> dict:
     orbit = find_forced_orbit(rhs, y0, period)
     if not orbit.success:
         return {"success": False, "message": orbit.message}
-    t = period * np.arange(TRUE_SAMPLES) / TRUE_SAMPLES
+    t = period * np.arange(TRUTH_SAMPLES) / TRUTH_SAMPLES
     traj = choose(None, rtol=DEFAULT_RTOL, symbolic=True).integrate(
         rhs, (0.0, period), np.append(orbit.initial_state, 0.0), t_eval=t
     )
     if not traj.success:
         return {"success": False, "message": f"integrating the true orbit: {traj.message}"}
-    samples = np.asarray(traj.y, dtype=float)[: system.n]  # (n, TRUE_SAMPLES)
+    samples = np.asarray(traj.y, dtype=float)[: system.n]  # (n, TRUTH_SAMPLES)
     s = nu * t
     analytic = cos @ np.cos(np.outer(j, s)) + sin @ np.sin(np.outer(j, s))
     names = [c.name for c in system.coordinates]
     out = {"success": True, "message": orbit.message, "peak": {}, "first-harmonic": {}}
-    spectrum = np.fft.rfft(samples, axis=1) / TRUE_SAMPLES
+    spectrum = np.fft.rfft(samples, axis=1) / TRUTH_SAMPLES
     half = spectrum.shape[1] - 1
     c_true = 2 * spectrum.real
     c_true[:, 0] /= 2

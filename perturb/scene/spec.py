@@ -33,6 +33,7 @@ from attrs import field, frozen
 
 from perturb._defaults import (
     MAX_ORDER,
+    MAX_VALIDATE,
     SCENE_MAX_PERIODS,
     SCENE_MAX_REPEAT,
     SCENE_MAX_SAMPLES_PER_PERIOD,
@@ -84,10 +85,6 @@ VALIDATED_MAPS = frozenset({"verdict_map", "error_map", "slope_map"})
 #: Plots of the ``[response]`` (a driven problem's frequency response).
 RESPONSE_PLOTS = frozenset({"frequency_response", "floquet_multipliers"})
 
-#: Points per branch a ``[response]`` may shoot (``validate``): each is a shooting with its
-#: Floquet multipliers, a few tenths of a second; ``perturb response --validate``'s own bound
-#: (``perturb.response.model.MAX_VALIDATE``; tests/scene checks they are one).
-RESPONSE_MAX_VALIDATE = 50
 
 #: Plots drawn beside the true motion: they need an integration of the original equations (the
 #: convergence plot the validation's ε scan, the work-precision plot the integrator runs).
@@ -512,7 +509,7 @@ def _response_section(table: dict, c: _Checker) -> ResponseSettings:
         raise c.fail("sweep", sweep, str(exc).split(": ", 1)[-1]) from None
     settings: dict = {"sweep": sweep}
     if "validate" in table:
-        settings["validate"] = c.integer("validate", table["validate"], 0, RESPONSE_MAX_VALIDATE)
+        settings["validate"] = c.integer("validate", table["validate"], 0, MAX_VALIDATE)
     return ResponseSettings(**settings)
 
 

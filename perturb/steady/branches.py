@@ -19,6 +19,7 @@ from collections.abc import Mapping
 import attrs
 import sympy as sp
 
+from perturb._defaults import SINGLE_POINT_SHARE, SINGLE_POINT_WINDOW, TRIVIAL_AMPLITUDE
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import AmplitudeEquations
 from perturb.method.family_names import response_shape
@@ -34,9 +35,6 @@ __all__ = [
     "exact_number",
     "steady_state",
 ]
-
-#: A response whose amplitudes are all below this is the trivial one (x = 0).
-TRIVIAL = 1e-12
 
 
 @attrs.frozen
@@ -83,7 +81,7 @@ class BranchPoint:
 
     @property
     def trivial(self) -> bool:
-        return all(n <= TRIVIAL for n in self.norms.values())
+        return all(n <= TRIVIAL_AMPLITUDE for n in self.norms.values())
 
     def norm(self, coordinate: str | None = None) -> float:
         """The response amplitude of ``coordinate`` (default: the first resonant one)."""
@@ -177,13 +175,6 @@ def branches_at(
             )
         )
     return sorted(out, key=lambda p: (*p.peak.values(), *p.norms.values())), ""
-
-
-#: The window in the detuning σ around one point over which its branches are followed: at least
-#: this wide on each side, and this share of |σ| (the order-N folds lie O(ε σ-scale) from the
-#: first-order ones: 4 in σ for the forced Duffing's defaults at order 1, where ε a² ~ 0.5).
-SINGLE_POINT_WINDOW = 2.0
-SINGLE_POINT_SHARE = 0.5
 
 
 def count_name(name: str) -> bool:

@@ -22,18 +22,18 @@ from functools import lru_cache
 import numpy as np
 import sympy as sp
 
+from perturb._defaults import (
+    CENSUS_SAME_ORBIT,
+    FOLD_SECONDS,
+    MAX_SHIFT_DIVISOR,
+    SYMMETRY_PROBES,
+    SYMMETRY_SEED,
+    SYMMETRY_TOL,
+)
 from perturb.cache import cached
 from perturb.steady.roots import RootStatus, real_roots
 
 __all__ = ["census", "distinct_orbits", "line_folds", "orbit_images", "shift_symmetry"]
-
-#: Two responses whose amplitudes (or one's image) agree to this relative distance are one orbit:
-#: far above the census' isolation width and the corrector's tolerance, far below any two
-#: distinct branches.
-SAME_ORBIT = 1e-7
-#: Largest fraction 1/G of the forcing period tried as a symmetry of the equations: beyond the
-#: largest harmonic a driven system's forcing has (MAX_RESONANCE_INTEGER) with room to spare.
-MAX_SHIFT_DIVISOR = 24
 
 
 @lru_cache(maxsize=32)
@@ -73,14 +73,6 @@ def shift_symmetry(system) -> int:
     )
 
 
-#: Points (state, θ, parameters and ε drawn in [0.2, 0.6], a fixed seed: the same everywhere) at which
-#: a shift of θ is tried, and the agreement that counts as invariant: the rounding of a
-#: right-hand side of size O(1) is ~1e-15, a term that moves under the shift moves it by O(1).
-SYMMETRY_PROBES = 3
-SYMMETRY_SEED = 20_290
-SYMMETRY_TOL = 1e-9
-
-
 def orbit_images(u: np.ndarray, harmonics, group: int) -> list[np.ndarray]:
     """The amplitudes ``u`` = (a₁, b₁, a₂, b₂, …) of the same motion shifted by k/group of the
     response's period, k = 1..group−1 (harmonic m rotated by 2πkm/group)."""
@@ -100,7 +92,7 @@ def same_orbit(u, v, harmonics, group: int) -> bool:
     """Whether amplitudes ``u`` and ``v`` are one motion (equal, or one an image of the other)."""
     size = max(1.0, float(np.max(np.abs(u))), float(np.max(np.abs(v))))
     return any(
-        float(np.max(np.abs(w - v))) <= SAME_ORBIT * size
+        float(np.max(np.abs(w - v))) <= CENSUS_SAME_ORBIT * size
         for w in [np.asarray(u, dtype=float), *orbit_images(u, harmonics, group)]
     )
 
@@ -156,8 +148,3 @@ def line_folds(equations, base: dict, slope: dict, lam: sp.Symbol) -> tuple[list
         return [np.array([float(r[v]) for v in (*unknowns, lam)]) for r in found.roots], ""
 
     return cached("response-line-folds", lambda: (sp.srepr(tuple(rows)), lam.name), solve)
-
-
-#: Budget of the exact first-order folds on a line: a driven system's take 0.5-4 s (the absorber's
-#: five unknowns); a budget spent leaves the census at interior points to find closed branches.
-FOLD_SECONDS = 30.0

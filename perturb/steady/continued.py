@@ -17,17 +17,13 @@ import math
 import numpy as np
 from attrs import field, frozen
 
-from perturb._defaults import WINDOW_MARGIN
+from perturb._defaults import SAME_CONTINUED_POINT, WINDOW_MARGIN
 from perturb.continuation import TestFunction, locate_on_curve
 from perturb.steady.census import same_orbit
 from perturb.steady.evaluate import PointEvaluator
 from perturb.steady.traced import trace
 
 __all__ = ["Continued", "ResponseCurve", "SpecialResponse", "continued_response", "window_of"]
-
-#: A fold and a branch point this close (relative, in λ and amplitudes) are one point: a
-#: pitchfork, where the branch crossing the other turns in λ too.
-SAME_POINT = 1e-6
 
 
 @frozen
@@ -131,10 +127,10 @@ def _dedupe(found: list[SpecialResponse], harmonics, group) -> list[SpecialRespo
     def close(p, q):
         scale = max(1.0, abs(p.value))
         return (
-            abs(p.value - q.value) <= SAME_POINT * scale
+            abs(p.value - q.value) <= SAME_CONTINUED_POINT * scale
             and same_orbit(u(p), u(q), harmonics, group)
             or (
-                abs(p.value - q.value) <= SAME_POINT * scale
+                abs(p.value - q.value) <= SAME_CONTINUED_POINT * scale
                 and float(np.max(np.abs(u(p) - u(q))))
                 <= 1e-4 * max(1.0, float(np.max(np.abs(u(p)))))
             )

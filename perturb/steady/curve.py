@@ -97,9 +97,9 @@ class ResponsePoint:
     @property
     def trivial(self) -> bool:
         """Every resonant coordinate at rest (x = 0)."""
-        from perturb.steady.branches import TRIVIAL
+        from perturb._defaults import TRIVIAL_AMPLITUDE
 
-        return all(n <= TRIVIAL for n in self.norms.values())
+        return all(n <= TRIVIAL_AMPLITUDE for n in self.norms.values())
 
     def amplitude(self, coordinate: str | None = None, measure: str = "initial") -> float:
         """``coordinate``'s amplitude by ``measure`` (``peak``, ``first-harmonic`` or

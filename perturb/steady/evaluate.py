@@ -16,26 +16,22 @@ from __future__ import annotations
 
 import numpy as np
 
-from perturb._defaults import MAGNUS_DRAW_STEPS, MAGNUS_STEPS
+from perturb._defaults import (
+    ALONG_STRIDE,
+    HOMOTOPY_MARGIN,
+    LOWER_CAP,
+    LOWER_LEAP,
+    MAGNUS_DRAW_STEPS,
+    MAGNUS_STEPS,
+)
 from perturb.continuation import ContinuationStatus, continue_curve
 from perturb.continuation.newton import newton_fixed
 from perturb.steady.compiled import compiled_displacement, compiled_motion, compiled_series
 from perturb.steady.floquet import stability_along
 from perturb.steady.measures import compiled_terms, peak_abs, series_estimate
-from perturb.steady.traced import HOMOTOPY_MARGIN, _homotopy, homotopy_steps, line_equations
+from perturb.steady.traced import _homotopy, homotopy_steps, line_equations
 
 __all__ = ["PointEvaluator"]
-
-#: An order-N point whose Newton step to the order-(N−1) equations moves it by less than this
-#: fraction of its amplitudes has a counterpart one order lower (the orders' roots differ by
-#: O(ε^N) away from folds); a longer move is decided by the homotopy in the truncation.
-LOWER_LEAP = 0.5
-#: The homotopy back to order N − 1 stays within this many times the point's amplitude.
-LOWER_CAP = 4.0
-#: Along a continued curve the order-(N−1) counterpart is tried at every this-many points, and at
-#: every point between two that disagree: consecutive points are a step apart (at most 2 % of
-#: the window), far closer than the features of a lower order's curve.
-ALONG_STRIDE = 4
 
 
 class PointEvaluator:

@@ -19,12 +19,10 @@ from collections.abc import Callable
 import numpy as np
 from attrs import field, frozen
 
+from perturb._defaults import MAP_STEP
 from perturb.errors import InvalidParameterError
 
 __all__ = ["ParameterLine", "excitation_frequency", "line_of_problem", "line_of_values"]
-
-#: Relative step of the centred differences of a map that is not affine (eps^(1/3)).
-MAP_STEP = 6e-6
 
 
 @frozen

@@ -21,6 +21,7 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
+from perturb._defaults import NEGLIGIBLE_TERM, PEAK_NEWTON, PEAK_SAMPLES
 from perturb.steady.compiled import _compile, _key, variables
 from perturb.system import EPS
 
@@ -32,17 +33,6 @@ MEASURES = {
     "first-harmonic": "first-harmonic amplitude",
     "initial": "initial-value norm |(x(0), xdot(0)/(m nu))|",
 }
-#: Samples of one period on which the largest |x| is found before Newton polishes it: 256 resolve
-#: the harmonics of an order-12 series of a cubic system (up to 3^12 is not reached: a series'
-#: harmonics grow like the order times the nonlinearity's degree, ~40) with several samples each.
-PEAK_SAMPLES = 256
-#: Terms below this fraction of the largest one do not count in the check that the terms
-#: decrease: far from resonance the detuning makes them comparable (ε σ ~ 0.5 at the forced
-#: Duffing's Ω = 1.46) while each is 1e-5 of the amplitude, a change no figure and no tolerance
-#: sees; a diverging series is flagged as soon as its terms reach it.
-NEGLIGIBLE_TERM = 1e-4
-#: Newton steps polishing an extreme from the nearest sample (quadratic from half a spacing).
-PEAK_NEWTON = 5
 
 
 def peak_abs(cos: np.ndarray, sin: np.ndarray) -> np.ndarray:

@@ -16,12 +16,9 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
-__all__ = ["CompiledPolynomials", "compile_polynomials"]
+from perturb._defaults import GENERATED_MAX_TERMS
 
-#: Rows with at most this many (monomial, variable) pairs are generated as Python code
-#: (:meth:`CompiledPolynomials.function`): a few thousand float operations, tens of microseconds;
-#: beyond it numpy's arrays win.
-GENERATED_MAX_TERMS = 4000
+__all__ = ["CompiledPolynomials", "compile_polynomials"]
 
 
 @frozen

@@ -11,15 +11,12 @@ from __future__ import annotations
 
 import sympy as sp
 
+from perturb._defaults import RESPONSE_SECONDS
 from perturb.algebra.certified import certified_real_roots
 from perturb.algebra.msolve import msolve_binary
 from perturb.algebra.rootset import RootSet, RootStatus
 
 __all__ = ["RootSet", "RootStatus", "real_roots"]
-
-#: Budget of one parameter point's equations: a driven system's response equations (two to four
-#: unknowns, low degree) take milliseconds; when it is spent the status says so with the size.
-RESPONSE_SECONDS = 60.0
 
 
 def real_roots(

@@ -25,7 +25,13 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
-from perturb._defaults import AMPLITUDE_CAP, LIFT_TRIES
+from perturb._defaults import (
+    AMPLITUDE_CAP,
+    HOMOTOPY_MARGIN,
+    HOMOTOPY_MAX_STEP,
+    HOMOTOPY_STEP,
+    LIFT_TRIES,
+)
 from perturb.continuation import ContinuationStatus, CurveEquations, continue_both, continue_curve
 from perturb.steady.census import census, distinct_orbits, line_folds, same_orbit
 from perturb.steady.compiled import compiled_displacement
@@ -187,15 +193,6 @@ def _lift(order_n: CurveEquations, first_order: CurveEquations, curve, cap: floa
         if len(reached):
             return np.append(reached[-1][:-1], x[-1])
     return None
-
-
-#: The homotopy's range beyond [0, 1]: it is followed until it leaves it, so that τ = 1 is read
-#: inside the curve.
-HOMOTOPY_MARGIN = 0.05
-#: The homotopy's initial and largest steps, as fractions of 1 + the amplitude it starts from: its
-#: arclength runs in the amplitudes as much as in τ, and a root moves by O(ε) of its size.
-HOMOTOPY_STEP = 0.02
-HOMOTOPY_MAX_STEP = 0.1
 
 
 def homotopy_steps(size: float) -> dict:

@@ -22,7 +22,13 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import sympy as sp
 
-from perturb._defaults import SWEEP_AMPLITUDE_SAMPLES, SWEEP_DOMAIN_MARGIN
+from perturb._defaults import (
+    NOT_PERIODIC_STEP,
+    SWEEP_AMPLITUDE_SAMPLES,
+    SWEEP_DOMAIN_MARGIN,
+    SWEEP_NEWTON_STEPS,
+    SWEEP_SAMPLE_BLOCK,
+)
 from perturb._lambdify import numpy_lambdify
 from perturb.domain import DomainCheck, next_terms, series_domain
 from perturb.solution import PeriodicSolution, SolutionFailed
@@ -78,22 +84,6 @@ def half_range(samples: np.ndarray) -> np.ndarray:
     return np.where(closed, (out[0] - out[1]) / 2, np.nan)
 
 
-#: A sampled component whose step from the end of the period back to its start exceeds this many
-#: times its largest step within the period does not return: it is not periodic (no amplitude).
-#: A smooth periodic component's steps differ by O(1) factors, a phase's wrap by the sample count.
-NOT_PERIODIC_STEP = 8.0
-
-#: Rows computed at once: the Newton steps' temporaries (4096 complex numbers, 64 KiB) stay below
-#: the size from which malloc maps fresh pages from the system for each array — which a Dask
-#: worker's MALLOC_TRIM_THRESHOLD_ makes it do for every large one (the temporaries of a whole
-#: chunk made the amplitudes 4 times slower on a worker than here); measured best of 512 to 4096.
-SAMPLE_BLOCK = 4096
-
-#: Newton steps that polish an extreme of a trigonometric polynomial found on the samples (the
-#: sample is within half a spacing; Newton converges quadratically from there).
-NEWTON_STEPS = 4
-
-
 def trig_half_range(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Half the range over one period of :math:`x(s) = \\sum_j a_j \\cos js + b_j \\sin js`.
 
@@ -108,8 +98,8 @@ def trig_half_range(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     table = np.concatenate([np.cos(np.outer(j, s)), np.sin(np.outer(j, s))], axis=0)
     c = flat_a - 1j * flat_b
     out = np.empty(coefficients.shape[0])
-    for lo in range(0, out.size, SAMPLE_BLOCK):  # every temporary of a block stays small
-        rows = slice(lo, lo + SAMPLE_BLOCK)
+    for lo in range(0, out.size, SWEEP_SAMPLE_BLOCK):  # every temporary of a block stays small
+        rows = slice(lo, lo + SWEEP_SAMPLE_BLOCK)
         out[rows] = _block_half_range(coefficients[rows] @ table, c[rows], s)
     return out.reshape(shape)
 
@@ -125,7 +115,7 @@ def _block_half_range(samples: np.ndarray, c: np.ndarray, s: np.ndarray) -> np.n
         where = pick(samples, axis=-1)
         extreme = sign * samples[rows_in, where]
         at = s[where]
-        for _ in range(NEWTON_STEPS):
+        for _ in range(SWEEP_NEWTON_STEPS):
             z = np.exp(1j * at)
             d1 = d2 = 0j
             for k in range(h - 1, 0, -1):  # Horner in z of j c_j and j^2 c_j (j >= 1)
