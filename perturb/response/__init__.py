@@ -5,7 +5,6 @@
 """
 
 from perturb.steady.branches import (
-    BranchPoint,
     SteadyState,
     branch_names,
     branch_solution,
@@ -15,9 +14,9 @@ from perturb.steady.branches import (
 from perturb.steady.curve import (
     Fold,
     FrequencyResponse,
-    ResponsePoint,
     trace_branches,
 )
+from perturb.steady.point import BranchPoint, ResponsePoint
 from perturb.steady.roots import RootSet, RootStatus, real_roots
 from perturb.steady.sampled import frequency_response
 

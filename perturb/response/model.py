@@ -92,8 +92,10 @@ class ProblemResponse:
 
 
 def parse_sweep(text: str, argument: str = "--sweep") -> tuple[str, np.ndarray]:
-    """``NAME=START:STOP:N`` (finite bounds, START < STOP, 2 <= N <= ``MAX_TIMES``) as
-    ``(name, values)``: the sweep of ``perturb response --sweep`` and of a scene's ``[response]``.
+    """The values of ``perturb response --sweep`` and of a scene's ``[response]`` as
+    ``(name, values)``: the one grammar of :func:`perturb.axis.parse_axis` (``NAME=START:STOP:N``,
+    ``NAME=START:STOP:N:log``, ``NAME=V1,V2,...``), with the rules of a curve continued along it:
+    2 to ``MAX_TIMES`` values, increasing.
 
     Raises
     ------
@@ -105,29 +107,23 @@ def parse_sweep(text: str, argument: str = "--sweep") -> tuple[str, np.ndarray]:
     >>> name, values = parse_sweep("Omega=0.9:1.1:3")
     >>> name, values.tolist()
     ('Omega', [0.9, 1.0, 1.1])
+    >>> parse_sweep("Omega=0.95,1.0,1.2")[1].tolist()
+    [0.95, 1.0, 1.2]
     """
     from perturb._defaults import MAX_TIMES
+    from perturb.axis import parse_axis
 
-    name, sep, spec = str(text).partition("=")
-    parts = spec.split(":")
+    axis = parse_axis(text, argument)
+    values = np.array(axis.values)
 
     def fail(fix: str) -> InvalidParameterError:
         return InvalidParameterError(f"{argument} {text!r}: {fix}")
 
-    if not sep or not name.strip() or len(parts) != 3:
-        raise fail(f"write NAME=START:STOP:N, e.g. {argument} Omega=0.9:1.2:61")
-    try:
-        start, stop = float(parts[0]), float(parts[1])
-        count = int(parts[2])
-    except ValueError:
-        raise fail("START and STOP must be numbers and N a whole number") from None
-    if not (math.isfinite(start) and math.isfinite(stop)):
-        raise fail("START and STOP must be finite")
-    if not 2 <= count <= MAX_TIMES:
-        raise fail(f"N = {count} must be between 2 and {MAX_TIMES}")
-    if not start < stop:
-        raise fail("START must be below STOP (bounds reversed?)")
-    return name.strip(), np.linspace(start, stop, count)
+    if not 2 <= values.size <= MAX_TIMES:
+        raise fail(f"N = {values.size} must be between 2 and {MAX_TIMES}")
+    if not np.all(np.diff(values) > 0):
+        raise fail("START must be below STOP (bounds reversed?): give increasing values")
+    return axis.name, values
 
 
 def _check_grid(parameter: str, grid) -> np.ndarray:

@@ -215,14 +215,10 @@ def _follow(setup, equations, name, candidates, curves, covered, budget):
 def _analytic_state(setup, lam: float, name: str, point) -> np.ndarray:
     """The order-N state at t = 0 of the analytic branch point ``point`` at λ (the seed): its
     series with the point's amplitudes put in (:func:`~perturb.steady.branches.branch_solution`)."""
-    from perturb.steady.branches import BranchPoint, branch_solution
+    from perturb.steady.branches import branch_solution
     from perturb.validation import state_along
 
-    branch = BranchPoint(
-        point.amplitudes, point.norms, point.stable, point.eigenvalues, point.multipliers,
-        point.first_order, point.note,
-    )  # fmt: skip
-    solution = branch_solution(setup.amplitude_equations, branch, name)
+    solution = branch_solution(setup.amplitude_equations, point, name)
     variant = setup.problem.with_parameters(**{setup.parameter: lam})
     state = state_along(solution, [0.0], variant.parameter_value(), variant.symbol_values())
     return np.array([float(state[s.name][0]) for s in setup.system.state_symbols])

@@ -8,14 +8,14 @@ curve with its true orbits) and :mod:`perturb.validation` both stand on it.
 """
 
 from perturb.steady.branches import (
-    BranchPoint,
     SteadyState,
     branch_names,
     branch_solution,
     branches_at,
     steady_state,
 )
-from perturb.steady.curve import Fold, FrequencyResponse, ResponsePoint, trace_branches
+from perturb.steady.curve import Fold, FrequencyResponse, trace_branches
+from perturb.steady.point import BranchPoint, ResponsePoint
 from perturb.steady.roots import RootSet, RootStatus, real_roots
 from perturb.steady.sampled import frequency_response
 

@@ -19,12 +19,13 @@ from collections.abc import Mapping
 import attrs
 import sympy as sp
 
-from perturb._defaults import SINGLE_POINT_SHARE, SINGLE_POINT_WINDOW, TRIVIAL_AMPLITUDE
+from perturb._defaults import SINGLE_POINT_SHARE, SINGLE_POINT_WINDOW
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import AmplitudeEquations
 from perturb.method.family_names import response_shape
 from perturb.solution import PeriodicSolution, Status
 from perturb.steady.exact import exact_number
+from perturb.steady.point import BranchPoint
 
 __all__ = [
     "BranchPoint",
@@ -35,59 +36,6 @@ __all__ = [
     "exact_number",
     "steady_state",
 ]
-
-
-@attrs.frozen
-class BranchPoint:
-    """One steady-state response at one parameter point.
-
-    Attributes
-    ----------
-    amplitudes : dict
-        ``{"a_x": ..., "b_x": ...}``: the cosine and sine amplitudes (strained time) at order N.
-    norms : dict
-        ``{coordinate: sqrt(a**2 + b**2)}`` of each resonant coordinate.
-    stable : bool or None
-        From the Floquet multipliers along the order-N orbit (None: the largest on the unit
-        circle, a fold or an undamped system).
-    eigenvalues, multipliers : tuple of complex
-        The Floquet multipliers (:mod:`perturb.steady.floquet`) and their exponents per unit ε
-        (log μ / ε: the slow flow's eigenvalues they stand for).
-    first_order : dict
-        Empty: no point keeps first-order amplitudes (kept for the JSON contract).
-    note : str
-        Empty, or what to know: the series' terms not decreasing there, a continuation in the
-        window that failed.
-    peak, first_harmonic, error : dict
-        max ``|x|`` over a period, the resonant harmonic's amplitude and the series' error estimate
-        of each resonant coordinate (:mod:`perturb.steady.measures`).
-    series_ok : bool
-    liouville : float
-        exp(∮ div f dt) along the orbit: the product of the multipliers.
-    """
-
-    amplitudes: dict
-    norms: dict
-    stable: bool | None
-    eigenvalues: tuple = attrs.field(converter=tuple)
-    multipliers: tuple = attrs.field(converter=tuple)
-    first_order: dict = attrs.field(factory=dict)
-    note: str = ""
-    peak: dict = attrs.field(factory=dict)
-    first_harmonic: dict = attrs.field(factory=dict)
-    error: dict = attrs.field(factory=dict)
-    series_ok: bool = True
-    liouville: float = math.nan
-
-    @property
-    def trivial(self) -> bool:
-        return all(n <= TRIVIAL_AMPLITUDE for n in self.norms.values())
-
-    def norm(self, coordinate: str | None = None) -> float:
-        """The response amplitude of ``coordinate`` (default: the first resonant one)."""
-        if coordinate is None:
-            return next(iter(self.norms.values()))
-        return self.norms[coordinate]
 
 
 def _fixed(equations: AmplitudeEquations, values: Mapping) -> dict:

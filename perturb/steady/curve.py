@@ -22,91 +22,9 @@ import math
 
 from attrs import field, frozen
 
-from perturb.steady.branches import BranchPoint
+from perturb.steady.point import ResponsePoint
 
 __all__ = ["Fold", "FrequencyResponse", "ResponsePoint", "trace_branches"]
-
-
-@frozen
-class ResponsePoint:
-    """One steady-state response at one value of the swept parameter.
-
-    Attributes
-    ----------
-    value : float
-        The swept parameter's value.
-    amplitudes : dict
-        ``{"a_x": ..., "b_x": ...}``: the cosine and sine amplitudes (strained time) at order N.
-    norms : dict
-        ``{coordinate: sqrt(a**2 + b**2)}`` of each resonant coordinate's first harmonic.
-    stable : bool or None
-        From the Floquet multipliers along the order-N orbit (None: marginal).
-    eigenvalues : tuple of complex
-        The Floquet exponents per unit of ε, log μ / ε (the slow flow's eigenvalues they stand
-        for).
-    multipliers : tuple of complex
-        The Floquet multipliers they predict.
-    first_order : dict
-        The first-order root it was continued from (empty for a point read off a continued
-        order-N curve).
-    note : str
-        Empty, or what to know about the point (the series outside its domain there).
-    peak, first_harmonic : dict
-        Of each resonant coordinate, from the whole order-N series: max ``|x|`` over a period, and
-        the amplitude of the harmonic it resonates at (:mod:`perturb.steady.measures`);
-        ``norms`` is the initial-value norm.
-    error : dict
-        The series' own estimate of its state's error, per coordinate (NaN: none).
-    series_ok : bool
-        The series' terms decrease there (``note`` says which do not).
-    liouville : float
-        exp(∮ div f dt) along the orbit: the product of ``multipliers``.
-    branch : int
-        The continued curve the point lies on (-1: not from a continuation).
-    """
-
-    value: float = field(converter=float)
-    amplitudes: dict
-    norms: dict
-    stable: bool | None
-    eigenvalues: tuple = field(converter=tuple)
-    multipliers: tuple = field(converter=tuple)
-    first_order: dict = field(factory=dict)
-    note: str = ""
-    peak: dict = field(factory=dict)
-    first_harmonic: dict = field(factory=dict)
-    error: dict = field(factory=dict)
-    series_ok: bool = True
-    liouville: float = field(default=math.nan, converter=float)
-    branch: int = -1
-
-    @classmethod
-    def of(cls, value: float, branch: BranchPoint) -> ResponsePoint:
-        """The branch point ``branch`` at the swept value ``value``."""
-        return cls(
-            value, branch.amplitudes, branch.norms, branch.stable, branch.eigenvalues,
-            branch.multipliers, branch.first_order, branch.note,
-        )  # fmt: skip
-
-    def norm(self, coordinate: str | None = None) -> float:
-        """The response amplitude of ``coordinate`` (default: the first resonant one)."""
-        if coordinate is None:
-            return next(iter(self.norms.values()))
-        return self.norms[coordinate]
-
-    @property
-    def trivial(self) -> bool:
-        """Every resonant coordinate at rest (x = 0)."""
-        from perturb._defaults import TRIVIAL_AMPLITUDE
-
-        return all(n <= TRIVIAL_AMPLITUDE for n in self.norms.values())
-
-    def amplitude(self, coordinate: str | None = None, measure: str = "initial") -> float:
-        """``coordinate``'s amplitude by ``measure`` (``peak``, ``first-harmonic`` or
-        ``initial``; :data:`perturb.steady.measures.MEASURES`)."""
-        table = {"peak": self.peak, "first-harmonic": self.first_harmonic, "initial": self.norms}
-        values = table[measure] or self.norms
-        return next(iter(values.values())) if coordinate is None else values[coordinate]
 
 
 @frozen

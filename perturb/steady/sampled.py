@@ -110,10 +110,10 @@ def name_at(result: Continued, lam: float, u, measure: str) -> str | None:
         return None
     at = result.evaluator.evaluate([v for v, _ in here], [lam] * len(here))
     points = [
-        ResponsePoint(lam, {}, {c: float(at["initial"][c][i]) for c in at["initial"]}, None,
-                      (), (), peak={c: float(at["peak"][c][i]) for c in at["peak"]},
+        ResponsePoint({}, {c: float(at["initial"][c][i]) for c in at["initial"]}, None, (), (),
+                      peak={c: float(at["peak"][c][i]) for c in at["peak"]},
                       first_harmonic={c: float(at["first-harmonic"][c][i])
-                                      for c in at["first-harmonic"]})
+                                      for c in at["first-harmonic"]}, value=lam)
         for i in range(len(here))
     ]  # fmt: skip
     order = sorted(range(len(points)), key=lambda i: points[i].amplitude(None, measure))

@@ -5,7 +5,8 @@ axis fastest). A chunk is a rectangular block of points — whole rows of the la
 the first one not whole — so that it is one chunk of every array of the store, and a task's
 results are written with one write per variable.
 
-This module knows neither the problems nor Dask: it parses, checks and counts.
+This module knows neither the problems nor Dask: it checks and counts. An axis and its one
+grammar are :mod:`perturb.axis` (shared with ``perturb response --sweep``).
 
 Examples
 --------
@@ -25,127 +26,11 @@ from collections.abc import Iterable, Iterator, Sequence
 import numpy as np
 from attrs import field, frozen
 
-from perturb._defaults import SCENE_SUGGESTION_CUTOFF, SWEEP_MAX_POINTS
+from perturb._defaults import SCENE_SUGGESTION_CUTOFF
+from perturb.axis import Axis, parse_axis
 from perturb.errors import InvalidParameterError, UnknownNameError
 
 __all__ = ["Axis", "Chunking", "Grid", "check_names", "check_size", "parse_axis"]
-
-#: Spacings an axis may have: evenly spaced values, or evenly spaced logarithms.
-SPACINGS = ("linear", "log")
-
-
-def _fail(text: str, fix: str) -> InvalidParameterError:
-    return InvalidParameterError(f"grid axis {text!r}: {fix}")
-
-
-def _number(text: str, item: str) -> float:
-    try:
-        value = float(item)
-    except ValueError:
-        raise _fail(text, f"{item.strip()!r} is not a number; write NAME=START:STOP:N") from None
-    if not math.isfinite(value):
-        raise _fail(text, f"{item.strip()!r} is not finite; give finite values")
-    return value
-
-
-@frozen
-class Axis:
-    """One swept parameter: its name and its values (ascending or not, as given).
-
-    Attributes
-    ----------
-    name : str
-    values : tuple of float
-    spec : str
-        How it was written (``"r0=0.5:1:21"``), for messages and the store's attributes.
-    """
-
-    name: str
-    values: tuple = field(converter=lambda v: tuple(float(x) for x in v))
-    spec: str = ""
-
-    @property
-    def size(self) -> int:
-        return len(self.values)
-
-    def as_dict(self) -> dict:
-        return {"name": self.name, "values": list(self.values), "spec": self.spec}
-
-    def array(self) -> np.ndarray:
-        """The values as a read-only float array, made once per process (an axis of 10⁶ values
-        converted for every chunk cost more than evaluating the chunk)."""
-        entry = _ARRAYS.get(id(self))
-        if entry is None or entry[0] is not self:
-            if len(_ARRAYS) >= _ARRAYS_KEPT:
-                _ARRAYS.clear()
-            array = np.array(self.values, dtype=float)
-            array.flags.writeable = False
-            entry = _ARRAYS[id(self)] = (self, array)
-        return entry[1]
-
-
-#: Per process: each axis's values as an array, by the axis object's id (the axis kept beside it
-#: so that the id is not reused); at most :data:`_ARRAYS_KEPT` axes.
-_ARRAYS: dict[int, tuple] = {}
-_ARRAYS_KEPT = 64
-
-
-def parse_axis(text: str) -> Axis:
-    """An axis from ``NAME=START:STOP:N`` (N evenly spaced values, both ends included),
-    ``NAME=START:STOP:N:log`` (evenly spaced logarithms; START and STOP of one sign) or
-    ``NAME=V1,V2,...`` (the values as listed).
-
-    Raises
-    ------
-    perturb.errors.InvalidParameterError
-        Malformed text, N < 1 or not a whole number, a value that is not a finite number, a log
-        axis through zero, repeated values.
-    """
-    if not isinstance(text, str):
-        raise InvalidParameterError(
-            f"grid axis {text!r}: write NAME=START:STOP:N as a string, e.g. 'r0=0.5:1:21'"
-        )
-    name, sep, rest = text.partition("=")
-    name = name.strip()
-    if not sep or not name or not rest.strip():
-        raise _fail(text, "write NAME=START:STOP:N (or NAME=V1,V2,...), e.g. --grid r0=0.5:1:21")
-    if ":" in rest:
-        parts = rest.split(":")
-        if len(parts) not in (3, 4):
-            raise _fail(text, "write NAME=START:STOP:N or NAME=START:STOP:N:log")
-        spacing = parts[3].strip() if len(parts) == 4 else "linear"
-        if spacing not in SPACINGS:
-            raise _fail(text, f"the spacing {spacing!r} is unknown: write :log or nothing")
-        start, stop = _number(text, parts[0]), _number(text, parts[1])
-        try:
-            count = int(parts[2])
-        except ValueError:
-            raise _fail(text, f"N = {parts[2].strip()!r} must be a whole number >= 1") from None
-        if count < 1:
-            raise _fail(text, f"N = {count} points: give N >= 1")
-        if count > SWEEP_MAX_POINTS:
-            raise _fail(text, f"N = {count} points: give at most {SWEEP_MAX_POINTS:.0e} per axis")
-        if count > 1 and start == stop:
-            raise _fail(text, f"START = STOP = {start:g} with N = {count}: give N = 1 or a range")
-        if spacing == "log":
-            if start * stop <= 0:
-                raise _fail(text, "a log axis needs START and STOP of one sign, neither zero")
-            sign = math.copysign(1.0, start)
-            values = sign * np.geomspace(abs(start), abs(stop), count)
-        else:
-            values = np.linspace(start, stop, count)
-        if not np.all(np.isfinite(values)):
-            raise _fail(text, "the values overflow; give a smaller range")
-    else:
-        items = [item for item in rest.split(",") if item.strip()]
-        if not items:
-            raise _fail(text, "give at least one value")
-        values = np.array([_number(text, item) for item in items])
-    if len(set(values.tolist())) != len(values):
-        raise _fail(
-            text, "the values repeat (a point would be computed twice); give distinct values"
-        )
-    return Axis(name, values, text.strip())
 
 
 def _closest(name: str, names: Iterable[str]) -> str:
