@@ -219,7 +219,7 @@ def _select_family(problem, name: str | None, order):
         return problem
     order = _parse_order(order) if isinstance(order, str) else order
     families = problem.families(order)
-    if name not in families.names and problem.system().excitation is not None:
+    if name not in families.names and not problem.system().frame.one_solution_for_all_points:
         from perturb.steady.branches import count_name
 
         if count_name(name):  # a driven branch that exists elsewhere, not here: the run fails

@@ -207,7 +207,7 @@ def scaling_degree(system) -> int | None:
     3
     >>> scaling_degree(QuasilinearSystem([x], [u], [1], [-EPS*x**3 - EPS*x]))
     """
-    if system.excitation is not None or system.initial_values:
+    if system.frame.frequency_given or system.initial_values:  # scaling needs a free frequency
         return None
     if any(sp.sympify(w).free_symbols for w in system.frequencies):
         return None
@@ -300,7 +300,7 @@ def exact_on(system, generating) -> bool:
     >>> on(1, 1), on(1, -1)
     (True, False)
     """
-    if system.excitation is not None:
+    if system.frame.frequency_given:
         return False
     c, t = sp.Dummy("c"), sp.Dummy("t")
     amplitudes = [*generating.cos_amplitudes, *generating.sin_amplitudes]
@@ -424,7 +424,7 @@ def exact_modes(system, generating, known: dict, scale, unknowns, eqs, seconds: 
     from perturb.method.component import Component
     from perturb.method.exact import vanishes
 
-    if system.excitation is not None or scale is None:
+    if system.frame.frequency_given or scale is None:
         return []
     cosines = [sp.sympify(a).xreplace(known) for a in generating.cos_amplitudes]
     free = [a for a in cosines if isinstance(a, sp.Symbol) and a != scale]

@@ -463,10 +463,10 @@ class SystemModel(Model):
 
     def solve(self, order: int = 1) -> PeriodicSolution:
         key = (self.quasilinear, order, repr(sorted(self.options.items(), key=str)))
-        if self.quasilinear.excitation is not None:  # a branch of the steady state at the values
+        if not self.quasilinear.frame.one_solution_for_all_points:  # a branch at these values
             key = (*key, repr(sorted(self.symbol_values().items())), self.parameter_value())
         if key not in _SOLUTIONS:
-            if self.quasilinear.excitation is not None:
+            if not self.quasilinear.frame.one_solution_for_all_points:
                 from perturb.steady import steady_state
 
                 state = steady_state(self.quasilinear, self.symbol_values(), self.epsilon(), order)
