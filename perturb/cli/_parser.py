@@ -342,6 +342,12 @@ def _add_phase(sub) -> None:
         "slow-flow stability, the exact boundaries) or order-n (the responses continued along x, "
         "Floquet stability, the special points located on them)",
     )
+    phase.add_argument(
+        "--yes",
+        action="store_true",
+        help=f"confirm a grid of more than {10**7:,} points, or estimated at more than an hour "
+        "of work",
+    )
     _add_format(phase, ["table", "json"])
 
 
@@ -418,6 +424,13 @@ def _add_sweep(sub) -> None:
         metavar="STORE",
         help="the Zarr store written chunk by chunk (with --format csv|json: the file written "
         "instead of printing)",
+    )
+    sweep.add_argument(
+        "--chunk-points",
+        default=None,
+        metavar="N",
+        help="points per task and per chunk of the store (default: about 2 s of work each, "
+        "from a pilot)",
     )
     sweep.add_argument(
         "--resume",

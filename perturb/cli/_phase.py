@@ -8,8 +8,7 @@ import sys
 
 from perturb._install import install_hint
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _UsageError
-from perturb.cli._response import _check_plot_target
-from perturb.cli._values import _check_plot_backend, _parse_order, _parse_positive, _parse_sets
+from perturb.cli._values import _check_plot, _parse_order, _parse_positive, _parse_sets, _save_plot
 from perturb.errors import MissingDependencyError
 
 #: Exit code of an interrupted run (128 + SIGINT, as shells report it).
@@ -30,9 +29,7 @@ def _cmd_phase(args) -> int:
             f"--grid: give two, x then y (got {len(args.grids)}), e.g. --grid "
             "Omega=1.98:2.02:21 --grid h=0.2:3:15"
         )
-    if args.plot is not None:
-        _check_plot_backend(args.plot)
-        _check_plot_target(args.plot)
+    plot = _check_plot(args)  # before any work: matplotlib, the format, a file not a user's
     if args.workers is not None and args.scheduler is not None:
         raise _UsageError(f"--workers {args.workers}: with --scheduler drop --workers")
     workers = None if args.workers is None else _parse_positive("--workers", args.workers, int)
@@ -43,15 +40,15 @@ def _cmd_phase(args) -> int:
     try:
         dataset = phase_diagram(
             problem, args.grids, order=order, columns=not args.rows_only, output=args.output,
-            workers=workers, scheduler=args.scheduler,
+            workers=workers, scheduler=args.scheduler, yes=args.yes,
         )  # fmt: skip
     except KeyboardInterrupt:
         print("\nperturb: interrupted: nothing is written", file=sys.stderr)
         return EXIT_INTERRUPTED
     from perturb.report.phase import phase_as_dict, phase_as_table
 
-    if args.plot is not None:
-        _plot(dataset, args.plot, args.map == "first-order")
+    if plot is not None:
+        _plot(dataset, plot, args.map == "first-order")
     if args.format == "json":
         print(json.dumps(phase_as_dict(dataset)))
     else:
@@ -65,7 +62,7 @@ def _cmd_phase(args) -> int:
     return EXIT_FAILED if missing else EXIT_OK  # lines that failed elsewhere are listed above
 
 
-def _plot(dataset, path: str, first_order: bool) -> None:
+def _plot(dataset, path, first_order: bool) -> None:
     import numpy as np
 
     from perturb.report.phase import _special
@@ -80,4 +77,4 @@ def _plot(dataset, path: str, first_order: bool) -> None:
         np.asarray(dataset[name].values), special, xname=x_name, yname=y_name,
         title=f"{dataset.attrs['problem']}: stable steady states ({which})",
     )  # fmt: skip
-    figure.savefig(path)
+    _save_plot(figure, path)

@@ -133,6 +133,11 @@ def _cmd_sweep(args) -> int:
             ),
             yes=args.yes,
             attrs={"problem_argument": args.problem},
+            chunk_points=(
+                None
+                if args.chunk_points is None
+                else _parse_positive("--chunk-points", args.chunk_points, int)
+            ),
         )
     except SweepError as exc:
         raise _RunFailed(str(exc)) from None

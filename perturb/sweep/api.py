@@ -82,6 +82,7 @@ def sweep(
     timeout: float = SWEEP_CONNECT_SECONDS,
     yes: bool = False,
     attrs: Mapping | None = None,
+    chunk_points: int | None = None,
 ):
     """Evaluate (and validate) ``problem``'s periodic solution over a grid of its parameters.
 
@@ -123,6 +124,10 @@ def sweep(
         Confirm a grid of more than ``perturb._defaults.SWEEP_CONFIRM_POINTS`` points.
     attrs : mapping, optional
         Extra attributes for the results (e.g. how the problem was named).
+    chunk_points : int, optional
+        Points per chunk (a task; the store's chunk along the grid). Default: about
+        ``SWEEP_TASK_SECONDS`` of work each, from a pilot timed here. A resumed store keeps its
+        own chunks.
 
     Returns
     -------
@@ -142,6 +147,12 @@ def sweep(
         written (the error's ``dataset`` holds them); ``resume=True`` retries them.
     """
     require_extra()
+    if chunk_points is not None and (
+        isinstance(chunk_points, bool) or not isinstance(chunk_points, int) or chunk_points < 1
+    ):
+        raise InvalidParameterError(
+            f"chunk_points (--chunk-points) = {chunk_points!r} is invalid: give a whole number >= 1"
+        )
     spec = check_spec(
         problem,
         axes_of(grid),
@@ -155,7 +166,8 @@ def sweep(
         yes=yes,
     )
     version = _version()
-    from perturb.sweep.driver import Cluster, chunk_points, pilot_seconds, run_tasks
+    from perturb.sweep.driver import Cluster, pilot_seconds, run_tasks
+    from perturb.sweep.driver import chunk_points as points_per_chunk
     from perturb.sweep.grid import Chunking
 
     if resume and output is None:
@@ -193,7 +205,9 @@ def sweep(
             job = SweepJob(spec, derivation, spec.fingerprint(version))
 
             def size() -> int:
-                return chunk_points(pilot_seconds(job), spec.grid.size, workers_now)
+                if chunk_points is not None:
+                    return min(chunk_points, spec.grid.size)
+                return points_per_chunk(pilot_seconds(job), spec.grid.size, workers_now)
 
             if output is not None:
                 sink = SweepStore.prepare(

@@ -198,6 +198,7 @@ def phase_diagram(
     scheduler: str | None = None,
     client=None,
     timeout: float | None = None,
+    yes: bool = False,
 ):
     """The phase diagram of a driven ``problem`` over two of its parameters.
 
@@ -218,6 +219,9 @@ def phase_diagram(
         A Zarr store to write (a new one, or a perturb store there replaced).
     workers, scheduler, client, timeout
         As for :func:`perturb.sweep` (a LocalCluster of ``workers`` processes by default).
+    yes : bool
+        Confirm a request past :func:`perturb.cost.check_cost`'s limits (the points of the grid,
+        the responses along its lines).
 
     Returns
     -------
@@ -234,7 +238,8 @@ def phase_diagram(
     ------
     perturb.errors.InvalidParameterError
         Not two axes, an unknown parameter, a problem that is not driven, values the problem
-        refuses (checked before any work).
+        refuses, an ``output`` that exists, a request too large without ``yes`` (checked before
+        any work).
     perturb.errors.MissingDependencyError
         The extra ``perturb[sweep]`` is not installed.
 
@@ -257,8 +262,18 @@ def phase_diagram(
     from perturb.sweep.api import require_extra
 
     require_extra()
+    if output is not None:
+        from perturb.sweep.store import check_new_store
+
+        check_new_store(output)
     (x_name, xs), (y_name, ys) = _axes(problem, grid)
     check_request(problem, x_name)
+    from perturb.cost import Cost, check_cost, response_cost
+
+    seconds = ys.size * response_cost(xs.size, order, shots=0).seconds
+    if columns:
+        seconds += xs.size * response_cost(ys.size, order, shots=0).seconds
+    check_cost(Cost(f"{xs.size * ys.size:,} points", xs.size * ys.size, seconds), yes)
     for name, values in ((x_name, xs), (y_name, ys)):
         for value in values:  # the problem's own checks at every value (one line, exit 2)
             problem.with_parameters(**{name: float(value)})

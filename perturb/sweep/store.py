@@ -37,7 +37,7 @@ from perturb.sweep.quantities import TIMINGS, check_names, stored_name, variable
 from perturb.sweep.spec import STORE_FORMAT, SweepJob
 from perturb.sweep.status import PointStatus, code_of
 
-__all__ = ["SweepStore", "code_counts", "open_dataset", "write_dataset"]
+__all__ = ["SweepStore", "check_new_store", "code_counts", "open_dataset", "write_dataset"]
 
 #: The group attribute that marks a perturb sweep store (its value: the store format).
 MARK = "perturb_sweep"
@@ -408,6 +408,20 @@ def _difference(attrs: dict, spec, version: str) -> str:
     return f"holds another sweep ({what} differ), so --resume cannot continue it there"
 
 
+def check_new_store(path) -> None:
+    """Raise unless ``path`` is free for a new store (checked before any work; nothing is ever
+    written over what is there).
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        ``path`` exists.
+    """
+    path = Path(path)
+    if path.exists() or path.is_symlink():
+        raise _refuse(path, "exists", "move it away or name another (a store is never overwritten)")
+
+
 def write_dataset(dataset, path, attrs: dict | None = None) -> None:
     """Write a sweep's Dataset (kept in memory) as a new store at ``path`` (a report folder's
     ``sweep.zarr``), with ``attrs`` added to its attributes (the report's mark of its store).
@@ -417,9 +431,8 @@ def write_dataset(dataset, path, attrs: dict | None = None) -> None:
     perturb.errors.InvalidParameterError
         ``path`` exists (nothing is ever written over it).
     """
+    check_new_store(path)
     path = Path(path)
-    if path.exists() or path.is_symlink():
-        raise _refuse(path, "exists", "move it away (a store is never overwritten)")
     if attrs:
         dataset = dataset.copy()
         dataset.attrs.update(attrs)

@@ -202,7 +202,25 @@ def test_bad_input_is_one_line_and_exit_2(capsys):
         (["--grid", "Omega=0.9:1.1:3"], "give two"),
         (["--grid", "Omega=0.9:1.1:3", "--grid", "Omega=1:2:3"], "twice"),
         (["--grid", "Omega=0.9:1.1:3", "--grid", "nope=1:2:3"], "nope"),
+        (["--grid", "Omega=0.9:1.1:5000", "--grid", "F=0.5:1.5:4000"], "--yes"),
     ):
         code = main(["phase-diagram", "forced-duffing", *argv])
         _, err = capsys.readouterr()
         assert code == 2 and fragment in err and len(err.strip().splitlines()) == 1, err
+
+
+def test_a_store_or_a_plot_in_the_way_is_refused_before_any_work(capsys, tmp_path):
+    from perturb.cli import main
+
+    store, plot = tmp_path / "mine.zarr", tmp_path / "mine.png"
+    store.mkdir()
+    plot.write_bytes(b"a user's picture")
+    grids = ["--grid", "Omega=0.98:1.1:3", "--grid", "F=0.5:1:2"]
+    for extra, fragment in (
+        (["--output", str(store)], "exists"),
+        (["--plot", str(plot)], "--plot"),
+    ):
+        code = main(["phase-diagram", "forced-duffing", *grids, *extra])
+        _, err = capsys.readouterr()
+        assert code == 2 and fragment in err and len(err.strip().splitlines()) == 1, err
+    assert plot.read_bytes() == b"a user's picture" and not any(store.iterdir())

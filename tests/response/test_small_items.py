@@ -90,7 +90,7 @@ def test_a_users_driven_problem_refuses_a_nonpositive_frequency(capsys, tmp_path
     ("argv", "words"),
     [
         (["--plot", "no/such/folder/response.png"], "does not exist"),
-        (["--plot", "response.unknown"], "not a format"),
+        (["--plot", "response.unknown"], "is unknown: give a file name ending in"),
         (["--validate", "51"], "at most 50"),
         (["--tol", "0"], "--tol"),
         (["--tol", "abc"], "--tol"),

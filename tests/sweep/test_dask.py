@@ -21,6 +21,7 @@ xr = pytest.importorskip("xarray")
 zarr = pytest.importorskip("zarr")
 
 import perturb  # noqa: E402
+from perturb._defaults import SWEEP_MAX_CONNECT_SECONDS  # noqa: E402
 from perturb.cli import main  # noqa: E402
 from perturb.sweep.derive import plan  # noqa: E402
 from perturb.sweep.grid import parse_axis  # noqa: E402
@@ -118,7 +119,9 @@ def test_a_worker_killed_mid_sweep_loses_nothing(client, tmp_path):
     result: dict = {}
 
     def run():
-        result["ds"] = perturb.sweep(problem, DUFFING, validate=True, client=client, output=store)
+        result["ds"] = perturb.sweep(
+            problem, DUFFING, validate=True, client=client, output=store, chunk_points=2
+        )
 
     thread = threading.Thread(target=run)
     thread.start()
@@ -151,7 +154,9 @@ def test_the_only_worker_killed_mid_sweep_loses_nothing(tmp_path):
     with cluster, Client(cluster, set_as_default=False) as one:
 
         def run():
-            result["ds"] = perturb.sweep(problem, DUFFING, validate=True, client=one, output=store)
+            result["ds"] = perturb.sweep(
+                problem, DUFFING, validate=True, client=one, output=store, chunk_points=2
+            )
 
         thread = threading.Thread(target=run)
         thread.start()
@@ -176,6 +181,8 @@ def test_an_interrupted_driver_resumes_where_it_stopped(tmp_path, capsys):
         "--output",
         str(store),
         "--quiet",
+        "--chunk-points",  # many chunks on any machine (a fast one's pilot would make one)
+        "6",
     ]
     for axis in axes:
         command += ["--grid", axis]
@@ -229,7 +236,7 @@ def test_an_existing_cluster_started_by_hand(tmp_path, capsys):
     try:
         store = tmp_path / "by-hand.zarr"
         argv = ["sweep", "van-der-pol", "--grid", "eps=0.05:0.5:6", "--order", "2",
-                "--scheduler", address, "--timeout", str(HANG_GUARD), "--output", str(store)]  # fmt: skip
+                "--scheduler", address, "--timeout", str(SWEEP_MAX_CONNECT_SECONDS), "--output", str(store)]  # fmt: skip
         code = main(argv)
         out, err = capsys.readouterr()
         assert code == 0, err
