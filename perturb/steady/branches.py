@@ -143,7 +143,7 @@ _SHAPE_NAME = re.compile(
 )
 
 
-def branch_names(points: list[BranchPoint]) -> list[str]:
+def branch_names(points: list[BranchPoint], harmonics: tuple | None = None) -> list[str]:
     """Stable names for the branches at one point, sorted by amplitude: ``trivial`` (x = 0), then
     ``response`` (one), ``lower``/``upper`` (two), ``lower``/``middle``/``upper`` (three),
     else ``branch-1``, ``branch-2``, …; a root where the series is outside its domain
@@ -153,12 +153,17 @@ def branch_names(points: list[BranchPoint]) -> list[str]:
     With several resonant coordinates a branch is named by its mode shape first
     (:func:`perturb.method.family_names.response_shape`: ``in-phase``, ``anti-phase``,
     ``shape-pnn``, with ``-localised-x1``), and the branches of one shape by amplitude as above:
-    ``in-phase`` alone, ``in-phase-lower`` and ``in-phase-upper``, ``in-phase-1``, …"""
+    ``in-phase`` alone, ``in-phase-lower`` and ``in-phase-upper``, ``in-phase-1``, … — when the
+    coordinates resonate at one harmonic (``harmonics``, the m_i of
+    :class:`~perturb.method.driven.AmplitudeEquations`, all equal, or not given): phases of
+    different harmonics are not comparable, so a 1:2 absorber's branches keep their amplitude
+    names (``lower``, ``upper``)."""
     trivial = [p for p in points if p.trivial]
     beyond = [p for p in points if not p.trivial and not getattr(p, "series_ok", True)]
     others = [p for p in points if not p.trivial and getattr(p, "series_ok", True)]
     labels = {1: ["response"], 2: ["lower", "upper"], 3: ["lower", "middle", "upper"]}
-    if others and len(others[0].norms) > 1:
+    one_harmonic = harmonics is None or len(set(harmonics)) <= 1
+    if others and len(others[0].norms) > 1 and one_harmonic:
         out = {}
         groups: dict[str, list] = {}
         for p in others:
@@ -313,4 +318,4 @@ def steady_state(system, values: Mapping, epsilon: float, order: int = 1) -> Ste
 
     equations = amplitude_equations(system, order)
     points, why = branches_at(equations, values, epsilon, order)
-    return SteadyState(points, branch_names(points), equations, why)
+    return SteadyState(points, branch_names(points, equations.harmonics), equations, why)

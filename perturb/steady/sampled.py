@@ -60,7 +60,7 @@ def response_of(result: Continued, *, system: str, parameter: str, order: int, e
     for value in (float(g) for g in grid):
         here = sorted(by_value.get(value, []), key=lambda p: p.amplitude(None, measure))
         points.extend(here)
-        names.extend(branch_names(here))
+        names.extend(branch_names(here, result.traced.harmonics))
     first = _first_order_folds(result)
     folds = []
     for s in result.special:
@@ -117,7 +117,7 @@ def name_at(result: Continued, lam: float, u, measure: str) -> str | None:
         for i in range(len(here))
     ]  # fmt: skip
     order = sorted(range(len(points)), key=lambda i: points[i].amplitude(None, measure))
-    names = branch_names([points[i] for i in order])
+    names = branch_names([points[i] for i in order], traced.harmonics)
     for rank, i in enumerate(order):
         if same_orbit(here[i][0], u, traced.harmonics, traced.group):
             return names[rank]
