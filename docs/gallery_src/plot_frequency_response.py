@@ -6,7 +6,7 @@ Frequency response
 steady-state response over a sweep, continued through its folds at order 3: stable solid,
 unstable dashed, the folds where the response jumps, the free system's backbone and the true
 orbits shot on each branch (largest amplitude, both sides of the fold), drawn at their true
-max |x|. The forced, damped Duffing oscillator near its primary resonance
+max ``|x|``. The forced, damped Duffing oscillator near its primary resonance
 (``perturb response forced-duffing``).
 """
 

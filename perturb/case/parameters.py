@@ -96,6 +96,17 @@ class ParameterMap:
     epsilon: sp.Expr | None = None
     _compiled: dict = field(factory=dict, init=False, eq=False, repr=False)
 
+    def __getstate__(self) -> dict:
+        """The map without its compiled functions: they are rebuilt where it is unpickled (a
+        function lambdified for mpmath carries mpmath's whole namespace, whose objects a worker
+        with another mpmath cannot read back)."""
+        return {"user": self.user, "symbols": self.symbols, "epsilon": self.epsilon}
+
+    def __setstate__(self, state: dict) -> None:
+        for name, value in state.items():
+            object.__setattr__(self, name, value)
+        object.__setattr__(self, "_compiled", {})
+
     # ------------------------------------------------------------------ building and checking
     @classmethod
     def declare(
