@@ -245,6 +245,8 @@ def _cmd_families(args) -> int:
     else:
         print(as_table(families, args.problem, flags))
     if not len(families):
+        why = families.why or "the amplitude equations have only the trivial root"
+        print(f"perturb: {args.problem}: no family of periodic solutions: {why}", file=sys.stderr)
         return EXIT_FAILED
     built = [(f, o) for f, (o, _) in zip(families, flags, strict=True) if f.solution.success]
     if built and all(outside for _, outside in built):

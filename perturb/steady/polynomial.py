@@ -12,6 +12,8 @@ numeric coefficients (the caller then lambdifies).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import sympy as sp
 from attrs import field, frozen
@@ -118,6 +120,11 @@ class CompiledPolynomials:
         coefficients = (
             np.array(list(terms.values())).T if terms else np.zeros((len(self.coefficients), 1))
         )
+        if not np.all(np.isfinite(coefficients)):
+            raise OverflowError(
+                "the amplitude equations' coefficients are past the floats at these values "
+                f"({', '.join(f'{n} = {float(v):g}' for n, v in fixed.items())})"
+            )
         return CompiledPolynomials((*unknown, name), exponents, coefficients)
 
 
@@ -198,6 +205,8 @@ def _generate(e: np.ndarray, c: np.ndarray):
             entries.append(" + ".join(parts) or "0.0")
         gradient.append("[" + ", ".join(entries) + "]")
     lines.append(f"    return array([{', '.join(rows)}]), array([{', '.join(gradient)}])")
-    namespace = {"array": np.array}
+    # a coefficient past the floats prints as inf or nan (eps = 1e308): kept as such, the values
+    # then say so and the continuation stops with its reason
+    namespace = {"array": np.array, "inf": math.inf, "nan": math.nan}
     exec(compile("\n".join(lines), "<compiled polynomials>", "exec"), namespace)  # noqa: S102
     return namespace["evaluate"]

@@ -157,3 +157,19 @@ def test_the_bar_shows_the_rate_and_the_time_left():
     now[0] += 4.0
     bar("sweep", 1000, 1000)
     assert stream.getvalue().endswith("1000/1000\n")
+
+
+@pytest.mark.parametrize("command", ["solve", "validate", "families"])
+def test_a_driven_problem_past_the_floats_fails_with_its_reason(capsys, command):
+    """eps = 1e308 puts the amplitude equations' coefficients past the floats: exit 1 saying so
+    (it was an internal error, ``name 'inf' is not defined``, then a false "no real root
+    (proved)")."""
+    code, _, err = run(capsys, command, "forced-duffing", "--set", "eps=1e308")
+    assert code == 1 and "past the floats" in err and "internal error" not in err
+    assert "proved" not in err
+
+
+def test_no_family_says_why_on_stderr(capsys):
+    code, out, err = run(capsys, "families", "superharmonic-duffing", "--set", "eps=10")
+    assert code == 1 and "no family" in out
+    assert err.startswith("perturb: superharmonic-duffing: no family of periodic solutions: ")
