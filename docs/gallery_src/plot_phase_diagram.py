@@ -3,14 +3,20 @@ Phase diagram
 =============
 
 How many stable steady states a driven system has at every point of two of its parameters:
-:func:`perturb.phase_diagram` (``perturb phase-diagram``) counts them with the certified
-first-order census at every point, continues the order-N response along each line of the grid,
-and locates the folds where the count changes; :func:`~perturb.report.plots.plot_phase_diagram`
-draws the map with those boundaries. Here the forced Duffing oscillator over the forcing
-frequency Ω and the forcing level F (a small grid on a Dask cluster of one in-process worker:
-``perturb phase-diagram`` starts worker processes, ``--scheduler`` uses a cluster's, and
-``--output`` keeps the maps in a Zarr store). Inside the fold lines two stable responses coexist
-(the hysteresis band), outside them one.
+:func:`perturb.phase_diagram` (``perturb phase-diagram``) continues the order-N response along
+each line of the grid (stability from the Floquet multipliers along the order-N orbit), counts
+the certified first-order steady states at every point as well, and locates the folds where the
+counts change; :func:`~perturb.report.plots.plot_phase_diagram` draws a map with those
+boundaries. Here the forced Duffing oscillator over the forcing frequency Ω and the forcing level
+F at order 3 (a small grid on a Dask cluster of one in-process worker: ``perturb
+phase-diagram`` starts worker processes, ``--scheduler`` uses a cluster's, and ``--output`` keeps
+the maps in a Zarr store). Inside the fold lines two stable responses coexist (the hysteresis
+band), outside them one.
+
+The order matters where the amplitude is large: at F = 0.5 the order-3 jump-down fold is at
+Ω = 1.0941, where shooting finds the true fold (``perturb response forced-duffing --set F=0.5
+--validate``: true orbits on both sides of it); the first-order map (``n_stable_first_order``,
+certified, the slow flow's folds) puts it at 1.117.
 """
 
 import json
@@ -28,21 +34,21 @@ with (
     Client(cluster) as client,
 ):
     ds = perturb.phase_diagram(
-        duffing, ["Omega=0.95:1.5:23", "F=0.2:1:5"], columns=False, client=client
+        duffing, ["Omega=0.95:1.2:26", "F=0.1:0.6:6"], order=3, columns=False, client=client
     )
 kinds = {int(k): v for k, v in json.loads(ds["special_kind"].attrs["meanings"]).items()}
-first_order = ds["special_order"].values == 0
+order_n = ds["special_order"].values == 1
 special = [
     (float(x), float(y), kinds[int(k)])
     for x, y, k in zip(
-        ds["special_x"].values[first_order],
-        ds["special_y"].values[first_order],
-        ds["special_kind"].values[first_order],
+        ds["special_x"].values[order_n],
+        ds["special_y"].values[order_n],
+        ds["special_kind"].values[order_n],
         strict=True,
     )
 ]
 figure = plot_phase_diagram(
     np.asarray(ds["Omega"].values), np.asarray(ds["F"].values),
-    np.asarray(ds["n_stable_first_order"].values), special, xname="Omega", yname="F",
-    title="forced-duffing: stable steady states (first order, certified)",
+    np.asarray(ds["n_stable"].values), special, xname="Omega", yname="F",
+    title="forced-duffing: stable steady states (order 3)",
 )  # fmt: skip
