@@ -1,38 +1,13 @@
 """Frequency responses of driven systems: every branch, its stability, its folds.
 
-:func:`frequency_response` sweeps a parameter and solves the amplitude equations of
-:mod:`perturb.method.driven` for every real root at each value (:func:`real_roots`).
+The steady states themselves are ``perturb.steady``'s (the series alone); this room adds the
+response curve of a problem with its checks against the true motion (``model``,
+``truth``, the true curve past the series) and slow sweeps (``hysteresis``). The names
+below are ``perturb.steady``'s, kept here for the scripts that import them from
+``perturb.response``.
 """
 
-from perturb.steady.branches import (
-    SteadyState,
-    branch_names,
-    branch_solution,
-    branches_at,
-    steady_state,
-)
-from perturb.steady.curve import (
-    Fold,
-    FrequencyResponse,
-    trace_branches,
-)
-from perturb.steady.point import BranchPoint, ResponsePoint
-from perturb.steady.roots import RootSet, RootStatus, real_roots
-from perturb.steady.sampled import frequency_response
+from perturb import steady as _steady
+from perturb.steady import *  # noqa: F403 - the same public names, one list (steady's __all__)
 
-__all__ = [
-    "BranchPoint",
-    "SteadyState",
-    "branch_names",
-    "branch_solution",
-    "branches_at",
-    "Fold",
-    "FrequencyResponse",
-    "ResponsePoint",
-    "RootSet",
-    "RootStatus",
-    "frequency_response",
-    "real_roots",
-    "steady_state",
-    "trace_branches",
-]
+__all__ = list(_steady.__all__)
