@@ -8,15 +8,15 @@ each line of the grid (stability from the Floquet multipliers along the order-N 
 the certified first-order steady states at every point as well, and locates the folds where the
 counts change; :func:`~perturb.report.plots.plot_phase_diagram` draws a map with those
 boundaries. Here the forced Duffing oscillator over the forcing frequency Ω and the forcing level
-F at order 3 (a small grid on a Dask cluster of one in-process worker: ``perturb
-phase-diagram`` starts worker processes, ``--scheduler`` uses a cluster's, and ``--output`` keeps
-the maps in a Zarr store). Inside the fold lines two stable responses coexist (the hysteresis
+F, the responses continued at order 1 (a small grid on a Dask cluster of one in-process worker:
+``perturb phase-diagram`` starts worker processes, ``--scheduler`` uses a cluster's, and
+``--output`` keeps the maps in a Zarr store). Inside the fold lines two stable responses coexist (the hysteresis
 band), outside them one.
 
-The order matters where the amplitude is large: at F = 0.5 the order-3 jump-down fold is at
-Ω = 1.0941, where shooting finds the true fold (``perturb response forced-duffing --set F=0.5
---validate``: true orbits on both sides of it); the first-order map (``n_stable_first_order``,
-certified, the slow flow's folds) puts it at 1.117.
+Which count to read where the amplitude is large: at F = 0.5 the continued curve's jump-down
+fold is at Ω = 1.0945 (order 1; 1.0941 at order 3, where shooting finds true orbits on both
+sides of it: ``perturb response forced-duffing --set F=0.5 --validate``), while the certified
+first-order count (``n_stable_first_order``, the classical slow flow's folds) puts it at 1.117.
 """
 
 import json
@@ -34,7 +34,7 @@ with (
     Client(cluster) as client,
 ):
     ds = perturb.phase_diagram(
-        duffing, ["Omega=0.95:1.2:26", "F=0.1:0.6:6"], order=3, columns=False, client=client
+        duffing, ["Omega=0.95:1.2:26", "F=0.1:0.6:6"], order=1, columns=False, client=client
     )
 kinds = {int(k): v for k, v in json.loads(ds["special_kind"].attrs["meanings"]).items()}
 order_n = ds["special_order"].values == 1
@@ -50,5 +50,5 @@ special = [
 figure = plot_phase_diagram(
     np.asarray(ds["Omega"].values), np.asarray(ds["F"].values),
     np.asarray(ds["n_stable"].values), special, xname="Omega", yname="F",
-    title="forced-duffing: stable steady states (order 3)",
+    title="forced-duffing: stable steady states (continued, order 1)",
 )  # fmt: skip
