@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import multiprocessing
+import threading
 
 __all__ = ["solve_bounded", "sympy_roots"]
 
@@ -27,8 +28,10 @@ def solve_bounded(eqs, unknowns, seconds: float, solver=sympy_roots):
     """``solver(eqs, unknowns)`` (default :func:`sympy_roots`) with a time budget.
 
     The solve runs in a forked child process, which is killed when the budget is spent.
-    Where the platform cannot fork, or in a daemonic process (which may not have children: a
-    Dask worker, a ``multiprocessing`` pool's worker), it runs in-process without a budget.
+    Where the platform cannot fork, in a daemonic process (which may not have children: a
+    Dask worker, a ``multiprocessing`` pool's worker), or in a thread other than the main one (a
+    fork copies the locks other threads hold, and the child can wait on them for ever: a Dask
+    worker thread hung a Sphinx build so), it runs in-process without a budget.
 
     Parameters
     ----------
@@ -61,9 +64,10 @@ def solve_bounded(eqs, unknowns, seconds: float, solver=sympy_roots):
     >>> solve_bounded([x**2 - 4], [x], 10.0)
     [{x: -2}, {x: 2}]
     """
-    if multiprocessing.current_process().daemon:
+    if multiprocessing.current_process().daemon or not _main_thread():
         # a daemonic process (a Dask worker, a multiprocessing pool's worker) may not start
-        # children: the solve runs here, without a budget, as where the platform cannot fork
+        # children, and a fork from a thread may deadlock: the solve runs here, without a
+        # budget, as where the platform cannot fork
         return solver(eqs, unknowns)
     try:
         context = multiprocessing.get_context("fork")
@@ -91,3 +95,8 @@ def solve_bounded(eqs, unknowns, seconds: float, solver=sympy_roots):
             else NotImplementedError(str(value))
         )
     return value
+
+
+def _main_thread() -> bool:
+    """Whether this is the main thread (where a fork copies no lock another thread holds)."""
+    return threading.current_thread() is threading.main_thread()

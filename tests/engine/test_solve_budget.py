@@ -46,3 +46,25 @@ def test_a_daemonic_process_solves_in_process_with_the_same_roots():
     here = solve_bounded(EQUATIONS, [X, Y], 30.0, groebner_real_roots)
     assert kind == "ok", value
     assert value == sorted(str(sorted(r.items(), key=str)) for r in here)
+
+
+def test_a_thread_other_than_the_main_one_solves_in_process():
+    """A fork from a worker thread copies locks other threads hold (a Dask worker thread hung a
+    Sphinx build): off the main thread the solve runs in this process, with the same roots."""
+    import os
+    import threading
+
+    pids, results = [], []
+
+    def solver(eqs, unknowns):
+        pids.append(os.getpid())
+        return groebner_real_roots(eqs, unknowns)
+
+    thread = threading.Thread(
+        target=lambda: results.append(solve_bounded(EQUATIONS, [X, Y], 30.0, solver))
+    )
+    thread.start()
+    thread.join(120)
+    assert not thread.is_alive() and pids == [os.getpid()]
+    here = solve_bounded(EQUATIONS, [X, Y], 30.0, groebner_real_roots)
+    assert sorted(map(str, results[0])) == sorted(map(str, here))
