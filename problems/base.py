@@ -12,7 +12,10 @@ Subclass contract (as scipy's ``OdeSolver`` states its own):
 2. implement :meth:`Problem.build_system` (symbolic, no numbers);
 3. declare :attr:`Problem.parameter_map` where the system's symbols or ε are not the parameters of
    the same names (``{"sigma": "(Omega - 1)/eps"}``, ``{"epsilon": "sqrt(M*g*l/C)/r0"}``: a
-   :class:`perturb.case.ParameterMap`, checked once); ε is the parameter ``eps`` by default;
+   :class:`perturb.case.ParameterMap`, checked once); ε is the parameter ``eps`` by default.
+   An overridden ``epsilon()`` or ``symbol_values()`` declares the map as well when sympy can
+   read it (``return self.values["amplitude"] ** 2``): it is called once on the parameters as
+   symbols, and the map's inverse re-creates the problem at another ε;
 3a. optionally override :meth:`Problem.method_options`,
    :meth:`Problem.state` (to map the quasilinear state back to physical variables) and
    :meth:`Problem.original_rhs` (the unreduced equations for validation);
@@ -32,12 +35,15 @@ nothing else.
 from __future__ import annotations
 
 import math
+import warnings
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
+from inspect import getattr_static
 from typing import ClassVar
 
 import attrs
 import numpy as np
+import sympy as sp
 from attrs import field, frozen
 
 from perturb import (
@@ -47,7 +53,7 @@ from perturb import (
     QuasilinearSystem,
     Status,
 )
-from perturb.case import Case, ParameterMap
+from perturb.case import EPSILON_KEY, Case, ParameterMap
 from perturb.errors import InvalidParameterError, InvalidSystemError, UnknownNameError
 from perturb.oracle import SymbolicRHS
 from perturb.validation import (
@@ -160,6 +166,59 @@ class ParameterSpec:
 def positive(value: float) -> str | None:
     """Check helper: strictly positive."""
     return None if value > 0 else "give a value > 0"
+
+
+#: The methods through which a subclass may compute its numbers itself (the subclass contract
+#: allows it): the map reads them off the class as expressions (:func:`_traced_declarations`).
+_OWN_NUMBERS = ("epsilon", "symbol_values")
+
+
+@frozen
+class _SymbolicPoint:
+    """The base map's expressions in the place of a case, for :func:`_traced_declarations`: a
+    subclass's ``super().symbol_values()`` or ``super().epsilon()`` reads them."""
+
+    base: ParameterMap | None
+
+    @property
+    def symbol_values(self) -> dict:
+        if self.base is None:
+            raise InvalidSystemError("no declared map to read")
+        return dict(self.base.symbols)
+
+    @property
+    def epsilon(self):
+        if self.base is None or self.base.epsilon is None:
+            raise InvalidSystemError("no declared epsilon to read")
+        return self.base.epsilon
+
+
+def _traced_declarations(cls: type, base: ParameterMap | None) -> dict:
+    """The map declarations a subclass writes as code: its own ``epsilon()`` (ε = amplitude²)
+    or ``symbol_values()``, called once on the parameters as sympy symbols. A method that does
+    not go through with symbols (a comparison, ``math.sqrt``, a raise) declares nothing, and the
+    declared :attr:`Problem.parameter_map` stands alone."""
+    own = [n for n in _OWN_NUMBERS if getattr_static(cls, n) is not getattr_static(Problem, n)]
+    if not own:
+        return {}
+    probe = object.__new__(cls)
+    symbols = {s.name: sp.Symbol(s.name, real=True) for s in cls.parameter_specs}
+    for name, value in (("values", symbols), ("family", None), ("symbolic", None)):
+        object.__setattr__(probe, name, value)
+    object.__setattr__(probe, "_case", _SymbolicPoint(base))
+    out = {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for name in own:
+            try:
+                value = getattr(probe, name)()
+                read = {EPSILON_KEY: value} if name == "epsilon" else dict(value)
+                read = {k: sp.sympify(v) for k, v in read.items()}
+            except Exception:  # noqa: BLE001 - code that needs numbers declares nothing
+                continue
+            if all(isinstance(v, sp.Expr) and v.is_finite is not False for v in read.values()):
+                out.update(read)
+    return out
 
 
 @frozen
@@ -291,9 +350,17 @@ class Problem(Model, ABC):
         """
         key = (cls.__module__, cls.__qualname__)
         if key not in _MAP_CACHE:
-            _MAP_CACHE[key] = ParameterMap.declare(
-                cls.system().parameters, [s.name for s in cls.parameter_specs], cls.parameter_map
-            )
+            parameters = cls.system().parameters
+            user = [s.name for s in cls.parameter_specs]
+            declared = dict(cls.parameter_map)
+            try:
+                base = ParameterMap.declare(parameters, user, declared)
+            except InvalidSystemError:
+                base = None
+            traced = _traced_declarations(cls, base)
+            if base is None or traced:
+                base = ParameterMap.declare(parameters, user, {**declared, **traced})
+            _MAP_CACHE[key] = base
         return _MAP_CACHE[key]
 
     def case(self) -> Case:

@@ -297,31 +297,25 @@ class ParameterMap:
         ``values`` (None if the map has no such move).
 
         The user parameters moved are the fewest that do it: those ε depends on, plus, for each
-        symbol they also move, one more parameter to restore it (Ω for σ = (Ω − 1)/ε).
+        symbol they also move, one more parameter to restore it (Ω for σ = (Ω − 1)/ε). Where the
+        move has several real solutions (ε = a² gives a = ±√ε) the one nearest ``values`` is
+        taken: the point the move continues from.
         """
         if self.epsilon is None:
             return None
         symbols, _ = self.evaluate(values)
+        known = {s: _exact(values[s.name]) for s in self.user_symbols.values()}
+        known.update({_target_of(n): _exact(symbols[n]) for n, _ in self.symbols})
+        known[_target_of(EPSILON_KEY)] = _exact(eps)
         for moving in self._moves():
-            solved = _solve_move(self, moving)
-            if solved is None:
-                continue
-            known = {s: _exact(values[s.name]) for s in self.user_symbols.values()}
-            known.update({_target_of(n): _exact(symbols[n]) for n, _ in self.symbols})
-            known[_target_of(EPSILON_KEY)] = _exact(eps)
-            out = dict(values)
-            for name, expr in solved.items():
-                try:
-                    number = complex(sp.N(expr.xreplace(known), EVAL_DIGITS))
-                except (TypeError, ValueError, ZeroDivisionError):
-                    break
-                if not math.isfinite(number.real) or abs(number.imag) > REAL_ROOT_TOL * max(
-                    1, abs(number)
-                ):
-                    break
-                out[name] = number.real
-            else:
-                return out
+            found = [
+                moved
+                for solved in _solve_move(self, moving)
+                if (moved := _evaluated(solved, known)) is not None
+            ]
+            if found:
+                nearest = min(found, key=lambda m: _distance(m, values))
+                return {**values, **nearest}
         return None
 
     def _knob_rank(self, name: str) -> float:
@@ -391,7 +385,7 @@ def _inverse(expr: sp.Expr, unknown: sp.Symbol) -> tuple[sp.Expr, ...]:
 
 
 @functools.lru_cache(maxsize=256)
-def _solve_move_cached(mapping_key, moving) -> tuple | None:
+def _solve_move_cached(mapping_key, moving) -> tuple:
     rows, eps, user = mapping_key
     symbols = {n: sp.Symbol(n, real=True) for n in user}
     unknowns = [symbols[n] for n in moving]
@@ -400,19 +394,34 @@ def _solve_move_cached(mapping_key, moving) -> tuple | None:
         if any(u in expr.free_symbols for u in unknowns):
             equations.append(sp.Eq(expr, _target_of(name)))
     if len(equations) != len(unknowns):
-        return None
+        return ()
     try:
         found = sp.solve(equations, unknowns, dict=True)
     except (NotImplementedError, TypeError):
-        return None
-    if len(found) != 1:  # a unique move, or none (several roots: which one is ambiguous)
-        positive = [f for f in found if all(not (e.is_negative) for e in f.values())]
-        if len(positive) != 1:
-            return None
-        found = positive
-    return tuple((u.name, found[0][u]) for u in unknowns if u in found[0])
+        return ()
+    return tuple(tuple((u.name, f[u]) for u in unknowns if u in f) for f in found)
 
 
-def _solve_move(mapping: ParameterMap, moving: tuple[str, ...]) -> dict[str, sp.Expr] | None:
+def _solve_move(mapping: ParameterMap, moving: tuple[str, ...]) -> list[dict[str, sp.Expr]]:
+    """Every symbolic solution of the move of the user parameters ``moving`` (may be none)."""
     solved = _solve_move_cached((mapping.symbols, mapping.epsilon, mapping.user), moving)
-    return None if solved is None or len(solved) != len(moving) else dict(solved)
+    return [dict(s) for s in solved if len(s) == len(moving)]
+
+
+def _evaluated(solved: dict[str, sp.Expr], known: dict) -> dict[str, float] | None:
+    """One solution of a move at the ``known`` values, or None where it is not real and finite."""
+    out = {}
+    for name, expr in solved.items():
+        try:
+            number = complex(sp.N(expr.xreplace(known), EVAL_DIGITS))
+        except (TypeError, ValueError, ZeroDivisionError):
+            return None
+        if not math.isfinite(number.real) or abs(number.imag) > REAL_ROOT_TOL * max(1, abs(number)):
+            return None
+        out[name] = number.real
+    return out
+
+
+def _distance(moved: dict[str, float], values: Mapping[str, float]) -> float:
+    """How far a move takes the user values (the largest relative change)."""
+    return max(abs(v - values[n]) / max(abs(values[n]), 1.0) for n, v in moved.items())

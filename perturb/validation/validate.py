@@ -148,7 +148,8 @@ def _scan(model, eps, order, integrator, rtol, stiff, budget) -> tuple[SlopeFit 
     if not eps_grid:
         return None, (
             "the problem cannot be re-created at other epsilon (its with_epsilon gives none), so "
-            "the order cannot be measured"
+            "the order cannot be measured: declare epsilon in its parameter_map "
+            "(e.g. {'epsilon': 'amplitude**2'}) or give it a with_epsilon"
         )
     return fit_slope(eps_grid, err_grid, order), ""
 

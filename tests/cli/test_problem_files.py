@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import importlib.metadata
 import json
+import math
 import re
 import subprocess
 import sys
@@ -246,6 +247,64 @@ def test_validate_rayleigh_file(capsys, files, integrator):
     report = json.loads(out)
     assert code == 0, err
     assert report["valid"], report["verdict"]
+
+
+#: A pendulum written as its user thinks of it: theta = a x, so x'' + x = eps x^3/6 - eps^2 x^5/120
+#: + ... with eps = a^2 (sin's series to its second term), eps a function of the amplitude.
+#: ``{epsilon}`` is the body of ``epsilon()``: code sympy can read (the map's inverse gives the
+#: amplitude at another eps), or code it cannot, with eps declared in ``parameter_map`` instead.
+_PENDULUM = """
+import math
+
+class Pendulum(Problem):
+    name = "pendulum"
+    summary = "theta'' = -sin theta, theta = a x"
+    parameter_specs = (ParameterSpec("amplitude", 0.3, "theta(0), radians", positive),)
+    parameter_map = {declared}
+
+    @classmethod
+    def build_system(cls):
+        return QuasilinearSystem(
+            [X], [XDOT], [1], [EPS * X**3 / 6 - EPS**2 * X**5 / 120], name="pendulum"
+        )
+
+    def epsilon(self):
+        return {epsilon}
+
+    def method_options(self):
+        return {{"amplitudes": {{"x": 1}}}}
+"""
+
+
+@pytest.mark.parametrize(
+    ("epsilon", "declared"),
+    [
+        ('self.values["amplitude"] ** 2', "{}"),  # read off the method
+        ('math.pow(self.values["amplitude"], 2)', '{"epsilon": "amplitude**2"}'),  # declared
+    ],
+)
+@pytest.mark.parametrize("order", [1, 2])
+def test_a_problem_whose_eps_is_a_function_of_its_parameters_validates(
+    capsys, tmp_path, epsilon, declared, order
+):
+    """eps = a^2 written in the problem's own epsilon(): the order scan re-creates the pendulum at
+    eps/8 .. eps (the amplitude sqrt(eps), not -sqrt(eps): the root the move continues from) and
+    the error falls like eps^(order+1), so the verdict is VALID, as the subclass contract says."""
+    path = tmp_path / "pendulum.py"
+    path.write_text(_HEADER + _PENDULUM.format(epsilon=epsilon, declared=declared))
+    spec = f"{path}:Pendulum"
+    code, out, err = run(capsys, "validate", spec, "--order", order, "--format", "json")
+    report = json.loads(out)
+    assert code == 0, err
+    assert report["outcome"] == "valid", report["verdict"]
+    slope = report["slope"]
+    assert slope["consistent"] and abs(slope["value"] - (order + 1)) < SLOPE_TOL
+    assert slope["epsilons"][-1] == 0.3**2
+    pendulum = load_problem(spec).create()
+    for eps in slope["epsilons"]:  # each point of the scan, re-created by the amplitude alone
+        moved = pendulum.with_epsilon(eps)
+        assert moved.values["amplitude"] == pytest.approx(math.sqrt(eps), rel=REF_RTOL)
+        assert moved.epsilon() == pytest.approx(eps, rel=REF_RTOL)
 
 
 def test_work_precision_file(capsys, files):
