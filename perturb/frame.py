@@ -160,11 +160,45 @@ class DrivenFrame(Frame):
     def state_names(self, system) -> tuple[str, ...]:
         return (*system.state_names, self.excitation.phase.name)
 
+    # The one place the drive's relation Ω = (p/q) ω_ref + ε σ is written: symbolic, as a
+    # number, and solved for the detuning.
     def frequency(self, system, subs) -> sp.Expr:
         """Ω = (p/q) ω_ref + ε σ, with ``subs`` put in (ε included)."""
         w_ref = system.frequencies[self.reference_index(system)]
         eps = system.parameter if system.regime.value == "small" else 1 / system.parameter
         return sp.sympify(self.excitation.ratio * w_ref + eps * self.excitation.detuning).subs(subs)
+
+    def _parts(self, system, values) -> tuple[sp.Expr, sp.Expr]:
+        """``((p/q) ω_ref, σ)`` at the system parameter ``values`` (by name)."""
+        subs = {p: values[p.name] for p in system.parameters if p.name in values}
+        w_ref = sp.sympify(system.frequencies[self.reference_index(system)]).xreplace(subs)
+        return self.excitation.ratio * w_ref, sp.sympify(self.excitation.detuning).xreplace(subs)
+
+    def frequency_value(self, system, values, eps: float) -> float:
+        """Ω at the system parameter ``values`` (by name) and ε = ``eps``, a number.
+
+        Raises
+        ------
+        InvalidParameterError
+            When Ω <= 0: a forcing frequency must be positive (one line, with the detuning that
+            gives it).
+        """
+        resonance, sigma = self._parts(system, values)
+        omega = float(resonance + eps * sigma)
+        if not omega > 0:
+            detuning = self.excitation.detuning
+            raise InvalidParameterError(
+                f"`{detuning}` = {float(sigma):g} is invalid: it makes the excitation frequency "
+                f"Omega = {float(resonance):g} + {eps:g}*{detuning} = {omega:g} <= 0; "
+                f"give {detuning} > {-float(resonance) / eps:g} (Omega > 0)"
+            )
+        return omega
+
+    def detuning_value(self, system, omega: float, values, eps: float) -> float:
+        """The detuning σ at which the excitation frequency is ``omega`` (the relation solved
+        for σ), the other system parameters at ``values`` and ε = ``eps``."""
+        resonance, _ = self._parts(system, values)
+        return (omega - float(resonance)) / eps
 
     def autonomous(self, state, exprs, system, subs):
         return (*state, self.excitation.phase), [*exprs, self.frequency(system, subs)]

@@ -7,7 +7,8 @@ order scan of validation — instead of re-creating problems to learn what a par
 * :meth:`Case.at` — another point (checked by the problem's own rules, no class re-created);
 * :meth:`Case.with_epsilon` — the same scaled system at another ε, solved from the map;
 * :meth:`Case.columns` — many points as numpy columns (a sweep's fast route);
-* :meth:`Case.to_user` — a value found in a system symbol (a fold's σ) back in a user parameter.
+* :meth:`Case.to_user`, :meth:`Case.user_roots` — a value found in a system symbol (a fold's σ)
+  back in a user parameter; :meth:`Case.span` — the range a symbol covers along a parameter.
 """
 
 from __future__ import annotations
@@ -181,3 +182,14 @@ class Case:
         """The value of the user ``parameter`` at which the system symbol ``name`` equals
         ``value``, the other parameters at this case's values (NaN if none)."""
         return self.map.solve_user(parameter, name, value, self.values)
+
+    def user_roots(self, parameter: str, name: str, value: float) -> tuple[float, ...]:
+        """Every value of the user ``parameter`` at which the system symbol ``name`` equals
+        ``value``, the others at this case's values (increasing; a map that is not monotone in
+        ``parameter`` has several)."""
+        return self.map.user_roots(parameter, name, value, self.values)
+
+    def span(self, parameter: str, name: str, low: float, high: float) -> tuple[float, float]:
+        """``(min, max)`` of the system symbol ``name`` while the user ``parameter`` runs over
+        [``low``, ``high``], the others at this case's values (exact, whatever the map)."""
+        return self.map.span(parameter, name, low, high, self.values)

@@ -273,24 +273,29 @@ class ParameterMap:
         Exact where it can be: the expression is solved once symbolically and the root evaluated,
         so a fold found in σ maps back to Ω without sampling.
         """
-        roots = _inverse(self.expression(name), self.user_symbols[user_name])
+        found = self.user_roots(user_name, name, target, values)
         here = float(values[user_name])
-        subs = {
-            s: _exact(values[s.name]) for s in self.user_symbols.values() if s.name != user_name
-        }
-        found = []
-        for root in roots:
-            try:
-                number = complex(
-                    sp.N(root.xreplace({**subs, _TARGET: _exact(target)}), EVAL_DIGITS)
-                )
-            except (TypeError, ValueError, ZeroDivisionError):
-                continue
-            if math.isfinite(number.real) and abs(number.imag) <= REAL_ROOT_TOL * max(
-                1, abs(number)
-            ):
-                found.append(number.real)
         return min(found, key=lambda v: abs(v - here)) if found else math.nan
+
+    def user_roots(
+        self, user_name: str, name: str, target: float, values: Mapping[str, float]
+    ) -> tuple[float, ...]:
+        """Every real value of the user parameter ``user_name`` at which the system symbol
+        ``name`` (or ε) takes ``target``, the others at ``values``, in increasing order (σ =
+        (Ω² − 1)/(2ε) has two: ±Ω)."""
+        return _real_roots(self.expression(name), self.user_symbols[user_name], target, values)
+
+    def span(
+        self, user_name: str, name: str, low: float, high: float, values: Mapping[str, float]
+    ) -> tuple[float, float]:
+        """``(min, max)`` of the system symbol ``name`` while the user parameter ``user_name``
+        runs over [``low``, ``high``], the others at ``values``: its values at both ends and at
+        every stationary point between (exact: the derivative's real roots)."""
+        u = self.user_symbols[user_name]
+        expr = self.expression(name)
+        inside = [v for v in _real_roots(sp.diff(expr, u), u, 0.0, values) if low < v < high]
+        found = [self.evaluate({**values, user_name: v})[0][name] for v in (low, *inside, high)]
+        return min(found), max(found)
 
     def with_epsilon(self, values: Mapping[str, float], eps: float) -> dict[str, float] | None:
         """The user values at which ε = ``eps`` and every system symbol keeps its value at
@@ -371,6 +376,27 @@ def _exact(value: float) -> sp.Rational:
 
 def _target_of(name: str) -> sp.Symbol:
     return sp.Symbol(f"target_{name}_", real=True)
+
+
+def _real_roots(
+    expr: sp.Expr, unknown: sp.Symbol, target: float, values: Mapping[str, float]
+) -> tuple[float, ...]:
+    """The real solutions of ``expr = target`` for ``unknown``, the other symbols at ``values``
+    (by name), evaluated with :data:`EVAL_DIGITS` digits from the exact inverse, increasing."""
+    subs = (
+        {s: _exact(values[s.name]) for s in expr.free_symbols if s != unknown}
+        if expr is not None
+        else {}
+    )
+    found = set()
+    for root in _inverse(expr, unknown):
+        try:
+            number = complex(sp.N(root.xreplace({**subs, _TARGET: _exact(target)}), EVAL_DIGITS))
+        except (TypeError, ValueError, ZeroDivisionError):
+            continue
+        if math.isfinite(number.real) and abs(number.imag) <= REAL_ROOT_TOL * max(1, abs(number)):
+            found.add(number.real)
+    return tuple(sorted(found))
 
 
 @functools.lru_cache(maxsize=256)

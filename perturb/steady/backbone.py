@@ -115,7 +115,6 @@ def backbone(
     values = case.symbol_values
     eps = case.epsilon
     ratio = float(system.excitation.ratio)
-    reference = float(system.frequencies[system.reference_index])
     amplitudes = np.linspace(0.0, BACKBONE_REACH * top, BACKBONE_SAMPLES)
     out = []
     for a in amplitudes:
@@ -123,7 +122,8 @@ def backbone(
             period = float(solution.period_at(eps, {**values, amplitude.name: float(a)}))
         except PerturbError:  # a divisor of the free series vanishes: no backbone to draw
             return None
-        sigma = ratio * (2 * math.pi / period - reference) / eps
+        omega = ratio * (2 * math.pi / period)  # the drive meets the free motion
+        sigma = system.frame.detuning_value(system, omega, values, eps)
         out.append(case.to_user(parameter, detuning.name, sigma))
     if measure != "initial":
         amplitudes = _measured(solution, coordinate, eps, values, amplitude, amplitudes, measure)

@@ -130,25 +130,7 @@ def line_of_values(names, values: dict, eps: float, parameter: str) -> Parameter
 
 
 def excitation_frequency(system, values: dict, eps: float) -> float:
-    """Ω = (p/q) ω_ref + ε σ of the driven ``system`` at ``values`` (by name).
-
-    Raises
-    ------
-    InvalidParameterError
-        When Ω <= 0: a forcing frequency must be positive (one line, with the detuning that
-        gives it).
-    """
-    import sympy as sp
-
-    drive = system.excitation
-    subs = {p: values[p.name] for p in system.parameters if p.name in values}
-    w_ref = sp.sympify(system.frequencies[system.reference_index]).xreplace(subs)
-    sigma = sp.sympify(drive.detuning).xreplace(subs)
-    omega = float(drive.ratio * w_ref + eps * sigma)
-    if not omega > 0:
-        raise InvalidParameterError(
-            f"`{drive.detuning}` = {float(sigma):g} is invalid: it makes the excitation frequency "
-            f"Omega = {float(drive.ratio * w_ref):g} + {eps:g}*{drive.detuning} = {omega:g} <= 0; "
-            f"give {drive.detuning} > {-float(drive.ratio * w_ref) / eps:g} (Omega > 0)"
-        )
-    return omega
+    """Ω of the driven ``system`` at ``values`` (by name) and ε: the frame's relation
+    (:meth:`perturb.frame.DrivenFrame.frequency_value`; raises InvalidParameterError, one line,
+    when Ω <= 0)."""
+    return system.frame.frequency_value(system, values, eps)

@@ -85,30 +85,33 @@ class _FirstOrder:
             stable += top < -SLOW_FLOW_ZERO * max(float(np.max(np.abs(eig))), 1e-300)
         return len(kept), stable
 
-    def singular(self, variant, along: str, low: float, high: float) -> tuple[list, str]:
-        """The exact first-order folds and branch points on the line, ``[(kind, value)]``."""
+    def singular(self, case, along: str, low: float, high: float) -> tuple[list, str]:
+        """The exact first-order folds and branch points on the line, ``[(kind, value)]``: found
+        in the one system symbol ``along`` moves (over the range the case's map gives it on
+        [low, high]) and carried back to ``along`` through the map's exact inverse."""
+        from perturb.case.parameters import EPSILON_KEY
         from perturb.steady.branches import exact_number
         from perturb.steady.singular import singular_points
 
-        values = variant.symbol_values()
-        (low_values, high_values) = (
-            variant.with_parameters(**{along: v}).symbol_values() for v in (low, high)
-        )
-        moved = [p for p in self.parameters if low_values[p.name] != high_values[p.name]]
+        names = {p.name: p for p in self.parameters}
+        moved = [n for n in case.moves(along) if n != EPSILON_KEY and n in names]
         if len(moved) != 1:
             return [], f"the first-order boundaries need {along} to move one system parameter"
-        swept = moved[0]
+        swept = names[moved[0]]
+        values = case.symbol_values
         fixed = {p: exact_number(values[p.name]) for p in self.parameters if p != swept}
         rows = [sp.expand(r.xreplace(fixed)) for r in self.equations.displacement(0)]
-        s0, s1 = float(low_values[swept.name]), float(high_values[swept.name])
-        found = singular_points(rows, self.equations.amplitudes, swept, min(s0, s1), max(s0, s1),
+        s0, s1 = case.span(along, swept.name, low, high)
+        found = singular_points(rows, self.equations.amplitudes, swept, s0, s1,
                                 self.equations.coordinates, seconds=SINGULAR_SECONDS)  # fmt: skip
 
-        def back(value):  # the system parameter's value on the line, in the user's parameter
-            return low + (value - s0) / (s1 - s0) * (high - low)
+        def back(kind, value):  # a system value on the line: every user value that gives it
+            return [
+                (kind, v) for v in case.user_roots(along, swept.name, value) if low <= v <= high
+            ]
 
-        points = [("fold", back(v)) for v, _, _ in found.folds]
-        points += [("branch-point", back(v)) for v, _, _ in found.branch_points]
+        points = [p for v, _, _ in found.folds for p in back("fold", v)]
+        points += [p for v, _, _ in found.branch_points for p in back("branch-point", v)]
         return points, found.why
 
 
@@ -154,7 +157,7 @@ def phase_line(problem, along: str, values, across: str, at: float, order: int, 
         for i, v in enumerate(values):
             counted = first.count(variant.with_parameters(**{along: float(v)}))
             out["first_order"][i], out["stable_first_order"][i] = counted
-    points, why = first.singular(variant, along, float(values[0]), float(values[-1]))
+    points, why = first.singular(variant.case(), along, float(values[0]), float(values[-1]))
     out["special"] += [(kind, value, FIRST_ORDER) for kind, value in points]
     if why:
         out["failures"].append(f"{where}: the first-order boundaries: {why}")
