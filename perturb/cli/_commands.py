@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 import warnings
@@ -11,6 +10,7 @@ import numpy as np
 
 from perturb._defaults import DEFAULT_SAMPLES
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError
+from perturb.cli._output import _emit
 from perturb.cli._values import (
     _check_plot,
     _parse_order,
@@ -21,6 +21,7 @@ from perturb.cli._values import (
     _save_plot,
 )
 from perturb.domain import series_domain
+from perturb.report.formats import keeps_warnings
 
 
 def _cmd_list(args=None) -> int:
@@ -36,25 +37,7 @@ def _cmd_list(args=None) -> int:
             print(f"perturb: warning: {exc}", file=sys.stderr)
             continue
         entries.append((name, cls.summary, cls.parameter_specs))
-    if fmt == "json":
-        problems = [
-            {
-                "name": name,
-                "summary": summary,
-                "parameters": [{"name": p.name, "default": p.default, "doc": p.doc} for p in specs],
-            }
-            for name, summary, specs in entries
-        ]
-        print(json.dumps(problems, allow_nan=True))
-    elif fmt == "latex":
-        from perturb.report.latex import problems_latex
-
-        print(problems_latex(entries), end="")
-    else:
-        for name, summary, specs in entries:
-            print(f"{name:16s} {summary}")
-            for spec in specs:
-                print(f"    {spec.name:10s} default {spec.default:<12g} {spec.doc}")
+    _emit("problems", fmt, entries)
     return EXIT_OK
 
 
@@ -84,9 +67,8 @@ def _cmd_solve(args) -> int:
             if not solution.success
             else "the series is outside its domain: " + "; ".join(domain.reasons)
         )
-        if args.format == "json":
-            failed = {"problem": args.problem, "status": "failed", "reason": reason}
-            print(json.dumps({**failed, "warnings": notes}, allow_nan=True))
+        failed = {"problem": args.problem, "status": "failed", "reason": reason}
+        _emit("failure", args.format, {**failed, "warnings": notes})
         print(f"perturb: {args.problem}: {reason}", file=sys.stderr)
         return EXIT_FAILED
     period = problem.period(solution)
@@ -113,29 +95,22 @@ def _cmd_solve(args) -> int:
         },
         "warnings": notes,
     }
-    if args.format != "json":
+    if not keeps_warnings(args.format):
         for note in notes:
             print(f"perturb: warning: {note}", file=sys.stderr)
     if args.latex:
         payload["latex"] = solution.latex()
     if args.steps:
         payload["steps"] = [str(solution.generating), *(str(step) for step in solution.steps)]
-    formulas = ""
-    if args.format == "latex":
-        from perturb.report.latex import solution_document
+    from perturb.report.state import StateOutput
 
-        formulas = solution_document(solution, args.problem)
-    _print(payload, args.format, [("state", state), *extras.items()], formulas)
-    if args.format == "table":
-        for key in ("steps", "latex"):
-            if key in payload:
-                text = payload[key] if isinstance(payload[key], str) else "\n".join(payload[key])
-                print(f"\n# {key}\n{text}")
+    blocks = [("state", state), *extras.items()]
+    _check_finite(payload, blocks)
+    _emit("solution", args.format, StateOutput(payload, blocks, solution))
     return EXIT_OK
 
 
 def _cmd_validate(args) -> int:
-    from perturb.report import validation_as_dict, validation_as_table
     from perturb.validation import DEFAULT_TOL, validate
     from problems import load_problem
 
@@ -149,14 +124,7 @@ def _cmd_validate(args) -> int:
         periods=_parse_positive("--periods", args.periods, float),
         tol=tol,
     )
-    if args.format == "json":
-        print(json.dumps(validation_as_dict(report), allow_nan=True))
-    elif args.format == "latex":
-        from perturb.report.latex import validation_latex
-
-        print(validation_latex(report), end="")
-    else:
-        print(validation_as_table(report))
+    _emit("validation", args.format, report)
     if not report.completed:  # the report is printed; the reason goes to stderr too
         reason = " ".join(str(report.message or report.verdict).split())
         print(f"perturb: {args.problem}: the validation did not complete: {reason}",
@@ -166,11 +134,6 @@ def _cmd_validate(args) -> int:
 
 
 def _cmd_work_precision(args) -> int:
-    from perturb.report import (
-        work_precision_as_csv,
-        work_precision_as_dict,
-        work_precision_as_table,
-    )
     from perturb.workprecision import work_precision
     from problems import load_problem
 
@@ -181,16 +144,7 @@ def _cmd_work_precision(args) -> int:
     repeat = _parse_positive("--repeat", args.repeat, int)
     plot = _check_plot(args)
     result = work_precision(problem, periods=periods, orders=orders, repeat=repeat)
-    if args.format == "json":
-        print(json.dumps(work_precision_as_dict(result), allow_nan=True))
-    elif args.format == "csv":
-        print(work_precision_as_csv(result))
-    elif args.format == "latex":
-        from perturb.report.latex import work_precision_latex
-
-        print(work_precision_latex(result), end="")
-    else:
-        print(work_precision_as_table(result))
+    _emit("work-precision", args.format, result)
     if plot is not None:
         from perturb.report.plots import plot_work_precision
 
@@ -203,13 +157,9 @@ def _cmd_reproduce(args) -> int:
 
     reproduction = get_reproduction(args.paper)
     report = reproduction.run(output=_parse_output("--output", args.output))
-    if args.format == "json":
-        print(json.dumps(reproduction.as_dict(report), allow_nan=True))
-        return EXIT_OK
-    print(reproduction.summary(report))
-    if args.full:
-        print()
-        print(reproduction.full(report))
+    from perturb.report.formats import Reproduced
+
+    _emit("reproduction", args.format, Reproduced(reproduction, report, bool(args.full)))
     return EXIT_OK
 
 
@@ -229,21 +179,14 @@ def _select_family(problem, name: str | None, order):
 
 
 def _cmd_families(args) -> int:
-    from perturb.report.families import as_dict, as_table
+    from perturb.report.families import FamiliesOutput
     from problems import load_problem
 
     cls = load_problem(args.problem)
     problem = cls.create(**_parse_sets(args.sets))
     families = problem.families(_parse_order(args.order))
     flags = [_family_domain(problem, f) for f in families]
-    if args.format == "json":
-        print(json.dumps(as_dict(families, args.problem, flags)))
-    elif args.format == "latex":
-        from perturb.report.latex import families_latex
-
-        print(families_latex(families, args.problem), end="")
-    else:
-        print(as_table(families, args.problem, flags))
+    _emit("families", args.format, FamiliesOutput(families, args.problem, flags))
     if not len(families):
         why = families.why or "the amplitude equations have only the trivial root"
         print(f"perturb: {args.problem}: no family of periodic solutions: {why}", file=sys.stderr)
@@ -290,34 +233,11 @@ def _non_finite(value) -> bool:
     return False
 
 
-def _print(payload: dict, fmt: str, blocks, formulas: str = "") -> None:
+def _check_finite(payload: dict, blocks) -> None:
+    """A state with a NaN or an infinity is a failed run (exit 1), never a table of nonsense."""
     numbers = {"period": payload.get("period"), "blocks": [dict(b) for _, b in blocks]}
     if _non_finite(numbers):
         raise _RunFailed(
             "the solution is not finite at these parameters or times (NaN or inf); it is "
             "outside the domain where the series holds"
         )
-    if fmt == "json":
-        print(json.dumps(payload, allow_nan=True))
-        return
-    if fmt == "latex":
-        from perturb.report.latex import state_latex
-
-        print(formulas + state_latex(payload, blocks), end="")
-        return
-    columns = {"t": np.asarray(payload["t"])}
-    for _, block in blocks:
-        columns.update({k: np.asarray(v, dtype=float) for k, v in block.items()})
-    names = list(columns)
-    if fmt == "csv":
-        print(",".join(names))
-        for row in zip(*columns.values(), strict=True):
-            print(",".join(repr(float(v)) for v in row))
-        return
-    head = f"# {payload['problem']}  order {payload['order']}  epsilon {payload['epsilon']:.6g}  period {payload['period']:.12g}"
-    params = "  ".join(f"{k}={v:g}" for k, v in payload["parameters"].items())
-    print(head)
-    print(f"# {params}")
-    print("".join(f"{n:>20s}" for n in names))
-    for row in zip(*columns.values(), strict=True):
-        print("".join(f"{float(v):20.12g}" for v in row))

@@ -6,6 +6,7 @@ import argparse
 
 from perturb._defaults import RESPONSE_ORDER
 from perturb.cli._errors import _UsageError
+from perturb.report.formats import choices as _format_choices
 
 _EPILOG = """examples:
   perturb list
@@ -59,9 +60,14 @@ def _add_problem_arguments(parser: argparse.ArgumentParser, *, order: bool = Tru
         )
 
 
-def _add_format(parser: argparse.ArgumentParser, choices: list[str]) -> None:
+def _add_format(parser: argparse.ArgumentParser, kind: str) -> None:
+    """``--format``, its choices the formats that write results of ``kind``
+    (:mod:`perturb.report.formats`)."""
     parser.add_argument(
-        "--format", default="table", choices=choices, help="output format (default table)"
+        "--format",
+        default="table",
+        choices=_format_choices(kind),
+        help="output format (default table)",
     )
 
 
@@ -74,7 +80,7 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     listing = sub.add_parser("list", help="list the registered problems and their parameters")
-    _add_format(listing, ["table", "json", "latex"])
+    _add_format(listing, "problems")
     solve = sub.add_parser(
         "solve",
         help="construct a problem's periodic solution and print its state",
@@ -89,7 +95,7 @@ def _build_parser() -> argparse.ArgumentParser:
         help="times (physical units): T1,T2,... or START:STOP:N (N evenly spaced, both ends "
         "included) or @FILE (one value a line, or comma-separated; '#' starts a comment)",
     )
-    _add_format(solve, ["table", "csv", "json", "latex"])
+    _add_format(solve, "solution")
     solve.add_argument(
         "--euler", action="store_true", help="add the Euler angles (rigid bodies only)"
     )
@@ -127,7 +133,7 @@ def _build_parser() -> argparse.ArgumentParser:
         help="accuracy tolerance: largest relative distance of the analytic orbit and period from "
         "the true ones (default 0.1)",
     )
-    _add_format(validate, ["table", "json", "latex"])
+    _add_format(validate, "validation")
     work = sub.add_parser(
         "work-precision",
         help="error against run time: analytic orders 1..N, RK4, scipy and heyoka",
@@ -150,7 +156,7 @@ def _build_parser() -> argparse.ArgumentParser:
         metavar="FILE",
         help="also save a work-precision plot (needs matplotlib)",
     )
-    _add_format(work, ["table", "csv", "json", "latex"])
+    _add_format(work, "work-precision")
     reproduce = sub.add_parser(
         "reproduce",
         help="reproduce a published paper's numbers beside the true motion",
@@ -158,7 +164,7 @@ def _build_parser() -> argparse.ArgumentParser:
         "true motion, and list its errata.",
     )
     reproduce.add_argument("paper", help="paper name (`paper`: the seed paper on the disk)")
-    _add_format(reproduce, ["table", "json"])
+    _add_format(reproduce, "reproduction")
     reproduce.add_argument(
         "--full",
         action="store_true",
@@ -274,7 +280,7 @@ def _add_response(sub) -> None:
         help="confirm a request estimated at more than an hour of work (many values, a high "
         "order, many shots)",
     )  # fmt: skip
-    _add_format(response, ["table", "csv", "json", "latex"])
+    _add_format(response, "response")
 
 
 def _add_family_arguments(sub, solve, validate) -> None:
@@ -288,7 +294,7 @@ def _add_family_arguments(sub, solve, validate) -> None:
         "carried to --order. Select one in `solve`/`validate` with --family NAME.",
     )
     _add_problem_arguments(families)
-    _add_format(families, ["table", "json", "latex"])
+    _add_format(families, "families")
     for command in (solve, validate):
         command.add_argument(
             "--family",
@@ -348,7 +354,7 @@ def _add_phase(sub) -> None:
         help=f"confirm a grid of more than {10**7:,} points, or estimated at more than an hour "
         "of work",
     )
-    _add_format(phase, ["table", "json"])
+    _add_format(phase, "phase")
 
 
 def _add_sweep(sub) -> None:
@@ -440,7 +446,7 @@ def _add_sweep(sub) -> None:
     sweep.add_argument(
         "--format",
         default="zarr",
-        choices=["zarr", "csv", "json"],
+        choices=_format_choices("sweep"),
         help="zarr (default: the store --output, a summary printed), or csv/json of every point "
         "(small sweeps)",
     )

@@ -3,11 +3,11 @@ parameters (:func:`perturb.sweep.phase.phase_diagram`). Imported only when the c
 
 from __future__ import annotations
 
-import json
 import sys
 
 from perturb._install import install_hint
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _UsageError
+from perturb.cli._output import _emit
 from perturb.cli._values import _check_plot, _parse_order, _parse_positive, _parse_sets, _save_plot
 from perturb.errors import MissingDependencyError
 
@@ -45,16 +45,11 @@ def _cmd_phase(args) -> int:
     except KeyboardInterrupt:
         print("\nperturb: interrupted: nothing is written", file=sys.stderr)
         return EXIT_INTERRUPTED
-    from perturb.report.phase import phase_as_dict, phase_as_table
+    from perturb.report.phase import PhaseOutput
 
     if plot is not None:
         _plot(dataset, plot, args.map == "first-order")
-    if args.format == "json":
-        print(json.dumps(phase_as_dict(dataset)))
-    else:
-        print(phase_as_table(dataset))
-        if args.output is not None:
-            print(f"written to {args.output} (open it with xarray.open_zarr)")
+    _emit("phase", args.format, PhaseOutput(dataset, args.output))
     import numpy as np
 
     drawn = "n_stable_first_order" if args.map == "first-order" else "n_stable"

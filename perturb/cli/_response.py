@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 
 from perturb.cli._errors import EXIT_OK, _RunFailed, _UsageError
+from perturb.cli._output import _emit
 from perturb.cli._values import _check_plot, _parse_order, _parse_sets, _save_plot
 
 
@@ -59,7 +59,6 @@ def _check_domain(result) -> None:
 
 def _cmd_response(args) -> int:
     from perturb._defaults import MAX_VALIDATE
-    from perturb.report import response_as_csv, response_as_dict, response_as_table
     from perturb.response.model import problem_response
     from problems import load_problem
 
@@ -107,16 +106,7 @@ def _cmd_response(args) -> int:
 
         for line in flag_lines(result):
             print(f"perturb: warning: {line}", file=sys.stderr)
-    if args.format == "json":
-        print(json.dumps(response_as_dict(result), allow_nan=False))
-    elif args.format == "csv":
-        print(response_as_csv(result))
-    elif args.format == "latex":
-        from perturb.report import response_latex
-
-        print(response_latex(result), end="")
-    else:
-        print(response_as_table(result))
+    _emit("response", args.format, result)
     if plot is not None:
         from perturb.report.plots import plot_frequency_response
 

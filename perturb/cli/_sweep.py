@@ -7,7 +7,6 @@ when the command runs: ``perturb --help`` loads neither Dask nor xarray nor Zarr
 
 from __future__ import annotations
 
-import json
 import sys
 from pathlib import Path
 
@@ -45,39 +44,6 @@ def _check_output(args) -> None:
         from perturb.report.written import check_file
 
         check_file(args.output, "--output", force=args.force)
-
-
-def _summary(ds, label: str, store: str | None) -> str:
-    from perturb.sweep.status import PointStatus, member_of
-    from perturb.sweep.store import code_counts
-    from perturb.validation import Verdict
-
-    size = int(ds["session"].size)
-    statuses = code_counts(ds["status"])
-    parts = [
-        f"{member_of(PointStatus, code).name.lower().replace('_', ' ')} {n}"
-        for code, n in sorted(statuses.items())
-        if code >= 0
-    ]
-    lines = [
-        f"sweep {label}: {size} points ({' x '.join(f'{n} {d}' for d, n in _dims(ds))}), "
-        f"{ds.attrs.get('seconds', 0.0):.1f} s; points: {', '.join(parts)}"
-    ]
-    if "verdict" in ds:
-        verdicts = code_counts(ds["verdict"])
-        counts = [
-            f"{member_of(Verdict, code).label} {n}"
-            for code, n in sorted(verdicts.items())
-            if code >= 0
-        ]
-        lines.append(f"verdicts: {', '.join(counts) or 'none'}")
-    if store is not None:
-        lines.append(f"written to {store} (open it with xarray.open_zarr)")
-    return "\n".join(lines)
-
-
-def _dims(ds):
-    return [(axis["name"], len(axis["values"])) for axis in json.loads(ds.attrs["grid"])]
 
 
 def _cmd_sweep(args) -> int:
@@ -152,18 +118,17 @@ def _cmd_sweep(args) -> int:
             file=sys.stderr,
         )
         return EXIT_INTERRUPTED
-    if args.format == "zarr":
-        print(_summary(ds, problem.label(), store))
-        return EXIT_OK
-    from perturb.report.sweep import sweep_as_csv, sweep_as_dict
+    from perturb.report.formats import write
+    from perturb.report.sweep import SweepOutput
 
-    text = (
-        sweep_as_csv(ds) if args.format == "csv" else json.dumps(sweep_as_dict(ds), allow_nan=True)
-    )
+    text = write("sweep", args.format, SweepOutput(ds, problem.label(), store))
+    if store is not None:  # the points are in the store: the text is its summary
+        print(text, end="")
+        return EXIT_OK
     if args.output is not None:
         from perturb.report.written import write_file
 
-        write_file(args.output, text + "\n")
+        write_file(args.output, text)
     else:
-        print(text)
+        print(text, end="")
     return EXIT_OK if ds.attrs.get("complete", True) else EXIT_FAILED

@@ -24,8 +24,19 @@ validity; each is empty when it is not (and when it was not checked).
 from __future__ import annotations
 
 import sympy as sp
+from attrs import frozen
 
-__all__ = ["as_dict", "as_table", "jsonable"]
+__all__ = ["FamiliesOutput", "as_dict", "as_table", "jsonable"]
+
+
+@frozen
+class FamiliesOutput:
+    """What ``perturb families`` prints: the families, the problem's label and, per family, its
+    ``(outside, beyond)`` domain flags."""
+
+    families: object
+    problem: str
+    flags: object = None
 
 
 def jsonable(value) -> int | float | str:

@@ -5,8 +5,17 @@ from __future__ import annotations
 import json
 
 import numpy as np
+from attrs import frozen
 
-__all__ = ["phase_as_dict", "phase_as_table"]
+__all__ = ["PhaseOutput", "phase_as_dict", "phase_as_table"]
+
+
+@frozen
+class PhaseOutput:
+    """What ``perturb phase-diagram`` prints: the dataset and the store it was written to."""
+
+    dataset: object
+    store: str | None = None
 
 
 def _axes(dataset):

@@ -13,8 +13,19 @@ import json
 import math
 
 import numpy as np
+from attrs import frozen
 
-__all__ = ["sweep_as_csv", "sweep_as_dict"]
+__all__ = ["SweepOutput", "sweep_as_csv", "sweep_as_dict", "sweep_summary"]
+
+
+@frozen
+class SweepOutput:
+    """What ``perturb sweep`` prints: the dataset, the problem's label, the store (or None)."""
+
+    dataset: object
+    label: str = ""
+    store: str | None = None
+
 
 #: Variables written as the label of their code.
 _CODED = ("status", "verdict")
@@ -128,3 +139,35 @@ def sweep_as_dict(ds) -> dict:
         "complete": bool(ds.attrs.get("complete", False)),
         "points": points,
     }
+
+
+def sweep_summary(output: SweepOutput) -> str:
+    """A sweep in a few lines: its points by status, its verdicts, where it is written."""
+    from perturb.sweep.status import PointStatus, member_of
+    from perturb.sweep.store import code_counts
+    from perturb.validation import Verdict
+
+    ds = output.dataset
+    size = int(ds["session"].size)
+    statuses = code_counts(ds["status"])
+    parts = [
+        f"{member_of(PointStatus, code).name.lower().replace('_', ' ')} {n}"
+        for code, n in sorted(statuses.items())
+        if code >= 0
+    ]
+    dims = [(axis["name"], len(axis["values"])) for axis in json.loads(ds.attrs["grid"])]
+    lines = [
+        f"sweep {output.label}: {size} points ({' x '.join(f'{n} {d}' for d, n in dims)}), "
+        f"{ds.attrs.get('seconds', 0.0):.1f} s; points: {', '.join(parts)}"
+    ]
+    if "verdict" in ds:
+        verdicts = code_counts(ds["verdict"])
+        counts = [
+            f"{member_of(Verdict, code).label} {n}"
+            for code, n in sorted(verdicts.items())
+            if code >= 0
+        ]
+        lines.append(f"verdicts: {', '.join(counts) or 'none'}")
+    if output.store is not None:
+        lines.append(f"written to {output.store} (open it with xarray.open_zarr)")
+    return "\n".join(lines)

@@ -24,6 +24,7 @@ PACKAGES = (
     "perturb.oracle",
     "perturb.validation",
     "perturb.report.plots",
+    "perturb.report.formats",
     "perturb.workprecision",
     "problems",
 )
