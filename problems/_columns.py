@@ -206,5 +206,5 @@ def problem_columns(
     model = None
     if valid.any():
         first = int(np.flatnonzero(valid)[0])
-        model = problem.with_parameters(**{n: float(c[first]) for n, c in columns.items()})
+        model = problem.case().at(**{n: float(c[first]) for n, c in columns.items()}).model
     return ParameterColumns(model, parameter_value, eps, symbols, errors, notes)

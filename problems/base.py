@@ -367,12 +367,22 @@ class Problem(Model, ABC):
         """These values as a :class:`perturb.case.Case`: the system, the map, the point, the
         family; its other points are checked as :meth:`create` checks them."""
         if self._case is None:
-            made = Case(self.system(), self.map(), self.values, self.family, check=self._checked)
+            made = Case(
+                self.system(), self.map(), self.values, self.family, check=self._checked,
+                model_of=self._at,
+            )  # fmt: skip
             object.__setattr__(self, "_case", made)
         return self._case
 
     def _checked(self, values: dict) -> dict:
         return dict(type(self).create(**values).values)
+
+    def _at(self, case: Case) -> Problem:
+        """This problem at ``case``'s values (checked by :meth:`_checked` already) and family:
+        the model a case gives its clients (:attr:`perturb.case.Case.model`)."""
+        made = attrs.evolve(self, values=case.values, family=case.family)
+        object.__setattr__(made, "_case", case)
+        return made
 
     # ------------------------------------------------------------------ shared machinery
     @classmethod

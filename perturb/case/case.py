@@ -63,6 +63,11 @@ class Case:
     check : callable, optional
         ``check(values) -> values``: the problem's own validation of a point (raises a
         ``ValueError`` subclass naming the parameter); default: none.
+    model_of : callable, optional
+        ``model_of(case) -> model``: the model (a :class:`~perturb.validation.Model`, e.g. a
+        problem) at a case's values — the one adapter the front door gives, so that a client
+        holding a case reaches the problem's own physics (its state map, its checks) at any
+        point without re-creating it by hand; default: none (:attr:`model` is None).
 
     Examples
     --------
@@ -88,7 +93,9 @@ class Case:
     values: dict = field(converter=dict)
     family: str | None = None
     check: Callable[[dict], dict] = field(default=_no_check, eq=False, repr=False)
+    model_of: Callable | None = field(default=None, eq=False, repr=False)
     _point: tuple = field(init=False, eq=False, repr=False)
+    _model: list = field(init=False, eq=False, repr=False, factory=list)
 
     def __attrs_post_init__(self):
         missing = [n for n in self.map.user if n not in self.values]
@@ -123,16 +130,25 @@ class Case:
         eps = self.epsilon
         return 1.0 / eps if self.system.regime is Regime.LARGE else eps
 
+    @property
+    def model(self):
+        """The model at this case's values (made once by :attr:`model_of`; None without one,
+        or where the model cannot be re-created at these values)."""
+        if not self._model:
+            self._model.append(None if self.model_of is None else self.model_of(self))
+        return self._model[0]
+
     # ------------------------------------------------------------------ other points
     def at(self, **values) -> Case:
         """This case at other user values (the rest kept), checked by :attr:`check`."""
         unknown = sorted(set(values) - set(self.map.user))
+        checked = self.check({**self.values, **values})  # a problem names its own parameters
         if unknown:
             raise bad_value(
                 unknown[0], values[unknown[0]],
                 f"it is not a parameter: choose from {list(self.map.user)}", InvalidParameterError,
             )  # fmt: skip
-        return attrs.evolve(self, values=self.check({**self.values, **values}))
+        return attrs.evolve(self, values=checked)
 
     def with_epsilon(self, eps: float) -> Case | None:
         """The same scaled system (every symbol kept) at ε = ``eps``, or None if no move of the
@@ -146,6 +162,7 @@ class Case:
             return None
 
     def with_family(self, family: str | None) -> Case:
+        """This case following the family ``family`` (None: the default one)."""
         return attrs.evolve(self, family=family)
 
     def columns(self, grid: Mapping[str, np.ndarray]) -> CaseColumns:

@@ -79,7 +79,7 @@ def _cmd_solve(args) -> int:
         state = problem.state(solution, times)
         extras = {"euler": problem.euler_angles(solution, times)} if args.euler else {}
     notes += [str(w.message) for w in caught if str(w.message) not in notes]
-    report = problem.report_extras() if hasattr(problem, "report_extras") else {}
+    report = problem.report_extras()
     payload = {
         "problem": args.problem,
         "parameters": problem.resolved_parameters(),

@@ -157,7 +157,9 @@ class OrderByOrder(KeptSeries):
         return sym
 
     # ------------------------------------------------------------------ order 0
-    def _generating(self) -> GeneratingSolution:
+    def generating(self) -> GeneratingSolution:
+        """Step 1 of the template: the generating solution (order 0), its amplitudes unknown
+        where no option gives them."""
         conv, poly = self.conv, self.conv.poly
         cos_amp, sin_amp = [], []
         for i, name in enumerate(self.names):
@@ -347,7 +349,7 @@ class OrderByOrder(KeptSeries):
         # of order j at order j + 4; the bowed line along x, whose y starts at eps: N + 5)
         max_k = method.order + 3 * max(lead, 1) + 2
         self.expansion = system.expansion(max_k)
-        generating = self._generating()
+        generating = self.generating()
         status, message = Status.SUCCESS, ""
         k_done = 0
         try:
@@ -384,4 +386,4 @@ class OrderByOrder(KeptSeries):
         if status is Status.SUCCESS and self._open_unknowns():
             status = Status.UNDETERMINED
             message = f"unknowns {sorted(map(str, self._open_unknowns()))} are not fixed by orders up to {k_done}"
-        return self._result(generating, status, message)
+        return self.result(generating, status, message)

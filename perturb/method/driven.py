@@ -218,15 +218,15 @@ def _collect(runner: _Collecting, order: int) -> PeriodicSolution:
     runner.system = attrs.evolve(system, parameters=(*system.parameters, *params))
     runner.collected = []
     runner.expansion = runner.system.expansion(order + 1)
-    generating = runner._generating()
+    generating = runner.generating()
     for k in range(1, order + 2):
         runner.step(k, generating)
-    return runner._result(generating, Status.SUCCESS, "")
+    return runner.result(generating, Status.SUCCESS, "")
 
 
 def _key(system: QuasilinearSystem, order: int) -> tuple:
     method = PoincareMethod(order=1, cache=False)
-    return ("amplitude-equations", method._cache_key(system), order)
+    return ("amplitude-equations", method.cache_key(system), order)
 
 
 # ------------------------------------------------------------------------ stability

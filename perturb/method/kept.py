@@ -60,9 +60,10 @@ class KeptSeries:
             syms |= conv.symbols(w)
         return syms & self.unknowns
 
-    def _result(
+    def result(
         self, generating: GeneratingSolution, status: Status, message: str
     ) -> PeriodicSolution:
+        """The run packed as a :class:`PeriodicSolution` (what order N keeps, the depth rule)."""
         order = self.method.order
         gen = GeneratingSolution(
             coordinates=generating.coordinates,

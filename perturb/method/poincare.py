@@ -161,6 +161,11 @@ class PoincareMethod:
             return _construct(self, system)
         return cached("solution", lambda: self._cache_key(system), lambda: _construct(self, system))
 
+    def cache_key(self, system: QuasilinearSystem) -> tuple:
+        """What a construction of ``system`` with these options is cached under (its options,
+        the system and the frame's tag): clients caching what they derive from it key on it."""
+        return self._cache_key(system)
+
     def _cache_key(self, system: QuasilinearSystem) -> tuple:
         def text(value):
             return (

@@ -10,8 +10,8 @@ system's conservative, unforced part (:mod:`perturb.steady.backbone`). With ``va
 the true orbit is shot at points of every branch chosen by arclength
 (:mod:`perturb.response.truth`).
 
-The problem gives ``case()`` (a :class:`perturb.case.Case`), ``name`` and
-``with_parameters(**values)`` (a :class:`problems.base.Problem` has them all).
+The problem gives ``case()`` (a :class:`perturb.case.Case`: every grid value is a point of it,
+checked by the problem's own rules) and ``name`` (a :class:`problems.base.Problem` has both).
 """
 
 from __future__ import annotations
@@ -225,11 +225,10 @@ def problem_response(
     check_measure(measure)
     check_validate(validate)
     tol = DEFAULT_TOL if tol is None else check_tol(tol)
-    from perturb.steady.line import excitation_frequency
-
+    case = problem.case()
     for value in grid:  # the problem's own checks at every grid value (one line, exit 2)
-        variant = problem.with_parameters(**{parameter: float(value)})
-        excitation_frequency(system, variant.symbol_values(), float(variant.epsilon()))
+        point = case.at(**{parameter: float(value)})
+        system.frame.frequency_value(system, point.symbol_values, point.epsilon)
     equations = amplitude_equations(system, order)
     names = [p.name for p in system.parameters]
     line = line_of_problem(problem, parameter, names, float(grid[0]), float(grid[-1]))

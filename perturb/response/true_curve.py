@@ -219,8 +219,8 @@ def _analytic_state(setup, lam: float, name: str, point) -> np.ndarray:
     from perturb.validation import state_along
 
     solution = branch_solution(setup.amplitude_equations, point, name)
-    variant = setup.problem.with_parameters(**{setup.parameter: lam})
-    state = state_along(solution, [0.0], variant.parameter_value(), variant.symbol_values())
+    point = setup.problem.case().at(**{setup.parameter: lam})
+    state = state_along(solution, [0.0], point.parameter_value, point.symbol_values)
     return np.array([float(state[s.name][0]) for s in setup.system.state_symbols])
 
 

@@ -78,7 +78,7 @@ def _key(equations, what: str, order: int) -> tuple:
     from perturb.method.poincare import PoincareMethod
 
     method = PoincareMethod(order=1, cache=False)
-    return ("compiled-response", what, method._cache_key(equations.system), order)
+    return ("compiled-response", what, method.cache_key(equations.system), order)
 
 
 def compiled_displacement(equations, order: int) -> CompiledPolynomials | Lambdified:

@@ -73,7 +73,7 @@ class Derivation:
 
     def model_at(self, base: Model, values: Mapping[str, float]) -> Model:
         """The model of the point ``values`` (raises the model's own error for bad values)."""
-        model = base.with_parameters(**values)
+        model = base.case().at(**values).model
         if model is None:
             raise InvalidParameterError(
                 f"`problem` = {base.label()!r} cannot be re-created at other parameter values "
@@ -137,7 +137,7 @@ def _entering(base: Model, axes) -> dict[str, int]:
         seen = {reference}
         for value in axis.values:
             try:
-                other = base.with_parameters(**{axis.name: value})
+                other = base.case().at(**{axis.name: value}).model
             except (PerturbError, ValueError):
                 continue  # a value the problem refuses: that point will say so
             if other is not None:

@@ -65,13 +65,13 @@ class _FirstOrder:
         self.jacobian = numpy_lambdify([*unknowns, *self.parameters], jacobian)
         self.group = system.excitation.p * shift_symmetry(system)
 
-    def count(self, variant) -> tuple[int, int]:
-        """``(states, stable)`` at ``variant``'s values (certified roots; Malkin's stability)."""
+    def count(self, case) -> tuple[int, int]:
+        """``(states, stable)`` at ``case``'s point (certified roots; Malkin's stability)."""
         from perturb.method.driven import SLOW_FLOW_ZERO
         from perturb.steady.branches import exact_number
         from perturb.steady.census import census, distinct_orbits
 
-        values = variant.symbol_values()
+        values = case.symbol_values
         fixed = {p: exact_number(values[p.name]) for p in self.parameters}
         roots, why = census(self.equations, fixed)
         if why:
@@ -134,10 +134,10 @@ def phase_line(problem, along: str, values, across: str, at: float, order: int, 
     out = {key: [NOT_COUNTED] * n for key in
            ("states", "stable", "marginal", "first_order", "stable_first_order")}  # fmt: skip
     out.update(special=[], failures=[])
-    variant = problem.with_parameters(**{across: float(at)})
+    case = problem.case().at(**{across: float(at)})
     where = f"{across} = {at:g}"
     try:
-        result = problem_response(variant, along, values, order=order)
+        result = problem_response(case.model, along, values, order=order)
     except PerturbError as exc:
         out["failures"].append(f"{where}: {' '.join(str(exc).split())}")
     else:
@@ -155,9 +155,9 @@ def phase_line(problem, along: str, values, across: str, at: float, order: int, 
     first = _FirstOrder(problem)
     if proved:
         for i, v in enumerate(values):
-            counted = first.count(variant.with_parameters(**{along: float(v)}))
+            counted = first.count(case.at(**{along: float(v)}))
             out["first_order"][i], out["stable_first_order"][i] = counted
-    points, why = first.singular(variant.case(), along, float(values[0]), float(values[-1]))
+    points, why = first.singular(case, along, float(values[0]), float(values[-1]))
     out["special"] += [(kind, value, FIRST_ORDER) for kind, value in points]
     if why:
         out["failures"].append(f"{where}: the first-order boundaries: {why}")
@@ -277,9 +277,10 @@ def phase_diagram(
     if columns:
         seconds += xs.size * response_cost(ys.size, order, shots=0).seconds
     check_cost(Cost(f"{xs.size * ys.size:,} points", xs.size * ys.size, seconds), yes)
+    case = problem.case()
     for name, values in ((x_name, xs), (y_name, ys)):
         for value in values:  # the problem's own checks at every value (one line, exit 2)
-            problem.with_parameters(**{name: float(value)})
+            case.at(**{name: float(value)})
     from perturb.sweep.driver import Cluster, run_calls
 
     calls = [(x_name, xs, y_name, float(y), order, proved) for y in ys]

@@ -109,7 +109,7 @@ class SweepSpec:
         model at the grid's first point, which names its family and fixed values), the grid, the
         settings and the perturb version."""
         try:
-            first = self.model.with_parameters(**self.grid.point(0))
+            first = self.model.case().at(**self.grid.point(0)).model
         except (PerturbError, ValueError):  # a point the problem refuses: the model as given
             first = None
         text = json.dumps(
@@ -218,8 +218,8 @@ def check_spec(
             )
     check_size(grid.size, bool(yes))
     try:
-        sweepable = model.with_parameters(
-            **dict(zip(grid.names, model_values(model, grid), strict=True))
+        sweepable = (
+            model.case().at(**dict(zip(grid.names, model_values(model, grid), strict=True))).model
         )
     except (PerturbError, ValueError):
         sweepable = True  # it can be re-created; these values it refuses (each point says so)
@@ -284,7 +284,7 @@ def check_family(model: Model, name: str, grid: Grid, order: int) -> Model:
     picks = np.unique(np.linspace(0, size - 1, min(SWEEP_FAMILY_PROBES, size)).round().astype(int))
     for index in picks:
         try:
-            candidates.append(model.with_parameters(**grid.point(int(index))))
+            candidates.append(model.case().at(**grid.point(int(index))).model)
         except (PerturbError, ValueError):
             continue  # a point the problem refuses: it says so in its own status
     for candidate in candidates:

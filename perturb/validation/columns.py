@@ -120,5 +120,5 @@ def system_columns(model, columns) -> ParameterColumns | None:
     first = None
     if finite.any():
         i = int(np.flatnonzero(finite)[0])
-        first = model.with_parameters(**{n: float(c[i]) for n, c in columns.items()})
+        first = model.case().at(**{n: float(c[i]) for n, c in columns.items()}).model
     return ParameterColumns(first, parameter_value, eps, symbols, errors, [""] * size)

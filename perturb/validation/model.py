@@ -7,6 +7,7 @@ probing): ``problems.Problem`` implements it, and :class:`SystemModel` makes a b
 
 from __future__ import annotations
 
+import functools
 import math
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
@@ -14,6 +15,8 @@ from collections.abc import Callable, Mapping
 import numpy as np
 from attrs import evolve, field, frozen
 
+from perturb._defaults import DERIVED_CACHE_SIZE
+from perturb.case import Case, ParameterMap
 from perturb.errors import bad_value
 from perturb.method import PoincareMethod
 from perturb.oracle import Integrator, SymbolicRHS
@@ -222,7 +225,7 @@ class Model(ABC):
        :meth:`shooting_setup` (default: derived), :meth:`method_options`, :meth:`label` and
        :meth:`parameters_in_force` (for reports);
     7. optionally override :meth:`euler_angles` (rigid bodies: the angles along a solution;
-       default: None).
+       default: None) and :meth:`report_extras` (what a report adds: default none).
 
     Examples
     --------
@@ -318,6 +321,18 @@ class Model(ABC):
         """The same model with ε replaced by ``eps`` (default: None, not rescalable)."""
         return None
 
+    def case(self) -> Case:
+        """This model's point as a :class:`~perturb.case.Case` — the system, the map of its
+        parameters, their values — whose other points (:meth:`~perturb.case.Case.at`) carry the
+        model there (:attr:`~perturb.case.Case.model`). The one door through which the sweep,
+        the response and the phase diagram reach a model's other points.
+
+        Default: the system's symbols and its own parameter as the parameters, each the
+        symbol of the same name; the model at another point is :meth:`with_parameters`'s.
+        """
+        values = {**self.symbol_values(), self.system().parameter.name: self.parameter_value()}
+        return _identity_case(self, values)
+
     def with_parameters(self, **values: float) -> Model | None:
         """The same model with some parameters (names of :meth:`parameters_in_force`) set to
         ``values`` — a point of a sweep (default: None, the model cannot be re-created).
@@ -377,6 +392,11 @@ class Model(ABC):
         without computing anything.
         """
         return None
+
+    def report_extras(self) -> dict:
+        """Numbers and sentences the model adds to a report of its solution (``perturb solve``'s
+        JSON and table header; the rigid bodies' ``mu`` and ``regime``; default: none)."""
+        return {}
 
     def _substitutions(self, y0) -> dict | None:
         return substitutions(self.system(), self.symbol_values(), self.parameter_value(), y0)
@@ -488,6 +508,10 @@ class SystemModel(Model):
     def with_parameters(self, **values: float) -> SystemModel:
         return evolve(self, values={**self.values, **values})
 
+    def case(self) -> Case:
+        """Its values as a :class:`~perturb.case.Case` (each symbol the value of its name)."""
+        return _identity_case(self, self.values)
+
     def evaluates_solution_directly(self) -> bool:
         return not self.quasilinear.frame.frequency_given  # a driven state adds the phase
 
@@ -501,6 +525,25 @@ class SystemModel(Model):
     def with_epsilon(self, eps: float) -> SystemModel:
         value = 1.0 / eps if self.quasilinear.regime is Regime.LARGE else eps
         return evolve(self, values={**self.values, self.quasilinear.parameter.name: value})
+
+
+@functools.lru_cache(maxsize=DERIVED_CACHE_SIZE)
+def _identity_map(system: QuasilinearSystem, names: tuple[str, ...]) -> ParameterMap:
+    """Each system symbol the value of its name; ε the system's own parameter (1/μ if large)."""
+    own = system.parameter.name
+    epsilon = own if system.regime is not Regime.LARGE else f"1/{own}"
+    return ParameterMap.declare(system.parameters, names, {}, epsilon=epsilon)
+
+
+def _identity_case(model: Model, values: Mapping[str, float]) -> Case:
+    """The case of a model whose parameters are its system's symbols (the adapter at the door:
+    another point's model is the model's own :meth:`Model.with_parameters`)."""
+    system = model.system()
+    return Case(
+        system, _identity_map(system, tuple(values)), values,
+        check=lambda point: check_system_values(system, point),
+        model_of=lambda case: model.with_parameters(**case.values),
+    )  # fmt: skip
 
 
 def as_model(problem, values: Mapping | None = None, options: Mapping | None = None) -> Model:

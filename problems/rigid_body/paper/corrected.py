@@ -68,7 +68,7 @@ def corrected_columns(t: np.ndarray) -> dict:
             r0 = PAPER_INPUTS["r0"]
             z = solution.evaluate(r0 * t, problem.parameter_value(), problem.symbol_values())
             period = problem.period(solution)
-            extras = problem.report_extras() if hasattr(problem, "report_extras") else {}
+            extras = problem.report_extras()
     except Exception as exc:  # noqa: BLE001 - a colleague's module: report, do not crash
         return {"description": description, "p2a": None, "unavailable": repr(exc)}
     cols = dict(zip(solution.state_names, z, strict=True))
