@@ -20,3 +20,20 @@ def install_hint(extra: str) -> str:
     'pip install \\'perturb-poincare[plot]\\' (from a clone: pip install -e ".[plot]")'
     """
     return f"pip install '{DISTRIBUTION}[{extra}]' (from a clone: pip install -e \".[{extra}]\")"
+
+
+def installed(module: str) -> bool:
+    """Whether ``module`` can be imported, found without importing it (a check before any work
+    must not load matplotlib or Dask: only the rooms that use them import them).
+
+    Examples
+    --------
+    >>> installed("json"), installed("no_such_module_here")
+    (True, False)
+    """
+    import importlib.util
+
+    try:
+        return importlib.util.find_spec(module) is not None
+    except (ImportError, ValueError):  # a parent missing, or a module set to None (tests)
+        return False

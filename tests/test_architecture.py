@@ -270,3 +270,178 @@ def test_the_command_line_loads_no_sweep_extra_unasked(argv):
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip().splitlines()[-1] == "[]"
+
+
+# ---------------------------------------------------------------------------------------------
+# The seam's rules: one door (a case) below the CLI, the frame asked rarely, no probing.
+
+
+def _graph(paths) -> dict[str, set[str]]:
+    """module -> the modules of the tree it imports (not its own packages, nor its children: a
+    package's face hands its children's names on)."""
+    modules = {_module_name(path): path for path in paths}
+    graph = {}
+    for module, path in modules.items():
+        targets = {name for _, name in _imports(path)} & set(modules)
+        graph[module] = {
+            t for t in targets if not (_is_under(module, t) or _is_under(t, module)) and t != module
+        }
+    return graph
+
+
+def circles(paths) -> list[str]:
+    """Every circle of imports (a strongly connected set of two files or more), of any length."""
+    graph = _graph(paths)
+    index, low, stack, on, found = {}, {}, [], set(), []
+
+    def visit(node):  # Tarjan's strongly connected components
+        index[node] = low[node] = len(index)
+        stack.append(node)
+        on.add(node)
+        for nxt in sorted(graph.get(node, ())):
+            if nxt not in index:
+                visit(nxt)
+                low[node] = min(low[node], low[nxt])
+            elif nxt in on:
+                low[node] = min(low[node], index[nxt])
+        if low[node] == index[node]:
+            component = []
+            while True:
+                top = stack.pop()
+                on.discard(top)
+                component.append(top)
+                if top == node:
+                    break
+            if len(component) > 1:
+                found.append(" -> ".join(sorted(component)))
+
+    for node in sorted(graph):
+        if node not in index:
+            visit(node)
+    return found
+
+
+def test_no_circle_in_the_whole_house():
+    """Neither perturb nor problems has files that reach each other through imports, however
+    long the way (the rigid body's equations hand no name to numeric; the paper's report is read
+    by its formatter without being imported by it)."""
+    found = circles(list(_sources()))
+    assert not found, "circles of imports:\n" + "\n".join(found)
+
+
+def _calls(paths, attribute: str):
+    """(path, line) of every call ``x.attribute(...)`` in ``paths``."""
+    for path in paths:
+        tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+        for node in ast.walk(tree):
+            if (
+                isinstance(node, ast.Call)
+                and isinstance(node.func, ast.Attribute)
+                and node.func.attr == attribute
+            ):
+                yield path, node.lineno
+
+
+#: The one place below the CLI a model is made at other values by its own hook: the adapter that
+#: gives a model that is not a problem its case (``Model.case``); everything else asks the case.
+WITH_PARAMETERS_DOOR = ("perturb/validation/model.py",)
+
+
+def test_below_the_door_every_point_comes_from_the_case():
+    """No room of perturb re-creates a problem at other values (``with_parameters``): the
+    response, the phase diagram and the sweep take their points from the case
+    (``case.at(...)``, its ``model``)."""
+    found = [
+        f"{_relative(path)}:{line}"
+        for path, line in _calls(_perturb_sources(), "with_parameters")
+        if _relative(path) not in WITH_PARAMETERS_DOOR
+    ]
+    assert not found, "with_parameters called below the door:\n" + "\n".join(found)
+    door = [line for _, line in _calls([ROOT / WITH_PARAMETERS_DOOR[0]], "with_parameters")]
+    assert len(door) == 1  # the adapter itself
+
+
+def test_no_attribute_probe_of_a_problem():
+    """A problem is asked through its typed hooks, never with ``hasattr``/``getattr`` probes."""
+    found = []
+    for path in _sources():
+        tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+        for node in ast.walk(tree):
+            if (
+                isinstance(node, ast.Call)
+                and getattr(node.func, "id", "") in ("hasattr", "getattr")
+                and node.args
+                and isinstance(node.args[0], ast.Name)
+                and node.args[0].id in ("problem", "model")
+            ):
+                found.append(f"{_relative(path)}:{node.lineno}")
+    assert not found, "a problem probed by attribute:\n" + "\n".join(found)
+
+
+def test_only_the_plotting_modules_import_matplotlib():
+    """matplotlib is imported by ``perturb/report/plots/`` alone; a check that it is installed
+    finds it without importing it (``perturb._install.installed``)."""
+    found = [
+        f"{_relative(path)}:{line} imports {name}"
+        for path, line, name in _imports_of(_sources())
+        if _is_under(name, "matplotlib")
+        and not _is_under(_module_name(path), "perturb.report.plots")
+    ]
+    assert not found, "matplotlib imported outside the plots:\n" + "\n".join(found)
+
+
+#: The frame's answers (free or driven) asked outside the frame, counted where they are read.
+FRAME_ANSWERS = ("frequency_given", "one_solution_for_all_points", "energy_may_be_conserved")
+#: How many places ask them today. The target of the seam is 6 (one table keyed by frame type);
+#: this ceiling only keeps the number from growing back while it falls.
+MAX_FRAME_QUESTIONS = 17
+
+
+def test_the_frame_is_asked_in_few_places():
+    found = []
+    for path in _sources():
+        if _relative(path) == "perturb/frame.py":
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Attribute) and node.attr in FRAME_ANSWERS:
+                found.append(f"{_relative(path)}:{node.lineno} {node.attr}")
+            elif isinstance(node, ast.keyword) and node.arg == "driven":
+                found.append(f"{_relative(path)}:{node.value.lineno} driven=")
+    assert len(found) <= MAX_FRAME_QUESTIONS, "\n".join(found)
+
+
+#: Public members of ``problems.Problem`` (the subclass contract plus what clients call). The seam's
+#: target is 15 (the hooks moved to declared capabilities); this ceiling keeps it from growing.
+MAX_PROBLEM_MEMBERS = 44
+
+
+def test_the_problem_surface_does_not_grow():
+    from problems.base import Problem
+
+    public = [name for name in dir(Problem) if not name.startswith("_")]
+    assert len(public) <= MAX_PROBLEM_MEMBERS, sorted(public)
+
+
+def test_the_seam_rules_see_what_they_are_shown(tmp_path):
+    """Each new rule, given planted offenders, names them."""
+    a, b, c = (tmp_path / f"{n}.py" for n in "abc")
+    a.write_text("import perturb.b_mod\n")
+    b.write_text("def f():\n    import perturb.c_mod\n")
+    c.write_text("from perturb import a_mod\n")
+    graph_paths = {a: "perturb.a_mod", b: "perturb.b_mod", c: "perturb.c_mod"}
+
+    def module_name(path, _real=_module_name):
+        return graph_paths.get(path) or _real(path)
+
+    import tests.test_architecture as rules
+
+    original = rules._module_name
+    rules._module_name = module_name
+    try:
+        assert circles([a, b, c]) == ["perturb.a_mod -> perturb.b_mod -> perturb.c_mod"]
+    finally:
+        rules._module_name = original
+    d = tmp_path / "d.py"
+    d.write_text("problem.with_parameters(a=1)\nhasattr(problem, 'x')\n")
+    assert [line for _, line in _calls([d], "with_parameters")] == [1]

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import sys
 
-from perturb._install import install_hint
+from perturb._install import install_hint, installed
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _UsageError
 from perturb.errors import InvalidParameterError, ProblemLoadError, UnknownNameError
 
@@ -68,13 +68,11 @@ def _cmd_report(args) -> int:
         except MissingDependencyError as exc:
             raise _UsageError(f"{args.scene}: [sweep] {exc}, or remove the sweep") from None
     if scene.outputs.plots:
-        try:
-            import matplotlib  # noqa: F401
-        except ImportError:
+        if not installed("matplotlib"):
             raise _UsageError(
                 f"{args.scene}: [outputs] plots need matplotlib: {install_hint('plot')}, or "
                 "remove the plots"
-            ) from None
+            )
     problem = _load(scene)
     check_scene(scene, problem, args.yes)
     # the folder is claimed now, before the computation: unwritable, or holding a file perturb

@@ -7,7 +7,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from perturb._defaults import MAX_ORDER, MAX_TIMES
-from perturb._install import install_hint
+from perturb._install import install_hint, installed
 from perturb.cli._errors import _UsageError
 
 
@@ -128,12 +128,8 @@ def _check_plot(args) -> Path | None:
     from perturb.report.written import check_file
 
     target = check_file(plot, "--plot", force=getattr(args, "force", False), plot=True)
-    try:
-        import matplotlib  # noqa: F401
-    except ImportError:
-        raise _UsageError(
-            f"--plot needs matplotlib: {install_hint('plot')}, or drop --plot"
-        ) from None
+    if not installed("matplotlib"):
+        raise _UsageError(f"--plot needs matplotlib: {install_hint('plot')}, or drop --plot")
     return target
 
 

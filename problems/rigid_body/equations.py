@@ -513,23 +513,5 @@ class NondimensionalParameters:
         }
 
 
-#: The numeric functions moved to :mod:`problems.rigid_body.numeric` (one concern per module);
-#: still importable from here.
-_MOVED_TO_NUMERIC = frozenset(
-    {
-        "full_jacobian",
-        "full_rhs",
-        "integrals_function",
-        "nondimensional_integrals_function",
-        "nondimensional_jacobian",
-        "nondimensional_rhs",
-    }
-)
-
-
-def __getattr__(name: str):
-    if name in _MOVED_TO_NUMERIC:
-        from problems.rigid_body import numeric
-
-        return getattr(numeric, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+# The numeric functions moved to :mod:`problems.rigid_body.numeric` (one concern per module);
+# that module hands them back to this one, so they are still importable from here.

@@ -93,7 +93,7 @@ def exact_values(problem) -> dict[str, sp.Expr]:
     1e-16 already moves the true amplitudes in the third digit at the paper geometry).
     """
     values = {name: exact_number(v) for name, v in problem.values.items()}
-    if getattr(problem, "name", "") == "disk":
+    if problem.name == "disk":
         values["C"] = values["A"] + values["B"]
     return values
 

@@ -17,6 +17,7 @@ import sympy as sp
 from perturb._lambdify import numpy_lambdify
 from perturb.errors import bad_value
 from perturb.system import EPS
+from problems.rigid_body import equations as _equations
 from problems.rigid_body._stored import stored
 from problems.rigid_body.equations import (
     DIMENSIONAL_STATE,
@@ -170,3 +171,10 @@ def nondimensional_integrals_function(
     hf = _nondimensional_function(_INTEGRALS)
     args = _nondim_args(params)
     return lambda y: np.array(np.broadcast_arrays(*hf(np.asarray(y, dtype=float), args)))
+
+
+# These functions lived in :mod:`problems.rigid_body.equations` before; users' ``from
+# problems.rigid_body.equations import full_rhs`` still works because this module hands them to
+# it (the package imports this module first), so equations never imports numeric: no circle.
+for _name in __all__:
+    setattr(_equations, _name, globals()[_name])

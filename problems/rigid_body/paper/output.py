@@ -7,6 +7,10 @@ Everything that turns the report into text or files lives here:
 * :func:`summary_text` -- the one-screen summary ``perturb reproduce paper`` prints first,
 * :func:`full_text` -- the full tables (``--full``; also :meth:`ReproductionReport.as_table`),
 * :func:`prepare_output` and :func:`write_outputs` -- the report files of ``--output DIR``.
+
+Each function takes the report (a ``ReproductionReport``) and reads its fields; this module does
+not import the report's class, so the report's own ``as_dict``/``as_table`` call here without
+the two modules importing each other.
 """
 
 from __future__ import annotations
@@ -25,7 +29,6 @@ from perturb.errors import InvalidParameterError
 from problems.rigid_body.paper.data import PAPER_CITATION, PRINTED_CONSTANTS, TABLE1_COLUMNS
 from problems.rigid_body.paper.errata import ERRATA_STATUSES
 from problems.rigid_body.paper.geometry_orbit import ROUTE_QUAD
-from problems.rigid_body.paper.report import ReproductionReport
 
 __all__ = [
     "OUTPUT_FILES",
@@ -69,7 +72,7 @@ def _jsonable(value: Any) -> Any:
     return value
 
 
-def report_dict(report: ReproductionReport) -> dict:
+def report_dict(report) -> dict:
     """A JSON-serialisable dict (NaN/inf kept as floats; ``json.dumps(..., allow_nan=True)``)."""
     return _jsonable(
         {
@@ -93,7 +96,7 @@ def report_dict(report: ReproductionReport) -> dict:
 
 
 # ---------------------------------------------------------------------------- full text
-def full_text(report: ReproductionReport) -> str:
+def full_text(report) -> str:
     """A plain-text report: constants, Table 1 check, our Table 2, experiment, verdict, errata."""
     out = io.StringIO()
     w = out.write
@@ -182,7 +185,7 @@ def _per_column(values: dict, fmt: str) -> str:
     return ", ".join(f"{c} {values[c]:{fmt}}" for c in TABLE1_COLUMNS if c in values)
 
 
-def _summary_constants(report: ReproductionReport) -> list[str]:
+def _summary_constants(report) -> list[str]:
     rows = {name: report.constants[name] for name in PRINTED_CONSTANTS}
     missed = [name for name, row in rows.items() if not row["matches"]]
     line = (
@@ -192,7 +195,7 @@ def _summary_constants(report: ReproductionReport) -> list[str]:
     return [line + (f"; not: {', '.join(missed)}" if missed else "")]
 
 
-def _summary_table1(report: ReproductionReport) -> list[str]:
+def _summary_table1(report) -> list[str]:
     check = report.table1_check
     n_rows = len(report.table1["t"])
     total = n_rows * len(TABLE1_COLUMNS)
@@ -206,7 +209,7 @@ def _summary_table1(report: ReproductionReport) -> list[str]:
     ]
 
 
-def _summary_motion(report: ReproductionReport) -> list[str]:
+def _summary_motion(report) -> list[str]:
     truth = report.table2["true_motion"]
     drift = max(truth["relative_integral_drift"].values())
     lines = [
@@ -222,7 +225,7 @@ def _summary_motion(report: ReproductionReport) -> list[str]:
     return lines
 
 
-def _summary_experiment(report: ReproductionReport) -> list[str]:
+def _summary_experiment(report) -> list[str]:
     lines = ["RK4 experiment (33) redone from Table 1's first row:"]
     for name, run in report.experiment["runs"].items():
         label = _RUN_LABELS.get(name, name)
@@ -238,7 +241,7 @@ def _summary_experiment(report: ReproductionReport) -> list[str]:
     return lines
 
 
-def _summary_euler(report: ReproductionReport) -> list[str]:
+def _summary_euler(report) -> list[str]:
     e12 = report.errata.get("E12")
     if not report.euler_angles or e12 is None:
         return []
@@ -260,7 +263,7 @@ def _summary_euler(report: ReproductionReport) -> list[str]:
     ]
 
 
-def _summary_true_orbit(report: ReproductionReport) -> list[str]:
+def _summary_true_orbit(report) -> list[str]:
     orbit = report.true_orbit
     if not orbit:
         return []
@@ -277,7 +280,7 @@ def _summary_true_orbit(report: ReproductionReport) -> list[str]:
     ]
 
 
-def _summary_errata(report: ReproductionReport) -> list[str]:
+def _summary_errata(report) -> list[str]:
     by_status = {
         status: [eid for eid, item in report.errata.items() if item["status"] == status]
         for status in ERRATA_STATUSES
@@ -300,7 +303,7 @@ def _summary_citation() -> list[str]:
     return textwrap.wrap(legend, SUMMARY_MAX_WIDTH - 2, initial_indent="  ", subsequent_indent="  ")
 
 
-def summary_text(report: ReproductionReport) -> str:
+def summary_text(report) -> str:
     """The one-screen summary (:data:`SUMMARY_MAX_LINES` x :data:`SUMMARY_MAX_WIDTH` at most).
 
     Parameters
@@ -373,7 +376,7 @@ def _write_csv(path: Path, header: list[str], rows) -> None:
         writer.writerows(rows)
 
 
-def write_outputs(report: ReproductionReport, path: Path) -> None:
+def write_outputs(report, path: Path) -> None:
     """Write :data:`OUTPUT_FILES` into the directory ``path`` (see :func:`prepare_output`)."""
     data = report_dict(report)
     (path / "paper-report.json").write_text(json.dumps(data, indent=1, allow_nan=True))
