@@ -17,6 +17,8 @@ Subclass contract (a new kind of system, e.g. quasi-periodic forcing, is a new f
 5. the answers :attr:`Frame.frequency_given`, :attr:`Frame.energy_may_be_conserved`,
    :attr:`Frame.one_solution_for_all_points`;
 6. :meth:`Frame.require_driven` — refuse, in one line, what needs an excitation;
+6a. :meth:`Frame.phase_state` — what the frame adds to a state along a solution (the drive's
+   phase θ = Ωt);
 7. :meth:`Frame.check` and :meth:`Frame.excitation_with` — the system's own checks and its
    parameters put in.
 """
@@ -74,6 +76,11 @@ class Frame(ABC):
     def require_driven(self, argument: str, value, fix: str, error=InvalidParameterError) -> None:
         """Raise ``error`` (one line: ``argument``, ``value``, ``fix``) unless driven."""
 
+    @abstractmethod
+    def phase_state(self, system, subs, t) -> dict:
+        """``{name: values at t}`` the frame adds to a state along a solution, ``subs`` the
+        numbers of the system's symbols (ε included)."""
+
 
 @frozen
 class FreeFrame(Frame):
@@ -112,6 +119,9 @@ class FreeFrame(Frame):
 
     def require_driven(self, argument, value, fix, error=InvalidParameterError) -> None:
         raise bad_value(argument, value, fix, error)
+
+    def phase_state(self, system, subs, t) -> dict:
+        return {}
 
     def check(self, system) -> None:
         return None
@@ -205,6 +215,13 @@ class DrivenFrame(Frame):
 
     def require_driven(self, argument, value, fix, error=InvalidParameterError) -> None:
         return None
+
+    def phase_state(self, system, subs, t) -> dict:
+        """The phase θ = Ωt along the times ``t``."""
+        import numpy as np
+
+        omega = float(self.frequency(system, subs))
+        return {self.excitation.phase.name: omega * np.asarray(t, dtype=float)}
 
     def check(self, system) -> None:
         """The excitation fits the system: a real coordinate as reference, a detuning in its

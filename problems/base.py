@@ -424,7 +424,7 @@ class Problem(Model, ABC):
         values (``trivial``, ``lower``, ``middle``, ``upper``, …), each with its stability."""
         from perturb import find_families
 
-        if self.system().frame.frequency_given:
+        if self._driven():
             return self._driven_families(order)
         system, options = self.family_options(order)
         key = (type(self).__qualname__, order, system, repr(sorted(options.items())))
@@ -464,7 +464,7 @@ class Problem(Model, ABC):
         amplitude; :meth:`families` lists them all).
         """
         name = family if family is not None else self.family
-        if self.system().frame.frequency_given:
+        if self._driven():
             return self._driven_solution(order, name)
         if name is not None:
             return self.family_solution(order, name)
@@ -500,6 +500,11 @@ class Problem(Model, ABC):
                 self.system(), self.symbol_values(), self.epsilon(), order
             )
         return _FAMILY_CACHE[key]
+
+    def _driven(self) -> bool:
+        """Whether the frame gives the frequency: a driven problem solves the steady state at its
+        values and carries the phase in its state (the one question the class asks its frame)."""
+        return self.system().frame.frequency_given
 
     def _driven_solution(self, order: int, name: str | None) -> PeriodicSolution:
         return self.steady_state(order).solution(name)
@@ -588,7 +593,7 @@ class Problem(Model, ABC):
         """True unless the class maps the solution to its own state or period (``state``,
         ``period`` overridden)."""
         own = type(self).state is Problem.state and type(self).period is Problem.period
-        return own and not self.system().frame.frequency_given  # a driven state adds the phase
+        return own and not self._driven()  # a driven state adds the phase
 
     def parameter_columns(self, columns) -> ParameterColumns | None:
         """Many points at once (the Model hook of a sweep's fast route): offered when ε is the

@@ -394,7 +394,7 @@ def test_only_the_plotting_modules_import_matplotlib():
 FRAME_ANSWERS = ("frequency_given", "one_solution_for_all_points", "energy_may_be_conserved")
 #: How many places ask them today. The target of the seam is 6 (one table keyed by frame type);
 #: this ceiling only keeps the number from growing back while it falls.
-MAX_FRAME_QUESTIONS = 17
+MAX_FRAME_QUESTIONS = 10
 
 
 def test_the_frame_is_asked_in_few_places():

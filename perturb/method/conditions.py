@@ -69,16 +69,24 @@ class ConditionSolver:
         Time budget of one sympy ``solve`` (and of one Groebner root search).
     phase : int
         Index of the phase coordinate (its amplitude orders the default branch choice).
-    driven : bool
-        A driven system: the forcing fixes the phase, so the phase coordinate's cosine amplitude
-        may vanish (no Rabinowitsch condition), and the default branch is the one of largest
-        amplitude sqrt(a**2 + b**2) of that coordinate.
+
+    A driven system's template gives its own subclass
+    (:class:`perturb.method.given_period.ForcedConditions`): there the forcing fixes the phase.
     """
 
     branch: object
     solve_seconds: float
     phase: int
-    driven: bool = False
+
+    def phase_amplitude_nonzero(self) -> bool:
+        """Whether the phase coordinate's cosine amplitude must not vanish (a Rabinowitsch
+        condition): it fixes the phase of a free motion."""
+        return True
+
+    def size(self, generating: GeneratingSolution) -> sp.Expr:
+        """What orders the default branch (largest first): the phase coordinate's cosine
+        amplitude."""
+        return generating.cos_amplitudes[self.phase]
 
     def solve(
         self,
@@ -221,7 +229,7 @@ class ConditionSolver:
         system, variables = [rational_form(e) for e in eqs], list(unknowns)
         phase_amplitude = generating.cos_amplitudes[self.phase]
         if (
-            not self.driven
+            self.phase_amplitude_nonzero()
             and isinstance(phase_amplitude, sp.Symbol)
             and phase_amplitude in unknowns
         ):
@@ -329,9 +337,7 @@ class ConditionSolver:
             if not (set().union(*(sp.sympify(v).free_symbols for v in r.values())) & set(unknowns))
         ]
         pool = isolated or roots
-        phase_amp = generating.cos_amplitudes[self.phase]
-        if self.driven:  # the forcing fixes the phase: order by the amplitude itself
-            phase_amp = phase_amp**2 + generating.sin_amplitudes[self.phase] ** 2
+        phase_amp = self.size(generating)
 
         def key(root):
             value = sp.sympify(phase_amp).xreplace(root)

@@ -9,12 +9,27 @@ coefficients are known and no coordinate's phase is free — the forcing fixes t
 from __future__ import annotations
 
 import sympy as sp
+from attrs import frozen
 
 from perturb.errors import InvalidSystemError, bad_value
 from perturb.method.conditions import ConditionSolver
 from perturb.method.construction import OrderByOrder
 
-__all__ = ["DrivenOrderByOrder"]
+__all__ = ["DrivenOrderByOrder", "ForcedConditions"]
+
+
+@frozen
+class ForcedConditions(ConditionSolver):
+    """The periodicity conditions of a driven system: the forcing fixes the phase, so the phase
+    coordinate's cosine amplitude may vanish (no Rabinowitsch condition), and the default branch
+    is the one of largest amplitude :math:`a^2 + b^2` of that coordinate."""
+
+    def phase_amplitude_nonzero(self) -> bool:
+        return False
+
+    def size(self, generating) -> sp.Expr:
+        a, b = generating.cos_amplitudes[self.phase], generating.sin_amplitudes[self.phase]
+        return a**2 + b**2
 
 
 class DrivenOrderByOrder(OrderByOrder):
@@ -59,6 +74,4 @@ class DrivenOrderByOrder(OrderByOrder):
         return self.conv.to_native(sp.sympify(value))
 
     def _make_solver(self) -> ConditionSolver:
-        return ConditionSolver(
-            self.method.branch, self.method.solve_seconds, self.phase, driven=True
-        )
+        return ForcedConditions(self.method.branch, self.method.solve_seconds, self.phase)

@@ -192,6 +192,12 @@ class Partial(list):
     (a family with more than one free amplitude): those are for the Groebner parts to write."""
 
 
+def _frequency_sought(system) -> bool:
+    """Whether the system's frequency is sought, not given by a drive: an amplitude can then be
+    scaled out (the one question this module asks of the frame)."""
+    return not system.frame.frequency_given
+
+
 def scaling_degree(system) -> int | None:
     """d when the right-hand side is :math:`\\sum_k \\varepsilon^k f_k` with every :math:`f_k`
     homogeneous of degree :math:`1 + k(d - 1)` in the state (module notes, 2); None otherwise
@@ -207,7 +213,7 @@ def scaling_degree(system) -> int | None:
     3
     >>> scaling_degree(QuasilinearSystem([x], [u], [1], [-EPS*x**3 - EPS*x]))
     """
-    if system.frame.frequency_given or system.initial_values:  # scaling needs a free frequency
+    if not _frequency_sought(system) or system.initial_values:  # scaling needs a free frequency
         return None
     if any(sp.sympify(w).free_symbols for w in system.frequencies):
         return None
@@ -300,7 +306,7 @@ def exact_on(system, generating) -> bool:
     >>> on(1, 1), on(1, -1)
     (True, False)
     """
-    if system.frame.frequency_given:
+    if not _frequency_sought(system):
         return False
     c, t = sp.Dummy("c"), sp.Dummy("t")
     amplitudes = [*generating.cos_amplitudes, *generating.sin_amplitudes]
@@ -424,7 +430,7 @@ def exact_modes(system, generating, known: dict, scale, unknowns, eqs, seconds: 
     from perturb.method.component import Component
     from perturb.method.exact import vanishes
 
-    if system.frame.frequency_given or scale is None:
+    if not _frequency_sought(system) or scale is None:
         return []
     cosines = [sp.sympify(a).xreplace(known) for a in generating.cos_amplitudes]
     free = [a for a in cosines if isinstance(a, sp.Symbol) and a != scale]

@@ -235,13 +235,13 @@ def problem_response(
     result = continued_response(equations, order, line, grid)
     response, branch_names_ = response_of(
         result, system=problem.name, parameter=parameter, order=order,
-        epsilon=float(problem.epsilon()),
-        values={k: float(v) for k, v in problem.values.items() if k != parameter},
+        epsilon=float(case.epsilon),
+        values={k: float(v) for k, v in case.values.items() if k != parameter},
         grid=grid, coordinates=equations.coordinates, measure=measure,
     )  # fmt: skip
     reference = system.coordinates[system.reference_index].name
     top = max((p.amplitude(reference, measure) for p in response.points), default=math.nan)
-    spine = backbone(problem.case(), parameter, top, order, measure) if response.points else None
+    spine = backbone(case, parameter, top, order, measure) if response.points else None
     true_points = _true_points(result, response, validate, measure, tol) if validate else ()
     curves = None
     if true:

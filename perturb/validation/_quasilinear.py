@@ -82,10 +82,8 @@ def state_along(solution, t, parameter_value: float, values: Mapping) -> dict[st
     system = solution.system
     y = solution.evaluate(t, parameter_value, values)
     state = dict(zip(solution.state_names, y, strict=True))
-    if system.frame.frequency_given:  # the phase theta = Omega t joins the state
-        subs = substitutions(system, values, parameter_value, None) or {}
-        omega = float(excitation_frequency(system, subs))
-        state[system.excitation.phase.name] = omega * np.asarray(t, dtype=float)
+    subs = substitutions(system, values, parameter_value, None) or {}
+    state.update(system.frame.phase_state(system, subs, t))  # a drive's phase θ = Ωt joins it
     return state
 
 

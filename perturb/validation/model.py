@@ -483,10 +483,11 @@ class SystemModel(Model):
 
     def solve(self, order: int = 1) -> PeriodicSolution:
         key = (self.quasilinear, order, repr(sorted(self.options.items(), key=str)))
-        if not self.quasilinear.frame.one_solution_for_all_points:  # a branch at these values
+        per_point = not self.quasilinear.frame.one_solution_for_all_points
+        if per_point:  # a branch at these values
             key = (*key, repr(sorted(self.symbol_values().items())), self.parameter_value())
         if key not in _SOLUTIONS:
-            if not self.quasilinear.frame.one_solution_for_all_points:
+            if per_point:
                 from perturb.steady import steady_state
 
                 state = steady_state(self.quasilinear, self.symbol_values(), self.epsilon(), order)
