@@ -241,7 +241,8 @@ class DrivenFrame(Frame):
                 InvalidSystemError,
             )  # fmt: skip
         taken = {drive.cos_symbol.name, drive.sin_symbol.name}
-        clash = sorted(taken & {s.name for s in system._all_symbols()})
+        own = {*system.state_symbols, *system.parameters, *system.initial_values, system.parameter}
+        clash = sorted(taken & {s.name for s in own})
         if clash:
             raise bad_value(
                 "excitation.phase", drive.phase,

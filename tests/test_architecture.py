@@ -445,3 +445,31 @@ def test_the_seam_rules_see_what_they_are_shown(tmp_path):
     d = tmp_path / "d.py"
     d.write_text("problem.with_parameters(a=1)\nhasattr(problem, 'x')\n")
     assert [line for _, line in _calls([d], "with_parameters")] == [1]
+
+
+def private_calls(paths) -> list[str]:
+    """Calls of another object's private member (``other._step()``): a template is driven
+    through its public steps, never its privates, from outside."""
+    found = []
+    for path in paths:
+        tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+        for node in ast.walk(tree):
+            if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)):
+                continue
+            name, owner = node.func.attr, node.func.value
+            if not name.startswith("_") or name.startswith("__"):
+                continue
+            if isinstance(owner, ast.Name) and owner.id in ("self", "cls"):
+                continue
+            if isinstance(owner, ast.Call) and getattr(owner.func, "id", "") == "super":
+                continue
+            found.append(f"{_relative(path)}:{node.lineno} calls {ast.unparse(node.func)}")
+    return found
+
+
+def test_no_private_member_is_called_from_outside(tmp_path):
+    found = private_calls(_perturb_sources())
+    assert not found, "private members called from outside:\n" + "\n".join(found)
+    planted = tmp_path / "driver.py"
+    planted.write_text("runner._generating()\nself._own()\nsuper()._hook()\nrunner.step(1)\n")
+    assert private_calls([planted]) == ["driver.py:1 calls runner._generating"]
