@@ -218,7 +218,8 @@ def _traced_declarations(cls: type, base: ParameterMap | None) -> dict:
                 continue
             if all(isinstance(v, sp.Expr) and v.is_finite is not False for v in read.values()):
                 out.update(read)
-    return out
+    own = {p.name for p in cls.system().parameters} | {EPSILON_KEY}
+    return {k: v for k, v in out.items() if k in own}  # a name the system lacks declares nothing
 
 
 @frozen
@@ -358,8 +359,13 @@ class Problem(Model, ABC):
             except InvalidSystemError:
                 base = None
             traced = _traced_declarations(cls, base)
-            if base is None or traced:
+            if base is None:  # the declarations alone do not cover the system: raise if still not
                 base = ParameterMap.declare(parameters, user, {**declared, **traced})
+            elif traced:
+                try:  # what the methods read as (keys the system does not have: they stand alone)
+                    base = ParameterMap.declare(parameters, user, {**declared, **traced})
+                except InvalidSystemError:
+                    pass
             _MAP_CACHE[key] = base
         return _MAP_CACHE[key]
 

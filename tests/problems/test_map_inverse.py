@@ -83,3 +83,30 @@ def test_an_epsilon_sympy_cannot_read_says_how_to_declare_it(tmp_path):
     assert report.outcome is Verdict.UNDECIDED
     (order,) = [check for check in report.checks if check.name == "order"]
     assert "declare epsilon in its parameter_map" in order.sentence
+
+
+def test_a_problem_computing_its_symbols_is_read_the_same_by_its_case():
+    """A subclass computing its symbols' values itself (its stiffness doubled, with a name the
+    system does not have besides): its case, which the response and the sweep ask, gives the
+    same numbers at every point, not the parameters of the same names."""
+    from perturb import EPS, QuasilinearSystem
+    from problems.base import ParameterSpec, Problem
+
+    x, v, c = sp.symbols("x v c")
+
+    class Doubled(Problem):
+        name = "doubled"
+        summary = "x'' + x = -eps (2c) x^3"
+        parameter_specs = (ParameterSpec("eps", 0.1, "eps"), ParameterSpec("c", 1.0, "c"))
+
+        @classmethod
+        def build_system(cls):
+            return QuasilinearSystem([x], [v], [1], [-EPS * c * x**3], parameters=[c])
+
+        def symbol_values(self):
+            return {"c": 2 * self.values["c"], "note": 1.0}
+
+    problem = Doubled.create(c=1.5)
+    assert problem.case().symbol_values == {"c": 3.0}
+    point = problem.case().at(c=0.25)
+    assert point.symbol_values["c"] == point.model.symbol_values()["c"] == 0.5
