@@ -231,10 +231,18 @@ def _failure(exc: BaseException) -> int:
 SINGLE_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS")
 
 
+#: The variable that puts every Python process the command starts (a Dask worker, its
+#: multiprocessing bootstrap and resource tracker) in safe-path mode: no working folder first on
+#: its ``sys.path``, so that a ``multiprocessing.py`` lying there is never run (Python >= 3.11).
+SAFE_PATH_VARIABLE = "PYTHONSAFEPATH"
+
+
 def _as_a_program() -> None:
-    """What only the process running the ``perturb`` command does (not a caller of :func:`main`)."""
+    """What only the process running the ``perturb`` command does (not a caller of :func:`main`):
+    single-threaded BLAS, and safe-path mode for the Python processes it starts."""
     for name in SINGLE_THREAD_VARIABLES:
         os.environ.setdefault(name, "1")
+    os.environ[SAFE_PATH_VARIABLE] = "1"
 
 
 def _before_exit() -> None:

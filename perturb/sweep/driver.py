@@ -220,7 +220,7 @@ class Cluster:
                 f"{SWEEP_WORKERS_PER_CORE * cores}, or run on a cluster with --scheduler"
             )
         private = {PRE_SPAWN: _pre_spawn_environment(), **NO_HTTP_ROUTES}
-        with dask.config.set(private):
+        with dask.config.set(private), _environment_kept(SAFE_PATH):
             self._cluster = LocalCluster(
                 n_workers=n,
                 threads_per_worker=1,
@@ -387,12 +387,35 @@ PRE_SPAWN = "distributed.nanny.pre-spawn-environ"
 PRE_SPAWN_LEFT_OUT = ("MALLOC_TRIM_THRESHOLD_",)
 
 
+#: The variable that starts the worker processes in Python's safe-path mode: the interpreter a
+#: nanny spawns (``python -c "from multiprocessing.spawn import ..."``) would otherwise put the
+#: working folder first on its ``sys.path`` and import a ``multiprocessing.py`` lying there.
+SAFE_PATH = "PYTHONSAFEPATH"
+
+
 def _pre_spawn_environment() -> dict:
-    """Dask's pre-spawn variables without :data:`PRE_SPAWN_LEFT_OUT`."""
+    """Dask's pre-spawn variables without :data:`PRE_SPAWN_LEFT_OUT`, with :data:`SAFE_PATH`."""
     import dask
 
     environ = dict(dask.config.get(PRE_SPAWN, default={}) or {})
-    return {k: v for k, v in environ.items() if k not in PRE_SPAWN_LEFT_OUT}
+    environ = {k: v for k, v in environ.items() if k not in PRE_SPAWN_LEFT_OUT}
+    environ[SAFE_PATH] = "1"
+    return environ
+
+
+@contextlib.contextmanager
+def _environment_kept(name: str):
+    """Restore the variable ``name`` of this process after the block (a nanny sets its
+    pre-spawn variables in the environment of the process that starts it: safe-path mode is
+    for the workers, not for the caller's own later subprocesses)."""
+    before = os.environ.get(name)
+    try:
+        yield
+    finally:
+        if before is None:
+            os.environ.pop(name, None)
+        else:
+            os.environ[name] = before
 
 
 def _worker_environment() -> dict[str, str]:
