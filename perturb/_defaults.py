@@ -64,9 +64,18 @@ ROOT_RESIDUAL = 1e-8
 ROOT_RATIONAL_TOL = 1e-11
 ROOT_MAX_DENOMINATOR = 10_000
 
-#: Most output times a command accepts (``--times``): 10⁷ points of a 6-component state printed as
-#: text are ~1.5 GB, past any use at a terminal; beyond it, call ``evaluate`` from Python.
-MAX_TIMES = 10_000_000
+#: Most output times a command accepts (``--times``, a scene's periods x samples, a sweep's
+#: times): 10⁶ times of the Duffing oscillator printed as CSV take 10 s and 240 MB (10⁷ took 105 s
+#: and 1.6 GB, a rigid body's 6 components more than the memory of a small machine), past any use
+#: at a terminal; beyond it, call ``evaluate`` from Python.
+MAX_TIMES = 1_000_000
+
+#: Largest ``--times @FILE`` read: 10⁶ times (MAX_TIMES) of up to 32 characters each. A larger
+#: file (``@/dev/zero`` has no end) is refused before it is read.
+TIMES_FILE_MAX_BYTES = 32 * MAX_TIMES
+
+#: Largest scene file read: a scene is a page of TOML (the shipped ones are under 2 kB).
+SCENE_MAX_BYTES = 1 << 20
 
 # --------------------------------------------------------------------------------------------------
 # The numerical oracle (perturb.oracle): integrators and shooting
@@ -172,7 +181,8 @@ SCENE_SAMPLES_PER_PERIOD = 100
 #: measures long horizons without writing them out).
 SCENE_MAX_PERIODS = 1000
 
-#: Most samples per period of a scene (with SCENE_MAX_PERIODS: at most 10^7 rows, MAX_TIMES).
+#: Most samples per period of a scene (with SCENE_MAX_PERIODS, periods x samples is checked
+#: against MAX_TIMES).
 SCENE_MAX_SAMPLES_PER_PERIOD = 10_000
 
 #: Most repeated runs per work-precision point a scene may ask for (the median is reported; more
@@ -213,6 +223,11 @@ TRUE_POINT_SECONDS = 0.01
 RESPONSE_TYPICAL_BRANCHES = 3
 SWEEP_POINT_SECONDS = 1e-5
 SWEEP_VALIDATION_SECONDS = 0.3
+
+#: Most values of one axis (``--grid``, ``--sweep``, a scene's grid), checked before any is made:
+#: 10⁷ values are 80 MB as an array and 320 MB as the axis's tuple of floats (and 10⁷ points need
+#: ``--yes`` anyway); 10⁹ were 8 GB made before any other check.
+AXIS_MAX_VALUES = 10_000_000
 
 #: Most points of one sweep even with confirmation: 10^10 float64 values per quantity are 80 GB
 #: a variable; beyond it the grid is a mistake rather than a plan.

@@ -113,7 +113,7 @@ def parse_sweep(text: str, argument: str = "--sweep") -> tuple[str, np.ndarray]:
     from perturb._defaults import MAX_TIMES
     from perturb.axis import parse_axis
 
-    axis = parse_axis(text, argument)
+    axis = parse_axis(text, argument, most=MAX_TIMES)  # N checked before the values are made
     values = np.array(axis.values)
 
     def fail(fix: str) -> InvalidParameterError:
