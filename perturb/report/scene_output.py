@@ -411,6 +411,7 @@ def write_report(result, folder) -> tuple[list[str], str]:
 
             token = claimed.store_token("sweep.zarr")
             write_dataset(result.sweep, claimed.folder / "sweep.zarr", {STORE_TOKEN: token})
+            claimed.store_written("sweep.zarr")
         for name, figure in figures.items():
             for fmt in out.formats:
                 buffer = io.BytesIO()
