@@ -7,7 +7,7 @@ import json
 import sys
 
 from perturb._install import install_hint
-from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _UsageError
+from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _UsageError, pressed
 from perturb.cli._values import _check_plot, _parse_order, _parse_positive, _parse_sets, _save_plot
 from perturb.errors import MissingDependencyError
 
@@ -43,6 +43,8 @@ def _cmd_phase(args) -> int:
             workers=workers, scheduler=args.scheduler, yes=args.yes,
         )  # fmt: skip
     except KeyboardInterrupt:
+        if not pressed():  # raised by a user's code, not Ctrl-C: named by the entry point
+            raise
         print("\nperturb: interrupted: nothing is written", file=sys.stderr)
         return EXIT_INTERRUPTED
     from perturb.report.phase import phase_as_dict, phase_as_table
