@@ -64,6 +64,12 @@ ROOT_RESIDUAL = 1e-8
 ROOT_RATIONAL_TOL = 1e-11
 ROOT_MAX_DENOMINATOR = 10_000
 
+#: Largest magnitude of a problem parameter: the series raise parameters to powers and multiply
+#: them (a cubic term at order 12 holds powers past 30), so 10¹⁰⁰ keeps every product the
+#: construction and an integration form within the floats (10³⁰⁸); beyond it the numbers overflow
+#: and the answer would be ``inf`` or a normal-looking value of nothing (``kappa = 1e308``).
+PARAMETER_MAX_MAGNITUDE = 1e100
+
 #: Most output times a command accepts (``--times``, a scene's periods x samples, a sweep's
 #: times): 10⁶ times of the Duffing oscillator printed as CSV take 10 s and 240 MB (10⁷ took 105 s
 #: and 1.6 GB, a rigid body's 6 components more than the memory of a small machine), past any use

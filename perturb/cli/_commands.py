@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 import warnings
@@ -21,6 +20,7 @@ from perturb.cli._values import (
     _save_plot,
 )
 from perturb.domain import series_domain
+from perturb.report.json_text import json_text
 
 
 def _cmd_list(args=None) -> int:
@@ -45,7 +45,7 @@ def _cmd_list(args=None) -> int:
             }
             for name, summary, specs in entries
         ]
-        print(json.dumps(problems, allow_nan=True))
+        print(json_text(problems))
     elif fmt == "latex":
         from perturb.report.latex import problems_latex
 
@@ -86,7 +86,7 @@ def _cmd_solve(args) -> int:
         )
         if args.format == "json":
             failed = {"problem": args.problem, "status": "failed", "reason": reason}
-            print(json.dumps({**failed, "warnings": notes}, allow_nan=True))
+            print(json_text({**failed, "warnings": notes}))
         print(f"perturb: {args.problem}: {reason}", file=sys.stderr)
         return EXIT_FAILED
     period = problem.period(solution)
@@ -150,7 +150,7 @@ def _cmd_validate(args) -> int:
         tol=tol,
     )
     if args.format == "json":
-        print(json.dumps(validation_as_dict(report), allow_nan=True))
+        print(json_text(validation_as_dict(report)))
     elif args.format == "latex":
         from perturb.report.latex import validation_latex
 
@@ -182,7 +182,7 @@ def _cmd_work_precision(args) -> int:
     plot = _check_plot(args)
     result = work_precision(problem, periods=periods, orders=orders, repeat=repeat)
     if args.format == "json":
-        print(json.dumps(work_precision_as_dict(result), allow_nan=True))
+        print(json_text(work_precision_as_dict(result)))
     elif args.format == "csv":
         print(work_precision_as_csv(result))
     elif args.format == "latex":
@@ -204,7 +204,7 @@ def _cmd_reproduce(args) -> int:
     reproduction = get_reproduction(args.paper)
     report = reproduction.run(output=_parse_output("--output", args.output))
     if args.format == "json":
-        print(json.dumps(reproduction.as_dict(report), allow_nan=True))
+        print(json_text(reproduction.as_dict(report)))
         return EXIT_OK
     print(reproduction.summary(report))
     if args.full:
@@ -237,7 +237,7 @@ def _cmd_families(args) -> int:
     families = problem.families(_parse_order(args.order))
     flags = [_family_domain(problem, f) for f in families]
     if args.format == "json":
-        print(json.dumps(as_dict(families, args.problem, flags)))
+        print(json_text(as_dict(families, args.problem, flags)))
     elif args.format == "latex":
         from perturb.report.latex import families_latex
 
@@ -298,7 +298,7 @@ def _print(payload: dict, fmt: str, blocks, formulas: str = "") -> None:
             "outside the domain where the series holds"
         )
     if fmt == "json":
-        print(json.dumps(payload, allow_nan=True))
+        print(json_text(payload))
         return
     if fmt == "latex":
         from perturb.report.latex import state_latex

@@ -3,13 +3,13 @@ parameters (:func:`perturb.sweep.phase.phase_diagram`). Imported only when the c
 
 from __future__ import annotations
 
-import json
 import sys
 
 from perturb._install import install_hint
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _UsageError, pressed
 from perturb.cli._values import _check_plot, _parse_order, _parse_positive, _parse_sets, _save_plot
 from perturb.errors import MissingDependencyError
+from perturb.report.json_text import json_text
 
 #: Exit code of an interrupted run (128 + SIGINT, as shells report it).
 EXIT_INTERRUPTED = 130
@@ -52,7 +52,7 @@ def _cmd_phase(args) -> int:
     if plot is not None:
         _plot(dataset, plot, args.map == "first-order")
     if args.format == "json":
-        print(json.dumps(phase_as_dict(dataset)))
+        print(json_text(phase_as_dict(dataset)))
     else:
         print(phase_as_table(dataset))
         if args.output is not None:

@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 
 from perturb.cli._errors import EXIT_OK, _RunFailed, _UsageError
 from perturb.cli._values import _check_plot, _parse_order, _parse_sets, _save_plot
+from perturb.report.json_text import json_text
 
 
 def _parse_sweep(text: str):
@@ -48,7 +48,15 @@ def _parse_true(points: str | None) -> int:
 def _check_domain(result) -> None:
     """Every steady state outside its series' domain: a failed run (``perturb solve``'s rule)."""
     points = result.response.points
-    if points and not any(p.series_ok for p in points):
+    if not points:
+        why = "; ".join(result.response.failures[:2]) if result.response.failures else ""
+        grid = result.response.grid
+        raise _RunFailed(
+            f"no steady state was found at any value of the sweep ({result.parameter} from "
+            f"{grid[0]:g} to {grid[-1]:g}){': ' + why if why else ''}; sweep closer to the "
+            "resonance, at a smaller forcing or eps"
+        )
+    if not any(p.series_ok for p in points):
         first = points[0]
         raise _RunFailed(
             f"the series is outside its domain at every steady state of the sweep (e.g. at "
@@ -108,7 +116,7 @@ def _cmd_response(args) -> int:
         for line in flag_lines(result):
             print(f"perturb: warning: {line}", file=sys.stderr)
     if args.format == "json":
-        print(json.dumps(response_as_dict(result), allow_nan=False))
+        print(json_text(response_as_dict(result)))
     elif args.format == "csv":
         print(response_as_csv(result))
     elif args.format == "latex":

@@ -15,6 +15,7 @@ from perturb._install import install_hint
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError, pressed
 from perturb.cli._values import _parse_order, _parse_positive, _parse_sets, _parse_times
 from perturb.errors import MissingDependencyError, SweepError
+from perturb.report.json_text import json_text
 
 #: Exit code of an interrupted run (128 + SIGINT, as shells report it).
 EXIT_INTERRUPTED = 130
@@ -159,9 +160,7 @@ def _cmd_sweep(args) -> int:
         return EXIT_OK
     from perturb.report.sweep import sweep_as_csv, sweep_as_dict
 
-    text = (
-        sweep_as_csv(ds) if args.format == "csv" else json.dumps(sweep_as_dict(ds), allow_nan=True)
-    )
+    text = sweep_as_csv(ds) if args.format == "csv" else json_text(sweep_as_dict(ds))
     if args.output is not None:
         from perturb.report.written import write_file
 
