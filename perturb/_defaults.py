@@ -235,6 +235,12 @@ SWEEP_VALIDATION_SECONDS = 0.3
 #: ``--yes`` anyway); 10⁹ were 8 GB made before any other check.
 AXIS_MAX_VALUES = 10_000_000
 
+#: Seconds of one pass of work-precision's methods (the analytic orders, RK4, the scipy methods
+#: at their tolerances, heyoka) over one period of the problem, on one core: the Duffing
+#: oscillator's --repeat 1 and 3 over 10 periods differ by 16.5 s a pass on a machine loaded 3
+#: times over (0.55 s a period unloaded), the van der Pol oscillator's 0.7 s.
+WORK_PRECISION_PERIOD_SECONDS = 0.6
+
 #: Most points of one sweep even with confirmation: 10^10 float64 values per quantity are 80 GB
 #: a variable; beyond it the grid is a mistake rather than a plan.
 SWEEP_MAX_POINTS = 10_000_000_000

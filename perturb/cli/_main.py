@@ -129,6 +129,42 @@ def _to_file(args) -> Iterator[None]:
                 write_file(target, buffer.getvalue())
 
 
+def _same_path(a: str, b: str) -> bool:
+    """Whether the paths ``a`` and ``b`` name one file (resolved: links, ``..``; the same
+    inode when both exist: hard links)."""
+    first, second = os.path.expanduser(a), os.path.expanduser(b)
+    try:
+        if os.path.exists(first) and os.path.exists(second):
+            return os.path.samefile(first, second)
+    except OSError:
+        pass
+    return os.path.realpath(first) == os.path.realpath(second)
+
+
+def _inside(path: str, folder: str) -> bool:
+    """Whether ``path`` lies inside ``folder`` (both resolved)."""
+    inner = os.path.realpath(os.path.expanduser(path))
+    outer = os.path.realpath(os.path.expanduser(folder))
+    return inner != outer and inner.startswith(outer.rstrip(os.sep) + os.sep)
+
+
+def _check_distinct_outputs(args) -> None:
+    """Refuse, before any work, two outputs that name one file (``--plot same.png --output
+    same.png``: one would overwrite the other), or a plot inside the store ``--output`` writes."""
+    output, plot = getattr(args, "output", None), getattr(args, "plot", None)
+    if not output or not plot or not output.strip() or not plot.strip():
+        return
+    if _same_path(output, plot):
+        raise _UsageError(
+            f"--plot {plot!r} and --output {output!r} name the same file: one would overwrite the "
+            "other; give two different paths"
+        )
+    if args.command in _FOLDER_OUTPUT and _inside(plot, output):
+        raise _UsageError(
+            f"--plot {plot!r} lies inside the store --output {output!r}: give a path outside it"
+        )
+
+
 def _command(name: str, module: str = "_commands"):
     """The command ``name`` of :mod:`perturb.cli.<module>`, imported when it runs (``--help`` and
     argument errors never load numpy, sympy or the engine)."""
@@ -218,6 +254,7 @@ def _run(argv: Sequence[str] | None) -> int:
         if args.command is None:
             parser.print_help()
             return EXIT_USAGE
+        _check_distinct_outputs(args)
         with _progress(args), _to_file(args):
             return _COMMANDS[args.command](args)
     except _UsageError as exc:

@@ -33,7 +33,14 @@ def _cmd_phase(args) -> int:
     if args.workers is not None and args.scheduler is not None:
         raise _UsageError(f"--workers {args.workers}: with --scheduler drop --workers")
     workers = None if args.workers is None else _parse_positive("--workers", args.workers, int)
-    problem = load_problem(args.problem).create(**_parse_sets(args.sets))
+    overrides = _parse_sets(args.sets)
+    for text in args.grids:  # a parameter swept and set: the --set would be ignored in silence
+        name = text.partition("=")[0].strip()
+        if name in overrides:
+            raise _UsageError(
+                f"--grid {text!r}: {name!r} is also set with --set; sweep it or set it, not both"
+            )
+    problem = load_problem(args.problem).create(**overrides)
     order = _parse_order(args.order)
     from perturb.sweep.phase import phase_diagram
 
