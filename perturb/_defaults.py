@@ -307,6 +307,14 @@ SWEEP_TEXT_BYTES = 80
 #: are sent again with the job scattered afresh: killing workers again and again, a sweep still ends.
 SWEEP_RESCATTERS = 3
 
+#: Seconds a sweep waits on a cluster that has no worker (an existing scheduler whose workers
+#: were stopped or never started) before it ends with a failed status ("no worker: start one,
+#: then --resume"): a worker being restarted by its nanny is back in a few seconds.
+SWEEP_NO_WORKER_SECONDS = 20.0
+
+#: Pause between two looks at the cluster's workers while tasks are out.
+SWEEP_WORKER_POLL_SECONDS = 1.0
+
 #: Seconds to wait for an existing Dask scheduler (``--scheduler``) before giving up with one
 #: line (exit 2): a scheduler on the network answers in well under a second.
 SWEEP_CONNECT_SECONDS = 10.0

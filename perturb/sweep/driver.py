@@ -33,6 +33,7 @@ from perturb._defaults import (
     SWEEP_CONNECT_SECONDS,
     SWEEP_HANDSHAKE_BYTES,
     SWEEP_MAX_CHUNK_POINTS,
+    SWEEP_NO_WORKER_SECONDS,
     SWEEP_OVERHEAD_SHARE,
     SWEEP_PILOT_GROWTH,
     SWEEP_PILOT_POINTS,
@@ -41,9 +42,10 @@ from perturb._defaults import (
     SWEEP_RESCATTERS,
     SWEEP_TASK_OVERHEAD_SECONDS,
     SWEEP_TASK_SECONDS,
+    SWEEP_WORKER_POLL_SECONDS,
     SWEEP_WORKERS_PER_CORE,
 )
-from perturb.errors import InvalidParameterError
+from perturb.errors import InvalidParameterError, SweepError
 from perturb.progress import notify
 from perturb.sweep.grid import Chunking
 from perturb.sweep.spec import SweepJob
@@ -429,6 +431,70 @@ def _worker_environment() -> dict[str, str]:
 
 
 # ---------------------------------------------------------------------------------- running
+def _no_worker(client) -> SweepError:
+    address = getattr(client.scheduler, "address", None) or "the cluster"
+    return SweepError(
+        f"no worker: the Dask cluster at {address} has had no worker for "
+        f"{SWEEP_NO_WORKER_SECONDS:g} s: start one (dask worker {address}), then run the same "
+        "command again with --resume (what is written is kept)"
+    )
+
+
+def _workers_now(client) -> int:
+    try:
+        return len(client.scheduler_info().get("workers", {}))
+    except Exception:  # noqa: BLE001 - a scheduler that does not answer has no worker for us
+        return 0
+
+
+def _scatter(client, data):
+    """``data`` sent to every worker: waits :data:`SWEEP_NO_WORKER_SECONDS` for a first worker,
+    then a failed status, not Dask's TimeoutError."""
+    if not _workers_now(client):
+        try:
+            client.wait_for_workers(1, timeout=SWEEP_NO_WORKER_SECONDS)
+        except (TimeoutError, OSError):
+            raise _no_worker(client) from None
+    try:
+        return client.scatter(data, broadcast=True, hash=False, timeout=SWEEP_NO_WORKER_SECONDS)
+    except (TimeoutError, OSError):
+        raise _no_worker(client) from None
+
+
+@contextlib.contextmanager
+def _watched(client, futures):
+    """While the block waits on ``futures``, watch the cluster's workers: none for
+    :data:`SWEEP_NO_WORKER_SECONDS` cancels the futures and ends the block with a failed status
+    ("no worker"), where Dask would wait for ever."""
+    import threading
+
+    stop = threading.Event()
+    fired = []
+
+    def watch():
+        alone = None
+        while not stop.wait(SWEEP_WORKER_POLL_SECONDS):
+            if _workers_now(client):
+                alone = None
+                continue
+            alone = time.monotonic() if alone is None else alone
+            if time.monotonic() - alone > SWEEP_NO_WORKER_SECONDS:
+                fired.append(True)
+                with contextlib.suppress(Exception):
+                    client.cancel(list(futures))
+                return
+
+    thread = threading.Thread(target=watch, daemon=True, name="perturb-worker-watch")
+    thread.start()
+    try:
+        yield fired
+    finally:
+        stop.set()
+        thread.join(SWEEP_WORKER_POLL_SECONDS * 2)
+    if fired:
+        raise _no_worker(client)
+
+
 @frozen
 class RunStats:
     """How a run of tasks went.
@@ -479,7 +545,7 @@ def run_tasks(
     rounds = 0
     while pending:
         # the job once to every worker, not inside every task (an axis of 10^6 values is 9 MB)
-        blob = client.scatter(packed, broadcast=True, hash=False)
+        blob = _scatter(client, packed)
         token = uuid.uuid4().hex[:8]
         futures = {}
         for number in pending:
@@ -497,28 +563,32 @@ def run_tasks(
             futures[future] = number
         orphaned: list[int] = []
         try:
-            for future in as_completed(futures, loop=client.loop):
-                number = futures[future]
-                try:
-                    # a result lost with its worker after it finished is recomputed: this waits
-                    result = future.result()
-                except FutureCancelledError as exc:
-                    # the scattered job went down with the only worker holding it (a worker that
-                    # joined after the scatter has no copy): not the chunk's fault, sent again
-                    orphaned.append(number)
-                    lost[number] = " ".join(f"{type(exc).__name__}: {exc}".split())
-                    continue
-                except Exception as exc:  # noqa: BLE001 - a chunk that kept killing its workers
-                    lost[number] = " ".join(f"{type(exc).__name__}: {exc}".split())
-                    continue
-                cpu += result.get("cpu", 0.0)
-                clock = time.perf_counter()
-                write(number, result)
-                writing += time.perf_counter() - clock
-                tasks += 1
-                done += _points(chunking, number)
-                notify(label, done, total)
-                future.release()
+            with _watched(client, futures) as fired:
+                for future in as_completed(futures, loop=client.loop):
+                    if fired:
+                        break
+                    number = futures[future]
+                    try:
+                        # a result lost with its worker after it finished is recomputed: waits
+                        result = future.result()
+                    except FutureCancelledError as exc:
+                        # the scattered job went down with the only worker holding it (a worker
+                        # that joined after the scatter has no copy): not the chunk's fault,
+                        # sent again
+                        orphaned.append(number)
+                        lost[number] = " ".join(f"{type(exc).__name__}: {exc}".split())
+                        continue
+                    except Exception as exc:  # noqa: BLE001 - a chunk that kept killing workers
+                        lost[number] = " ".join(f"{type(exc).__name__}: {exc}".split())
+                        continue
+                    cpu += result.get("cpu", 0.0)
+                    clock = time.perf_counter()
+                    write(number, result)
+                    writing += time.perf_counter() - clock
+                    tasks += 1
+                    done += _points(chunking, number)
+                    notify(label, done, total)
+                    future.release()
         except BaseException:
             client.cancel(list(futures))
             raise
@@ -554,7 +624,7 @@ def run_calls(cluster: Cluster, function, payload, calls: list[tuple], *, label:
     if registered:
         cloudpickle.register_pickle_by_value(module)
     try:
-        blob = client.scatter(cloudpickle.dumps(payload), broadcast=True, hash=False)
+        blob = _scatter(client, cloudpickle.dumps(payload))
     finally:
         if registered:
             cloudpickle.unregister_pickle_by_value(module)
@@ -567,15 +637,18 @@ def run_calls(cluster: Cluster, function, payload, calls: list[tuple], *, label:
     done = 0
     notify(label, done, len(calls))
     try:
-        for future in as_completed(futures, loop=client.loop):
-            index = futures[future]
-            try:
-                results[index] = future.result()
-            except Exception as exc:  # noqa: BLE001 - a call that kept killing its workers
-                results[index] = exc
-            done += 1
-            notify(label, done, len(calls))
-            future.release()
+        with _watched(client, futures) as fired:
+            for future in as_completed(futures, loop=client.loop):
+                if fired:
+                    break
+                index = futures[future]
+                try:
+                    results[index] = future.result()
+                except Exception as exc:  # noqa: BLE001 - a call that kept killing its workers
+                    results[index] = exc
+                done += 1
+                notify(label, done, len(calls))
+                future.release()
     except BaseException:
         client.cancel(list(futures))
         raise
