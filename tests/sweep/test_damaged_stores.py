@@ -76,9 +76,7 @@ def test_resume_through_a_symbolic_link(complete, tmp_path, capsys):
     link.symlink_to(store)
     assert main(_sweep(link, "--resume")) == 0, capsys.readouterr().err
     assert link.is_symlink()
-    np.testing.assert_array_equal(
-        xr.open_zarr(link)["period"].values, reference["period"].values
-    )
+    np.testing.assert_array_equal(xr.open_zarr(link)["period"].values, reference["period"].values)
 
 
 def _free_port() -> int:
