@@ -87,16 +87,38 @@ def _importable_elsewhere(module_name: str) -> bool:
 
 def pack(job: SweepJob) -> bytes:
     """The job as cloudpickle bytes; the problem's class travels by value when a worker could
-    not import it (a problem from a file, ``perturb sweep path/file.py:Class``)."""
+    not import it (a problem from a file, ``perturb sweep path/file.py:Class``).
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        The problem cannot be pickled (an attribute holding a lock, an open file...): one line
+        naming its class and file, and what to do.
+    """
+    return _pickled(job, job.spec.model)
+
+
+def _pickled(payload, model) -> bytes:
+    """``payload`` as cloudpickle bytes, ``model``'s class by value when a worker could not import
+    it; a payload that cannot be pickled is one line about ``model`` (see :func:`pack`)."""
     import cloudpickle
 
-    module = sys.modules.get(type(job.spec.model).__module__)
+    module = sys.modules.get(type(model).__module__)
     registered = False
     if module is not None and not _importable_elsewhere(module.__name__):
         cloudpickle.register_pickle_by_value(module)
         registered = True
     try:
-        return cloudpickle.dumps(job)
+        return cloudpickle.dumps(payload)
+    except Exception as exc:  # noqa: BLE001 - any reason pickle gives
+        where = getattr(module, "__file__", None) or type(model).__module__
+        detail = " ".join(f"{type(exc).__name__}: {exc}".split())[:200]
+        raise InvalidParameterError(
+            f"{where}: the problem {type(model).__name__} cannot be sent to the Dask workers "
+            f"(pickling it failed: {detail}): make its attributes picklable (make a lock, an "
+            "open file or a connection inside the method that needs it, not on the class or "
+            "the instance)"
+        ) from None
     finally:
         if registered:
             cloudpickle.unregister_pickle_by_value(module)
@@ -615,19 +637,10 @@ def run_calls(cluster: Cluster, function, payload, calls: list[tuple], *, label:
     (a problem, a problem from a file travelling by value) sent to every worker once; the results
     in the order of ``calls``. A call whose worker died again and again gives the exception in its
     place (the others are kept)."""
-    import cloudpickle
     from distributed import as_completed
 
     client = cluster.client
-    module = sys.modules.get(type(payload).__module__)
-    registered = module is not None and not _importable_elsewhere(module.__name__)
-    if registered:
-        cloudpickle.register_pickle_by_value(module)
-    try:
-        blob = _scatter(client, cloudpickle.dumps(payload))
-    finally:
-        if registered:
-            cloudpickle.unregister_pickle_by_value(module)
+    blob = _scatter(client, _pickled(payload, payload))
     key = uuid.uuid4().hex
     futures = {
         client.submit(_call_packed, blob, key, function, tuple(args), pure=False): i
