@@ -64,9 +64,24 @@ ROOT_RESIDUAL = 1e-8
 ROOT_RATIONAL_TOL = 1e-11
 ROOT_MAX_DENOMINATOR = 10_000
 
-#: Most output times a command accepts (``--times``): 10⁷ points of a 6-component state printed as
-#: text are ~1.5 GB, past any use at a terminal; beyond it, call ``evaluate`` from Python.
-MAX_TIMES = 10_000_000
+#: Largest magnitude of a problem parameter: the series raise parameters to powers and multiply
+#: them (a cubic term at order 12 holds powers past 30), so 10¹⁰⁰ keeps every product the
+#: construction and an integration form within the floats (10³⁰⁸); beyond it the numbers overflow
+#: and the answer would be ``inf`` or a normal-looking value of nothing (``kappa = 1e308``).
+PARAMETER_MAX_MAGNITUDE = 1e100
+
+#: Most output times a command accepts (``--times``, a scene's periods x samples, a sweep's
+#: times): 10⁶ times of the Duffing oscillator printed as CSV take 10 s and 240 MB (10⁷ took 105 s
+#: and 1.6 GB, a rigid body's 6 components more than the memory of a small machine), past any use
+#: at a terminal; beyond it, call ``evaluate`` from Python.
+MAX_TIMES = 1_000_000
+
+#: Largest ``--times @FILE`` read: 10⁶ times (MAX_TIMES) of up to 32 characters each. A larger
+#: file (``@/dev/zero`` has no end) is refused before it is read.
+TIMES_FILE_MAX_BYTES = 32 * MAX_TIMES
+
+#: Largest scene file read: a scene is a page of TOML (the shipped ones are under 2 kB).
+SCENE_MAX_BYTES = 1 << 20
 
 # --------------------------------------------------------------------------------------------------
 # The numerical oracle (perturb.oracle): integrators and shooting
@@ -172,7 +187,8 @@ SCENE_SAMPLES_PER_PERIOD = 100
 #: measures long horizons without writing them out).
 SCENE_MAX_PERIODS = 1000
 
-#: Most samples per period of a scene (with SCENE_MAX_PERIODS: at most 10^7 rows, MAX_TIMES).
+#: Most samples per period of a scene (with SCENE_MAX_PERIODS, periods x samples is checked
+#: against MAX_TIMES).
 SCENE_MAX_SAMPLES_PER_PERIOD = 10_000
 
 #: Most repeated runs per work-precision point a scene may ask for (the median is reported; more
@@ -213,6 +229,17 @@ TRUE_POINT_SECONDS = 0.01
 RESPONSE_TYPICAL_BRANCHES = 3
 SWEEP_POINT_SECONDS = 1e-5
 SWEEP_VALIDATION_SECONDS = 0.3
+
+#: Most values of one axis (``--grid``, ``--sweep``, a scene's grid), checked before any is made:
+#: 10⁷ values are 80 MB as an array and 320 MB as the axis's tuple of floats (and 10⁷ points need
+#: ``--yes`` anyway); 10⁹ were 8 GB made before any other check.
+AXIS_MAX_VALUES = 10_000_000
+
+#: Seconds of one pass of work-precision's methods (the analytic orders, RK4, the scipy methods
+#: at their tolerances, heyoka) over one period of the problem, on one core: the Duffing
+#: oscillator's --repeat 1 and 3 over 10 periods differ by 16.5 s a pass on a machine loaded 3
+#: times over (0.55 s a period unloaded), the van der Pol oscillator's 0.7 s.
+WORK_PRECISION_PERIOD_SECONDS = 0.6
 
 #: Most points of one sweep even with confirmation: 10^10 float64 values per quantity are 80 GB
 #: a variable; beyond it the grid is a mistake rather than a plan.
@@ -279,6 +306,14 @@ SWEEP_TEXT_BYTES = 80
 #: Times the chunks of a sweep whose scattered job was lost with a worker (the only one holding it)
 #: are sent again with the job scattered afresh: killing workers again and again, a sweep still ends.
 SWEEP_RESCATTERS = 3
+
+#: Seconds a sweep waits on a cluster that has no worker (an existing scheduler whose workers
+#: were stopped or never started) before it ends with a failed status ("no worker: start one,
+#: then --resume"): a worker being restarted by its nanny is back in a few seconds.
+SWEEP_NO_WORKER_SECONDS = 20.0
+
+#: Pause between two looks at the cluster's workers while tasks are out.
+SWEEP_WORKER_POLL_SECONDS = 1.0
 
 #: Seconds to wait for an existing Dask scheduler (``--scheduler``) before giving up with one
 #: line (exit 2): a scheduler on the network answers in well under a second.

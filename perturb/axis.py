@@ -17,10 +17,10 @@ import math
 import numpy as np
 from attrs import field, frozen
 
-from perturb._defaults import SWEEP_MAX_POINTS
+from perturb._defaults import AXIS_MAX_VALUES
 from perturb.errors import InvalidParameterError
 
-__all__ = ["Axis", "parse_axis"]
+__all__ = ["Axis", "axis_size", "parse_axis"]
 
 #: Spacings an axis may have: evenly spaced values, or evenly spaced logarithms.
 SPACINGS = ("linear", "log")
@@ -84,16 +84,59 @@ _ARRAYS: dict[int, tuple] = {}
 _ARRAYS_KEPT = 64
 
 
-def parse_axis(text: str, argument: str = "grid axis") -> Axis:
-    """An axis from ``NAME=START:STOP:N`` (N evenly spaced values, both ends included),
-    ``NAME=START:STOP:N:log`` (evenly spaced logarithms; START and STOP of one sign) or
-    ``NAME=V1,V2,...`` (the values as listed).
+def _count(text: str, item: str, argument: str, most: int) -> int:
+    """N of ``START:STOP:N``, checked against ``most`` before any value is made."""
+    word = item.strip()
+    if not word.lstrip("+-").isdigit() or len(word) > len(str(most)) + 1:
+        if word.lstrip("+-").isdigit():  # a whole number of more digits than `most` has
+            raise _fail(text, f"N = {word} points: give at most {most:,} per axis", argument)
+        raise _fail(text, f"N = {word!r} must be a whole number >= 1", argument)
+    count = int(word)
+    if count < 1:
+        raise _fail(text, f"N = {count} points: give N >= 1", argument)
+    if count > most:
+        raise _fail(text, f"N = {count:,} points: give at most {most:,} per axis", argument)
+    return count
+
+
+def axis_size(text: str, argument: str = "grid axis", most: int = AXIS_MAX_VALUES) -> int:
+    """The number of values of the axis ``text`` (as :func:`parse_axis` reads it), counted
+    without making them: N of ``NAME=START:STOP:N``, the items of ``NAME=V1,V2,...``.
 
     Raises
     ------
     perturb.errors.InvalidParameterError
-        Malformed text, N < 1 or not a whole number, a value that is not a finite number, a log
-        axis through zero, repeated values.
+        Malformed text, or N not a whole number from 1 to ``most``.
+
+    Examples
+    --------
+    >>> axis_size("eps=0.01:0.2:1000")
+    1000
+    """
+    if not isinstance(text, str):
+        return parse_axis(text, argument).size  # the one-line refusal of a non-string
+    name, sep, rest = text.partition("=")
+    if ":" in rest:
+        parts = rest.split(":")
+        if len(parts) in (3, 4):
+            return _count(text, parts[2], argument, most)
+        return parse_axis(text, argument, most).size  # malformed: its one-line refusal
+    return sum(1 for item in rest.split(",") if item.strip())
+
+
+def parse_axis(text: str, argument: str = "grid axis", most: int = AXIS_MAX_VALUES) -> Axis:
+    """An axis from ``NAME=START:STOP:N`` (N evenly spaced values, both ends included),
+    ``NAME=START:STOP:N:log`` (evenly spaced logarithms; START and STOP of one sign) or
+    ``NAME=V1,V2,...`` (the values as listed).
+
+    ``most`` bounds N, checked before any value is made (default
+    :data:`~perturb._defaults.AXIS_MAX_VALUES`).
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        Malformed text, N < 1, past ``most`` or not a whole number, a value that is not a finite
+        number, a log axis through zero, repeated values.
     """
     if not isinstance(text, str):
         raise InvalidParameterError(
@@ -118,18 +161,7 @@ def parse_axis(text: str, argument: str = "grid axis") -> Axis:
                 text, f"the spacing {spacing!r} is unknown: write :log or nothing", argument
             )
         start, stop = _number(text, parts[0], argument), _number(text, parts[1], argument)
-        try:
-            count = int(parts[2])
-        except ValueError:
-            raise _fail(
-                text, f"N = {parts[2].strip()!r} must be a whole number >= 1", argument
-            ) from None
-        if count < 1:
-            raise _fail(text, f"N = {count} points: give N >= 1", argument)
-        if count > SWEEP_MAX_POINTS:
-            raise _fail(
-                text, f"N = {count} points: give at most {SWEEP_MAX_POINTS:.0e} per axis", argument
-            )
+        count = _count(text, parts[2], argument, most)
         if count > 1 and start == stop:
             raise _fail(
                 text, f"START = STOP = {start:g} with N = {count}: give N = 1 or a range", argument
@@ -149,6 +181,8 @@ def parse_axis(text: str, argument: str = "grid axis") -> Axis:
         items = [item for item in rest.split(",") if item.strip()]
         if not items:
             raise _fail(text, "give at least one value", argument)
+        if len(items) > most:
+            raise _fail(text, f"{len(items):,} values: give at most {most:,} per axis", argument)
         values = np.array([_number(text, item, argument) for item in items])
     if len(set(values.tolist())) != len(values):
         raise _fail(

@@ -44,10 +44,11 @@ from perturb._defaults import (
     SWEEP_POINT_SECONDS,
     SWEEP_VALIDATION_SECONDS,
     TRUE_POINT_SECONDS,
+    WORK_PRECISION_PERIOD_SECONDS,
 )
 from perturb.errors import InvalidParameterError
 
-__all__ = ["Cost", "check_cost", "response_cost", "sweep_cost"]
+__all__ = ["Cost", "check_cost", "response_cost", "sweep_cost", "work_precision_cost"]
 
 
 @frozen
@@ -94,6 +95,16 @@ def response_cost(values: int, order: int, shots: int, true: int = 0) -> Cost:
         what += f", {shots} shots per branch"
     if true:
         what += f", true curves of {true} points"
+    return Cost(what, 0, seconds)
+
+
+def work_precision_cost(periods: float, orders: int, repeat: int) -> Cost:
+    """A work-precision run (:func:`perturb.workprecision.work_precision`): the derivations to
+    ``orders``, then one untimed and ``repeat`` timed runs of every method over ``periods``
+    periods."""
+    seconds = RESPONSE_DERIVE_SECONDS * _growth(orders)
+    seconds += (int(repeat) + 1) * float(periods) * WORK_PRECISION_PERIOD_SECONDS
+    what = f"{periods:g} periods, orders 1..{orders}, {repeat} timed runs a method"
     return Cost(what, 0, seconds)
 
 

@@ -30,7 +30,13 @@ from collections.abc import Callable, Sequence
 import numpy as np
 from attrs import frozen
 
-from perturb._defaults import DEFAULT_REPEAT, REFERENCE_RTOL, RK4_STEPS, SCIPY_TOLERANCES
+from perturb._defaults import (
+    DEFAULT_REPEAT,
+    MAX_ORDER,
+    REFERENCE_RTOL,
+    RK4_STEPS,
+    SCIPY_TOLERANCES,
+)
 from perturb.cache import bypassed
 from perturb.errors import bad_value
 from perturb.oracle import RK4, Heyoka, Scipy, choose, heyoka_available
@@ -214,11 +220,20 @@ def work_precision(
     order_list = list(range(1, orders + 1)) if isinstance(orders, int) else list(orders)
     if not order_list or any(not isinstance(k, int) or k < 1 for k in order_list):
         raise bad_value("orders", orders, "pass N >= 1 or a list of integers >= 1")
+    if max(order_list) > MAX_ORDER:  # never cut to the engine's highest order in silence
+        raise bad_value("orders", orders, f"the engine's highest order is {MAX_ORDER}")
 
     problem = as_model(problem)
     names = tuple(problem.state_names())
     base = problem.solve(1)
     period = problem.period(base)
+    if not (math.isfinite(period) and period > 0):
+        from perturb.solution import SolutionFailed
+
+        raise SolutionFailed(
+            f"the order-1 period is {period:g}, not a positive number: the series is outside "
+            "its domain at these parameters and gives no horizon"
+        )
     n_out = int(math.ceil(periods * samples_per_period)) + 1
     horizon = periods * period
     t = np.linspace(0.0, horizon, n_out)

@@ -53,6 +53,7 @@ from perturb import (
     QuasilinearSystem,
     Status,
 )
+from perturb._defaults import PARAMETER_MAX_MAGNITUDE
 from perturb.case import EPSILON_KEY, Case, ParameterMap
 from perturb.errors import InvalidParameterError, InvalidSystemError, UnknownNameError
 from perturb.oracle import SymbolicRHS
@@ -155,6 +156,12 @@ class ParameterSpec:
         if math.isnan(value) or (math.isinf(value) and not self.allow_inf):
             raise InvalidParameterError(
                 f"`{self.name}` = {value} is not finite: give a finite real value"
+            )
+        if math.isfinite(value) and abs(value) > PARAMETER_MAX_MAGNITUDE:
+            raise InvalidParameterError(
+                f"`{self.name}` = {value:g} overflows: the series' powers and products of it are "
+                f"past the floating-point range; give |{self.name}| <= "
+                f"{PARAMETER_MAX_MAGNITUDE:g}"
             )
         if self.check is not None:
             fix = self.check(value)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import sympy as sp
 
 from perturb import EPS, QuasilinearSystem
+from perturb.errors import InvalidParameterError
 from problems import register
 from problems.base import ParameterSpec, Problem, positive
 
@@ -32,6 +33,20 @@ class Duffing(Problem):
         ParameterSpec("eps", 0.1, "strength of the cubic term (small parameter)"),
         ParameterSpec("amplitude", 1.0, "initial displacement x(0), velocity zero", positive),
     )
+
+    def check_values(self, values) -> None:
+        """A softening spring (eps < 0) has a periodic motion from x(0) = amplitude at rest only
+        inside its separatrix: the potential x²/2 + eps x⁴/4 peaks at x² = -1/eps, so
+        eps amplitude² must stay above -1 (at -1 the motion takes for ever to reach the peak;
+        below, it escapes)."""
+        super().check_values(values)
+        stiffness = values["eps"] * values["amplitude"] ** 2
+        if stiffness <= -1:
+            raise InvalidParameterError(
+                f"`eps` = {values['eps']:g} with `amplitude` = {values['amplitude']:g} has no "
+                f"periodic motion: eps*amplitude^2 = {stiffness:g} puts x(0) on or past the "
+                "separatrix of the softening spring (x^2 = -1/eps); give eps*amplitude^2 > -1"
+            )
 
     @classmethod
     def build_system(cls) -> QuasilinearSystem:

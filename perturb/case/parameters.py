@@ -227,7 +227,14 @@ class ParameterMap:
         import mpmath
 
         with mpmath.workdps(EVAL_DIGITS):
-            out = self._precise()(*(mpmath.mpf(float(values[n])) for n in self.user))
+            try:
+                out = self._precise()(*(mpmath.mpf(float(values[n])) for n in self.user))
+            except NameError as exc:  # a function with no numerical meaning in the map
+                name = getattr(exc, "name", None) or str(exc)
+                raise InvalidSystemError(
+                    f"the parameter map uses {name}, which has no numerical value: write the "
+                    "map with functions numpy and mpmath know (sqrt, exp, Heaviside, ...)"
+                ) from None
             numbers = [_to_float(v) for v in out]
         symbols = {name: numbers[i] for i, (name, _) in enumerate(self.symbols)}
         return symbols, (numbers[-1] if self.epsilon is not None else None)
@@ -257,8 +264,8 @@ class ParameterMap:
         key = f"rate:{user_name}"
         if key not in self._compiled:
             u = self.user_symbols[user_name]
-            symbols = tuple((n, sp.diff(e, u)) for n, e in self.symbols)
-            eps = None if self.epsilon is None else sp.diff(self.epsilon, u)
+            symbols = tuple((n, _derivative(e, u)) for n, e in self.symbols)
+            eps = None if self.epsilon is None else _derivative(self.epsilon, u)
             self._compiled[key] = ParameterMap(self.user, symbols, eps)
         return self._compiled[key].evaluate(values)
 
@@ -293,7 +300,7 @@ class ParameterMap:
         every stationary point between (exact: the derivative's real roots)."""
         u = self.user_symbols[user_name]
         expr = self.expression(name)
-        inside = [v for v in _real_roots(sp.diff(expr, u), u, 0.0, values) if low < v < high]
+        inside = [v for v in _real_roots(_derivative(expr, u), u, 0.0, values) if low < v < high]
         found = [self.evaluate({**values, user_name: v})[0][name] for v in (low, *inside, high)]
         return min(found), max(found)
 
@@ -451,3 +458,13 @@ def _evaluated(solved: dict[str, sp.Expr], known: dict) -> dict[str, float] | No
 def _distance(moved: dict[str, float], values: Mapping[str, float]) -> float:
     """How far a move takes the user values (the largest relative change)."""
     return max(abs(v - values[n]) / max(abs(values[n]), 1.0) for n, v in moved.items())
+
+
+def _derivative(expr: sp.Expr, symbol: sp.Symbol) -> sp.Expr:
+    """``d expr / d symbol`` almost everywhere: the DiracDelta a Heaviside step (or a sign, an
+    absolute value) differentiates to is 0 off its jump, where the rate of a map is read (at the
+    jump itself the map has no rate; numerically a point falls on it with probability 0)."""
+    rate = sp.diff(expr, symbol)
+    if rate.has(sp.DiracDelta):
+        rate = rate.replace(sp.DiracDelta, lambda *args: sp.S.Zero)
+    return rate

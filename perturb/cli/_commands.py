@@ -134,6 +134,8 @@ def _cmd_validate(args) -> int:
 
 
 def _cmd_work_precision(args) -> int:
+    from perturb._defaults import MAX_ORDER, SCENE_MAX_REPEAT
+    from perturb.cost import check_cost, work_precision_cost
     from perturb.workprecision import work_precision
     from problems import load_problem
 
@@ -141,8 +143,32 @@ def _cmd_work_precision(args) -> int:
     problem = cls.create(**_parse_sets(args.sets))
     periods = _parse_positive("--periods", args.periods, float)
     orders = _parse_positive("--orders", args.orders, int)
+    if orders > MAX_ORDER:  # never cut to the engine's highest order in silence
+        raise _UsageError(
+            f"--orders {orders}: the engine's highest order is {MAX_ORDER}; give at most "
+            f"{MAX_ORDER}"
+        )
     repeat = _parse_positive("--repeat", args.repeat, int)
+    if repeat > SCENE_MAX_REPEAT:
+        raise _UsageError(
+            f"--repeat {repeat}: at most {SCENE_MAX_REPEAT} timed runs a point (the best of more "
+            "buys no accuracy and multiplies the run time)"
+        )
+    check_cost(work_precision_cost(periods, orders, repeat), args.yes)
     plot = _check_plot(args)
+    solution = problem.solve(1)  # the horizon is periods of it: inside its domain, or refused
+    domain = series_domain(solution, problem.parameter_value(), problem.symbol_values())
+    if not solution.success or not domain.ok:
+        reason = (
+            f"{solution.status.value}: {solution.message}"
+            if not solution.success
+            else "the series is outside its domain, so its period gives no horizon: "
+            + "; ".join(domain.reasons)
+        )
+        _emit(
+            "failure", args.format, {"problem": args.problem, "status": "failed", "reason": reason}
+        )
+        raise _RunFailed(reason)
     result = work_precision(problem, periods=periods, orders=orders, repeat=repeat)
     _emit("work-precision", args.format, result)
     if plot is not None:

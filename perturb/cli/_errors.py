@@ -21,3 +21,14 @@ class _UsageError(Exception):
 
 class _RunFailed(Exception):
     """A valid run that failed: exit 1 with the reason on one line."""
+
+
+#: SIGINT signals that arrived during the run (Ctrl-C), told apart from a ``KeyboardInterrupt``
+#: a user's code raised itself (:func:`perturb.cli._main.main` watches them).
+PRESSED: list[int] = []
+
+
+def pressed() -> bool:
+    """Whether Ctrl-C was pressed during this run (False where signals cannot be watched and
+    none was seen: then every ``KeyboardInterrupt`` outside a user's code is one)."""
+    return bool(PRESSED)

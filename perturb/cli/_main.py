@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import contextlib
 import gc
 import importlib
@@ -12,7 +13,15 @@ import time
 import warnings
 from collections.abc import Iterator, Sequence
 
-from perturb.cli._errors import _INPUT_ERRORS, EXIT_FAILED, EXIT_USAGE, _RunFailed, _UsageError
+from perturb.cli._errors import (
+    _INPUT_ERRORS,
+    EXIT_FAILED,
+    EXIT_USAGE,
+    PRESSED,
+    _RunFailed,
+    _UsageError,
+    pressed,
+)
 from perturb.cli._parser import _build_parser
 from perturb.errors import PerturbError
 from perturb.progress import listening
@@ -120,6 +129,42 @@ def _to_file(args) -> Iterator[None]:
                 write_file(target, buffer.getvalue())
 
 
+def _same_path(a: str, b: str) -> bool:
+    """Whether the paths ``a`` and ``b`` name one file (resolved: links, ``..``; the same
+    inode when both exist: hard links)."""
+    first, second = os.path.expanduser(a), os.path.expanduser(b)
+    try:
+        if os.path.exists(first) and os.path.exists(second):
+            return os.path.samefile(first, second)
+    except OSError:
+        pass
+    return os.path.realpath(first) == os.path.realpath(second)
+
+
+def _inside(path: str, folder: str) -> bool:
+    """Whether ``path`` lies inside ``folder`` (both resolved)."""
+    inner = os.path.realpath(os.path.expanduser(path))
+    outer = os.path.realpath(os.path.expanduser(folder))
+    return inner != outer and inner.startswith(outer.rstrip(os.sep) + os.sep)
+
+
+def _check_distinct_outputs(args) -> None:
+    """Refuse, before any work, two outputs that name one file (``--plot same.png --output
+    same.png``: one would overwrite the other), or a plot inside the store ``--output`` writes."""
+    output, plot = getattr(args, "output", None), getattr(args, "plot", None)
+    if not output or not plot or not output.strip() or not plot.strip():
+        return
+    if _same_path(output, plot):
+        raise _UsageError(
+            f"--plot {plot!r} and --output {output!r} name the same file: one would overwrite the "
+            "other; give two different paths"
+        )
+    if args.command in _FOLDER_OUTPUT and _inside(plot, output):
+        raise _UsageError(
+            f"--plot {plot!r} lies inside the store --output {output!r}: give a path outside it"
+        )
+
+
 def _command(name: str, module: str = "_commands"):
     """The command ``name`` of :mod:`perturb.cli.<module>`, imported when it runs (``--help`` and
     argument errors never load numpy, sympy or the engine)."""
@@ -157,13 +202,59 @@ def _one_line(exc: BaseException) -> str:
     return text or type(exc).__name__
 
 
+def _value_options(parser: argparse.ArgumentParser, argv: list[str]) -> dict:
+    """The options of the command named in ``argv`` that take exactly one value, by their
+    option strings (empty when no command is named)."""
+    sub = next((a for a in parser._actions if isinstance(a, argparse._SubParsersAction)), None)
+    command = next((a for a in argv if not a.startswith("-")), None)
+    if sub is None or command not in sub.choices:
+        return {}
+    chosen = sub.choices[command]
+    return {
+        option: action
+        for option, action in chosen._option_string_actions.items()
+        if action.nargs is None and not isinstance(action, argparse._StoreConstAction)
+    }
+
+
+def _dashed_values(parser: argparse.ArgumentParser, argv: Sequence[str]) -> list[str]:
+    """``argv`` with each value that starts with '-' joined to its option (``--times -1,0,1`` ->
+    ``--times=-1,0,1``, ``--output -o.json``): argparse would take it for an option. A value that
+    is itself one of the command's options is left alone (a forgotten value stays an error)."""
+    argv = list(argv)
+    options = _value_options(parser, argv)
+    out: list[str] = []
+    i = 0
+    while i < len(argv):
+        item = argv[i]
+        if item == "--":
+            out += argv[i:]
+            break
+        following = argv[i + 1] if i + 1 < len(argv) else None
+        if (
+            item in options
+            and following is not None
+            and following.startswith("-")
+            and following != "--"
+            and following.split("=", 1)[0] not in options
+            and following not in ("-h", "--help")
+        ):
+            out.append(f"{item}={following}")
+            i += 2
+            continue
+        out.append(item)
+        i += 1
+    return out
+
+
 def _run(argv: Sequence[str] | None) -> int:
     parser = _build_parser()
     try:
-        args = parser.parse_args(argv)
+        args = parser.parse_args(_dashed_values(parser, sys.argv[1:] if argv is None else argv))
         if args.command is None:
             parser.print_help()
             return EXIT_USAGE
+        _check_distinct_outputs(args)
         with _progress(args), _to_file(args):
             return _COMMANDS[args.command](args)
     except _UsageError as exc:
@@ -176,6 +267,17 @@ def _run(argv: Sequence[str] | None) -> int:
         raise
     except Exception as exc:  # noqa: BLE001 - a run never ends in a traceback
         return _failure(exc)
+    except BaseException as exc:
+        # raised by a user's problem file (a hook that calls sys.exit, raises KeyboardInterrupt,
+        # GeneratorExit or a bare BaseException): named in one line, exit 2; else what it is
+        # (argparse's --help, a Ctrl-C pressed)
+        user = None if isinstance(exc, KeyboardInterrupt) and pressed() else _user_code(exc)
+        if user is not None:
+            print(f"perturb: error: {user}", file=sys.stderr)
+            return EXIT_USAGE
+        if isinstance(exc, SystemExit | KeyboardInterrupt):
+            raise
+        return _failure(exc)
 
 
 def _user_code(exc: BaseException) -> str | None:
@@ -186,10 +288,12 @@ def _user_code(exc: BaseException) -> str | None:
         return None
     where = loading.user_frame(exc)
     if where is not None:
-        return (
-            f"{where}: the problem's code raised {type(exc).__name__}: {_one_line(exc)}: fix the "
-            "class"
-        )
+        if isinstance(exc, SystemExit):
+            what = f"called sys.exit({exc.code!r})"
+        else:
+            detail = " ".join(str(exc).split())
+            what = f"raised {type(exc).__name__}" + (f": {detail}" if detail else "")
+        return f"{where}: the problem's code {what}: fix the class"
     if isinstance(exc, RecursionError):
         files = ", ".join(sorted(loading.LOADED_FILES))
         return (
@@ -207,6 +311,13 @@ def _failure(exc: BaseException) -> int:
         if user is not None:
             print(f"perturb: error: {user}", file=sys.stderr)
             return EXIT_USAGE
+    if isinstance(exc, MemoryError):
+        print(
+            "perturb: failed: the run needs more memory than this machine gives it: ask for "
+            "fewer values (times, points, an order lower)",
+            file=sys.stderr,
+        )
+        return EXIT_FAILED
     if isinstance(exc, OverflowError | FloatingPointError | ZeroDivisionError):
         print(
             f"perturb: failed: the computation overflowed or divided by zero at these parameters "
@@ -217,6 +328,9 @@ def _failure(exc: BaseException) -> int:
     if _is_input_error(exc):
         print(f"perturb: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_USAGE
+    if isinstance(exc, PerturbError):  # a valid run that failed (a construction, a sweep)
+        print(f"perturb: failed: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_FAILED
     print(
         f"perturb: failed: internal error ({type(exc).__name__}: {_one_line(exc)}); please "
         "report it with the command line",
@@ -231,10 +345,18 @@ def _failure(exc: BaseException) -> int:
 SINGLE_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS")
 
 
+#: The variable that puts every Python process the command starts (a Dask worker, its
+#: multiprocessing bootstrap and resource tracker) in safe-path mode: no working folder first on
+#: its ``sys.path``, so that a ``multiprocessing.py`` lying there is never run (Python >= 3.11).
+SAFE_PATH_VARIABLE = "PYTHONSAFEPATH"
+
+
 def _as_a_program() -> None:
-    """What only the process running the ``perturb`` command does (not a caller of :func:`main`)."""
+    """What only the process running the ``perturb`` command does (not a caller of :func:`main`):
+    single-threaded BLAS, and safe-path mode for the Python processes it starts."""
     for name in SINGLE_THREAD_VARIABLES:
         os.environ.setdefault(name, "1")
+    os.environ[SAFE_PATH_VARIABLE] = "1"
 
 
 def _before_exit() -> None:
@@ -266,7 +388,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     if program:
         _as_a_program()
     try:
-        code = _run(argv)
+        with _watching_interrupts():
+            code = _run(argv)
         sys.stdout.flush()
         if program:
             _before_exit()
@@ -280,6 +403,29 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:  # pragma: no cover - Ctrl-C: said, with the shells' code
         print("\nperturb: interrupted", file=sys.stderr)
         return 130
+
+
+@contextlib.contextmanager
+def _watching_interrupts() -> Iterator[None]:
+    """Record each SIGINT (Ctrl-C) that arrives during the run, then raise KeyboardInterrupt as
+    Python does: a KeyboardInterrupt a user's code raised itself is told apart from one."""
+    import signal
+
+    PRESSED.clear()
+
+    def handler(signum, frame):
+        PRESSED.append(signum)
+        raise KeyboardInterrupt
+
+    try:
+        previous = signal.signal(signal.SIGINT, handler)
+    except ValueError:  # not the main thread: signals cannot be watched
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 def run() -> None:  # pragma: no cover - console entry

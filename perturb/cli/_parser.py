@@ -156,6 +156,11 @@ def _build_parser() -> argparse.ArgumentParser:
         metavar="FILE",
         help="also save a work-precision plot (needs matplotlib)",
     )
+    work.add_argument(
+        "--yes",
+        action="store_true",
+        help="confirm a run estimated at more than an hour of work (many periods, many runs)",
+    )
     _add_format(work, "work-precision")
     reproduce = sub.add_parser(
         "reproduce",

@@ -6,7 +6,7 @@ from __future__ import annotations
 import sys
 
 from perturb._install import install_hint
-from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _UsageError
+from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _UsageError, pressed
 from perturb.cli._output import _emit
 from perturb.cli._values import _check_plot, _parse_order, _parse_positive, _parse_sets, _save_plot
 from perturb.errors import MissingDependencyError
@@ -33,7 +33,14 @@ def _cmd_phase(args) -> int:
     if args.workers is not None and args.scheduler is not None:
         raise _UsageError(f"--workers {args.workers}: with --scheduler drop --workers")
     workers = None if args.workers is None else _parse_positive("--workers", args.workers, int)
-    problem = load_problem(args.problem).create(**_parse_sets(args.sets))
+    overrides = _parse_sets(args.sets)
+    for text in args.grids:  # a parameter swept and set: the --set would be ignored in silence
+        name = text.partition("=")[0].strip()
+        if name in overrides:
+            raise _UsageError(
+                f"--grid {text!r}: {name!r} is also set with --set; sweep it or set it, not both"
+            )
+    problem = load_problem(args.problem).create(**overrides)
     order = _parse_order(args.order)
     from perturb.sweep.phase import phase_diagram
 
@@ -43,6 +50,8 @@ def _cmd_phase(args) -> int:
             workers=workers, scheduler=args.scheduler, yes=args.yes,
         )  # fmt: skip
     except KeyboardInterrupt:
+        if not pressed():  # raised by a user's code, not Ctrl-C: named by the entry point
+            raise
         print("\nperturb: interrupted: nothing is written", file=sys.stderr)
         return EXIT_INTERRUPTED
     from perturb.report.phase import PhaseOutput

@@ -21,7 +21,7 @@ def _load(scene):
     from problems import load_problem
 
     try:
-        cls = load_problem(scene.problem)
+        cls = load_problem(scene.problem_spec)
     except (UnknownNameError, ProblemLoadError) as exc:
         raise scene.error(f"[problem] name: {exc}") from None
     check_parameter_names(scene, [s.name for s in cls.parameter_specs], cls.name)

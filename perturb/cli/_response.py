@@ -48,7 +48,15 @@ def _parse_true(points: str | None) -> int:
 def _check_domain(result) -> None:
     """Every steady state outside its series' domain: a failed run (``perturb solve``'s rule)."""
     points = result.response.points
-    if points and not any(p.series_ok for p in points):
+    if not points:
+        why = "; ".join(result.response.failures[:2]) if result.response.failures else ""
+        grid = result.response.grid
+        raise _RunFailed(
+            f"no steady state was found at any value of the sweep ({result.parameter} from "
+            f"{grid[0]:g} to {grid[-1]:g}){': ' + why if why else ''}; sweep closer to the "
+            "resonance, at a smaller forcing or eps"
+        )
+    if not any(p.series_ok for p in points):
         first = points[0]
         raise _RunFailed(
             f"the series is outside its domain at every steady state of the sweep (e.g. at "

@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 
 from perturb._install import install_hint
-from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError
+from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError, pressed
 from perturb.cli._values import _parse_order, _parse_positive, _parse_sets, _parse_times
 from perturb.errors import MissingDependencyError, SweepError
 
@@ -108,6 +108,8 @@ def _cmd_sweep(args) -> int:
     except SweepError as exc:
         raise _RunFailed(str(exc)) from None
     except KeyboardInterrupt:
+        if not pressed():  # raised by a user's code, not Ctrl-C: named by the entry point
+            raise
         where = ""
         if store and Path(store).is_dir():
             where = f"; continue with the same command and --resume (store {store})"

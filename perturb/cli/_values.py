@@ -6,7 +6,7 @@ import math
 from collections.abc import Sequence
 from pathlib import Path
 
-from perturb._defaults import MAX_ORDER, MAX_TIMES
+from perturb._defaults import MAX_ORDER, MAX_TIMES, TIMES_FILE_MAX_BYTES
 from perturb._install import install_hint, installed
 from perturb.cli._errors import _UsageError
 
@@ -40,11 +40,14 @@ def _read_times_file(text: str) -> str:
     name = text[1:]
     if not name:
         raise _UsageError("--times '@': name a file after @, e.g. --times @times.txt")
+    from perturb._files import UnreadableFile, read_capped
+
     try:
-        content = Path(name).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
-        raise _UsageError(f"--times {text!r}: cannot read {name!r} ({reason})") from None
+        content = read_capped(name, TIMES_FILE_MAX_BYTES).decode("utf-8-sig")
+    except UnreadableFile as exc:
+        raise _UsageError(f"--times {text!r}: cannot read {name!r} ({exc})") from None
+    except UnicodeDecodeError:
+        raise _UsageError(f"--times {text!r}: {name!r} is not UTF-8 text") from None
     lines = (line.split("#", 1)[0] for line in content.splitlines())
     return ",".join(item for line in lines for item in line.split(","))
 

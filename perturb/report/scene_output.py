@@ -35,6 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from perturb.errors import OutputError
+from perturb.report.json_text import json_text
 from perturb.report.latex import solution_document
 from perturb.report.response import response_as_csv, response_as_dict
 from perturb.report.sweep import sweep_as_csv
@@ -372,12 +373,12 @@ def write_report(result, folder) -> tuple[list[str], str]:
     usable = not result.failure
     if out.table and result.state is not None:
         written["solution.csv"] = _columns_csv(result.t, dict(result.state))
-        written["solution.json"] = json.dumps(_solution_json(result), allow_nan=True) + "\n"
+        written["solution.json"] = json_text(_solution_json(result)) + "\n"
     if out.euler and result.euler is not None:
         written["euler.csv"] = _columns_csv(result.t, dict(result.euler))
     if out.validation and result.validation is not None:
         data = validation_as_dict(result.validation)
-        written["validation.json"] = json.dumps(data, allow_nan=True, indent=1) + "\n"
+        written["validation.json"] = json_text(data, allow_nan=True, indent=1) + "\n"
     if out.work_precision and result.work_precision is not None:
         written["work_precision.csv"] = work_precision_as_csv(result.work_precision) + "\n"
     if out.latex and usable:
@@ -387,7 +388,7 @@ def write_report(result, folder) -> tuple[list[str], str]:
     if out.response and result.response is not None:
         written["response.csv"] = response_as_csv(result.response) + "\n"
         data = response_as_dict(result.response)
-        written["response.json"] = json.dumps(data, allow_nan=False, indent=1) + "\n"
+        written["response.json"] = json_text(data, allow_nan=False, indent=1) + "\n"
     figures = {}
     if out.plots:
         for name in out.plots:
@@ -411,6 +412,7 @@ def write_report(result, folder) -> tuple[list[str], str]:
 
             token = claimed.store_token("sweep.zarr")
             write_dataset(result.sweep, claimed.folder / "sweep.zarr", {STORE_TOKEN: token})
+            claimed.store_written("sweep.zarr")
         for name, figure in figures.items():
             for fmt in out.formats:
                 buffer = io.BytesIO()

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from collections.abc import Sequence
 
 import numpy as np
@@ -39,7 +38,9 @@ def _columns(output: StateOutput) -> dict[str, np.ndarray]:
 
 
 def state_as_json(output: StateOutput) -> str:
-    return json.dumps(output.payload, allow_nan=True) + "\n"
+    from perturb.report.json_text import json_text
+
+    return json_text(output.payload) + "\n"
 
 
 def state_as_latex(output: StateOutput) -> str:

@@ -95,7 +95,7 @@ def parse_sweep(text: str, argument: str = "--sweep") -> tuple[str, np.ndarray]:
     """The values of ``perturb response --sweep`` and of a scene's ``[response]`` as
     ``(name, values)``: the one grammar of :func:`perturb.axis.parse_axis` (``NAME=START:STOP:N``,
     ``NAME=START:STOP:N:log``, ``NAME=V1,V2,...``), with the rules of a curve continued along it:
-    2 to ``MAX_TIMES`` values, increasing.
+    2 to ``AXIS_MAX_VALUES`` values, increasing.
 
     Raises
     ------
@@ -110,17 +110,17 @@ def parse_sweep(text: str, argument: str = "--sweep") -> tuple[str, np.ndarray]:
     >>> parse_sweep("Omega=0.95,1.0,1.2")[1].tolist()
     [0.95, 1.0, 1.2]
     """
-    from perturb._defaults import MAX_TIMES
+    from perturb._defaults import AXIS_MAX_VALUES
     from perturb.axis import parse_axis
 
-    axis = parse_axis(text, argument)
+    axis = parse_axis(text, argument)  # N checked before the values are made
     values = np.array(axis.values)
 
     def fail(fix: str) -> InvalidParameterError:
         return InvalidParameterError(f"{argument} {text!r}: {fix}")
 
-    if not 2 <= values.size <= MAX_TIMES:
-        raise fail(f"N = {values.size} must be between 2 and {MAX_TIMES}")
+    if not 2 <= values.size <= AXIS_MAX_VALUES:
+        raise fail(f"N = {values.size} must be between 2 and {AXIS_MAX_VALUES}")
     if not np.all(np.diff(values) > 0):
         raise fail("START must be below STOP (bounds reversed?): give increasing values")
     return axis.name, values

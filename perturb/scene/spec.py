@@ -29,11 +29,14 @@ import re
 import tomllib
 from collections.abc import Callable, Iterable, Mapping
 
+import attrs
 from attrs import field, frozen
 
 from perturb._defaults import (
     MAX_ORDER,
+    MAX_TIMES,
     MAX_VALIDATE,
+    SCENE_MAX_BYTES,
     SCENE_MAX_PERIODS,
     SCENE_MAX_REPEAT,
     SCENE_MAX_SAMPLES_PER_PERIOD,
@@ -252,6 +255,10 @@ class Scene:
         Where the scene was read from (shown in messages).
     text : str
         The scene file's text (copied into the report folder as written).
+    folder : str
+        The folder of the scene file: a relative path inside the scene (a problem file,
+        ``"my_oscillator.py:MyOscillator"``) is taken from there, not from the working folder
+        ("" for a scene given as text: the working folder).
     """
 
     problem: str
@@ -268,10 +275,49 @@ class Scene:
     response: ResponseSettings | None = None
     source: str = "<scene>"
     text: str = field(default="", repr=False)
+    folder: str = ""
 
     def error(self, detail: str) -> SceneError:
         """A :class:`SceneError` about this scene, prefixed with its source."""
         return SceneError(f"{self.source}: {detail}")
+
+    @property
+    def problem_spec(self) -> str:
+        """:attr:`problem` with a relative problem file (``file.py`` or ``file.py:Class``) taken
+        from the scene's :attr:`folder`."""
+        return _resolve_file(self.problem, self.folder)
+
+
+#: The suffix that marks a problem named by its file (as ``perturb solve FILE.py:Class`` does).
+_PY_SUFFIX = ".py"
+
+
+def _resolve_file(spec: str, folder: str) -> str:
+    """``spec`` (a problem name, ``path/to/file.py[:Class]`` or ``module:Class``) with a
+    relative file path joined to ``folder``; names and modules unchanged.
+
+    Examples
+    --------
+    >>> _resolve_file("user.py:Mine", "/data/scenes")
+    '/data/scenes/user.py:Mine'
+    >>> _resolve_file("duffing", "/data/scenes")
+    'duffing'
+    """
+    import os
+
+    if not folder:
+        return spec
+    if spec.endswith(_PY_SUFFIX):
+        target, tail = spec, ""
+    else:
+        target, sep, name = spec.rpartition(":")
+        if not sep or not target.endswith(_PY_SUFFIX):
+            return spec
+        tail = f":{name}"
+    path = os.path.expanduser(target)
+    if os.path.isabs(path):
+        return spec
+    return os.path.join(folder, path) + tail
 
 
 # ---------------------------------------------------------------------------------- the schema
@@ -415,6 +461,13 @@ def _parse_data(data: Mapping, source: str, text: str) -> Scene:
         "tol": c.positive,
     }
     fields.update({key: readers[key](key, value) for key, value in solve.items()})
+    rows = fields.get("periods", SCENE_PERIODS) * fields.get("samples", SCENE_SAMPLES_PER_PERIOD)
+    if rows > MAX_TIMES:
+        key = "samples" if "samples" in solve else "periods"
+        raise c.fail(
+            key, solve[key], f"periods x samples = {rows:,.0f} rows of the tables: give at most "
+            f"{MAX_TIMES:,} (fewer periods or samples)",
+        )  # fmt: skip
 
     out, c = tables["outputs"], checkers["outputs"]
     flags = {key: c.boolean(key, out[key]) for key in _OUTPUT_FLAGS if key in out}
@@ -533,7 +586,7 @@ def _check_maps(outputs: Outputs, sweep: SweepSettings | None, c: _Checker) -> N
 
 
 # ---------------------------------------------------------------------------------- front doors
-def parse_scene(text: str, source: str = "<scene>") -> Scene:
+def parse_scene(text: str, source: str = "<scene>", folder: str = "") -> Scene:
     """The :class:`Scene` a TOML text describes.
 
     Parameters
@@ -542,6 +595,8 @@ def parse_scene(text: str, source: str = "<scene>") -> Scene:
         The scene file's content.
     source : str, optional
         Where it came from, shown at the start of every message.
+    folder : str, optional
+        The folder relative paths inside the scene are taken from (default: the working folder).
 
     Returns
     -------
@@ -565,29 +620,33 @@ def parse_scene(text: str, source: str = "<scene>") -> Scene:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"{source}: malformed TOML: {' '.join(str(exc).split())}") from None
-    return _parse_data(data, source, text)
+    return attrs.evolve(_parse_data(data, source, text), folder=str(folder))
 
 
 def read_scene(path) -> Scene:
-    """The :class:`Scene` in the file ``path`` (UTF-8 TOML); see :func:`parse_scene`.
+    """The :class:`Scene` in the file ``path`` (UTF-8 TOML, a byte-order mark allowed); see
+    :func:`parse_scene`. Relative paths inside it (a problem file) are taken from the scene
+    file's folder.
 
     Raises
     ------
     perturb.errors.SceneError
-        The file cannot be read or decoded, or its content is not a valid scene.
+        The file cannot be read (missing, a folder, a FIFO or a device, larger than
+        :data:`~perturb._defaults.SCENE_MAX_BYTES`) or decoded, or its content is not a valid
+        scene.
     """
-    from pathlib import Path
+    import os
 
-    file = Path(path)
+    from perturb._files import UnreadableFile, read_capped
+
     try:
-        text = file.read_bytes().decode("utf-8")
-    except OSError as exc:
-        raise SceneError(
-            f"{path}: cannot read the scene file ({exc.strerror or exc}); check the path"
-        ) from None
+        text = read_capped(path, SCENE_MAX_BYTES).decode("utf-8-sig")  # a byte-order mark read
+    except UnreadableFile as exc:
+        raise SceneError(f"{path}: cannot read the scene file ({exc}); check the path") from None
     except UnicodeDecodeError:
         raise SceneError(f"{path}: the scene file is not UTF-8 text; save it as UTF-8") from None
-    return parse_scene(text, str(path))
+    folder = os.path.dirname(os.path.abspath(os.fspath(path)))
+    return parse_scene(text, str(path), folder)
 
 
 def check_sweep_names(scene: Scene, known: Iterable[str], problem: str) -> None:

@@ -47,6 +47,10 @@ class ParameterLine:
         ``λ -> (values, eps)`` from the problem (None for a line given by values).
     invalid : callable
         ``λ -> str``: "" where the problem accepts λ, else its one-line reason.
+    reach : float
+        The size of λ on the line (the larger end's magnitude): the centred differences of a
+        map that is not affine step by :data:`~perturb._defaults.MAP_STEP` times it (at most
+        times 1) or times λ.
     """
 
     parameter: str
@@ -60,6 +64,7 @@ class ParameterLine:
     affine: bool
     values_at: Callable | None = field(eq=False, default=None)
     invalid: Callable = field(eq=False, default=lambda lam: "")
+    reach: float = 1.0
 
     def mu(self, lam):
         return (np.asarray(lam, dtype=float) - self.origin) * self.scale
@@ -78,9 +83,19 @@ class ParameterLine:
         """``(dvalues/dλ, deps/dλ)`` at λ."""
         if self.affine:
             return self.slope, self.eps_slope
-        h = MAP_STEP * max(1.0, abs(float(lam)))
-        (v1, e1), (v0, e0) = self.values_at(lam + h), self.values_at(lam - h)
-        return (v1 - v0) / (2 * h), (e1 - e0) / (2 * h)
+        # relative to the size of λ on the line (a sweep of eps over 1e-6..2e-6 must not step
+        # to a negative eps), and one-sided where a side is outside the problem's values
+        h = MAP_STEP * max(min(1.0, self.reach), abs(float(lam)))
+        try:
+            low, below = self.values_at(lam - h), lam - h
+        except InvalidParameterError:
+            low, below = self.values_at(lam), float(lam)
+        try:
+            high, above = self.values_at(lam + h), lam + h
+        except InvalidParameterError:
+            high, above = self.values_at(lam), float(lam)
+        (v1, e1), (v0, e0) = high, low
+        return (v1 - v0) / (above - below), (e1 - e0) / (above - below)
 
 
 def _scale(slope: np.ndarray, eps_slope: float) -> float:
@@ -112,9 +127,10 @@ def line_of_problem(problem, parameter: str, names, low: float, high: float) -> 
     rates, eps_rate = start.rate(parameter)
     slope = np.array([float(rates.get(n, 0.0)) for n in names])
     affine = bool(case.is_affine_in(parameter))
+    reach = max(abs(float(low)), abs(float(high))) or 1.0
     return ParameterLine(
         parameter, names, low, v0, slope, e0, float(eps_rate), _scale(slope, float(eps_rate)),
-        affine, values_at, invalid,
+        affine, values_at, invalid, reach,
     )  # fmt: skip
 
 

@@ -11,6 +11,7 @@ from perturb._defaults import (
     DEFAULT_TOL,
     SWEEP_CONNECT_SECONDS,
     SWEEP_MAX_CONNECT_SECONDS,
+    SWEEP_MAX_POINTS,
 )
 from perturb._install import install_hint
 from perturb.errors import InvalidParameterError, MissingDependencyError, SweepError
@@ -39,6 +40,17 @@ def require_extra() -> None:
         raise MissingDependencyError(f"sweeps need {', '.join(missing)}: {install_hint('sweep')}")
 
 
+def _check_sizes(texts) -> None:
+    """The grid's points counted from its axes' texts before any value is made: past
+    :data:`~perturb._defaults.SWEEP_MAX_POINTS` it is refused (:func:`perturb.cost.check_cost`)."""
+    from perturb.axis import axis_size
+    from perturb.cost import Cost, check_cost
+
+    size = math.prod(axis_size(text) for text in texts)
+    if size > SWEEP_MAX_POINTS:
+        check_cost(Cost(f"{size:,} points", size, 0.0), yes=True)
+
+
 def axes_of(grid) -> tuple[Axis, ...]:
     """The axes of ``grid``: a :class:`Grid`, axes, ``"NAME=START:STOP:N"`` strings, or a mapping
     name -> values (a sequence, or a ``"START:STOP:N"`` string)."""
@@ -56,6 +68,7 @@ def axes_of(grid) -> tuple[Axis, ...]:
                 out.append(parse_axis(f"{name}={text}") if text else parse_axis(f"{name}="))
         return tuple(out)
     if isinstance(grid, Sequence):
+        _check_sizes(item for item in grid if not isinstance(item, Axis))
         return tuple(item if isinstance(item, Axis) else parse_axis(item) for item in grid)
     raise InvalidParameterError(
         f"`grid` = {grid!r} is invalid: give axes as ['NAME=START:STOP:N', ...] or a mapping "

@@ -33,6 +33,7 @@ from perturb._defaults import (
     SWEEP_CONNECT_SECONDS,
     SWEEP_HANDSHAKE_BYTES,
     SWEEP_MAX_CHUNK_POINTS,
+    SWEEP_NO_WORKER_SECONDS,
     SWEEP_OVERHEAD_SHARE,
     SWEEP_PILOT_GROWTH,
     SWEEP_PILOT_POINTS,
@@ -41,9 +42,10 @@ from perturb._defaults import (
     SWEEP_RESCATTERS,
     SWEEP_TASK_OVERHEAD_SECONDS,
     SWEEP_TASK_SECONDS,
+    SWEEP_WORKER_POLL_SECONDS,
     SWEEP_WORKERS_PER_CORE,
 )
-from perturb.errors import InvalidParameterError
+from perturb.errors import InvalidParameterError, SweepError
 from perturb.progress import notify
 from perturb.sweep.grid import Chunking
 from perturb.sweep.spec import SweepJob
@@ -85,16 +87,38 @@ def _importable_elsewhere(module_name: str) -> bool:
 
 def pack(job: SweepJob) -> bytes:
     """The job as cloudpickle bytes; the problem's class travels by value when a worker could
-    not import it (a problem from a file, ``perturb sweep path/file.py:Class``)."""
+    not import it (a problem from a file, ``perturb sweep path/file.py:Class``).
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        The problem cannot be pickled (an attribute holding a lock, an open file...): one line
+        naming its class and file, and what to do.
+    """
+    return _pickled(job, job.spec.model)
+
+
+def _pickled(payload, model) -> bytes:
+    """``payload`` as cloudpickle bytes, ``model``'s class by value when a worker could not import
+    it; a payload that cannot be pickled is one line about ``model`` (see :func:`pack`)."""
     import cloudpickle
 
-    module = sys.modules.get(type(job.spec.model).__module__)
+    module = sys.modules.get(type(model).__module__)
     registered = False
     if module is not None and not _importable_elsewhere(module.__name__):
         cloudpickle.register_pickle_by_value(module)
         registered = True
     try:
-        return cloudpickle.dumps(job)
+        return cloudpickle.dumps(payload)
+    except Exception as exc:  # noqa: BLE001 - any reason pickle gives
+        where = getattr(module, "__file__", None) or type(model).__module__
+        detail = " ".join(f"{type(exc).__name__}: {exc}".split())[:200]
+        raise InvalidParameterError(
+            f"{where}: the problem {type(model).__name__} cannot be sent to the Dask workers "
+            f"(pickling it failed: {detail}): make its attributes picklable (make a lock, an "
+            "open file or a connection inside the method that needs it, not on the class or "
+            "the instance)"
+        ) from None
     finally:
         if registered:
             cloudpickle.unregister_pickle_by_value(module)
@@ -220,7 +244,7 @@ class Cluster:
                 f"{SWEEP_WORKERS_PER_CORE * cores}, or run on a cluster with --scheduler"
             )
         private = {PRE_SPAWN: _pre_spawn_environment(), **NO_HTTP_ROUTES}
-        with dask.config.set(private):
+        with dask.config.set(private), _environment_kept(SAFE_PATH):
             self._cluster = LocalCluster(
                 n_workers=n,
                 threads_per_worker=1,
@@ -387,12 +411,35 @@ PRE_SPAWN = "distributed.nanny.pre-spawn-environ"
 PRE_SPAWN_LEFT_OUT = ("MALLOC_TRIM_THRESHOLD_",)
 
 
+#: The variable that starts the worker processes in Python's safe-path mode: the interpreter a
+#: nanny spawns (``python -c "from multiprocessing.spawn import ..."``) would otherwise put the
+#: working folder first on its ``sys.path`` and import a ``multiprocessing.py`` lying there.
+SAFE_PATH = "PYTHONSAFEPATH"
+
+
 def _pre_spawn_environment() -> dict:
-    """Dask's pre-spawn variables without :data:`PRE_SPAWN_LEFT_OUT`."""
+    """Dask's pre-spawn variables without :data:`PRE_SPAWN_LEFT_OUT`, with :data:`SAFE_PATH`."""
     import dask
 
     environ = dict(dask.config.get(PRE_SPAWN, default={}) or {})
-    return {k: v for k, v in environ.items() if k not in PRE_SPAWN_LEFT_OUT}
+    environ = {k: v for k, v in environ.items() if k not in PRE_SPAWN_LEFT_OUT}
+    environ[SAFE_PATH] = "1"
+    return environ
+
+
+@contextlib.contextmanager
+def _environment_kept(name: str):
+    """Restore the variable ``name`` of this process after the block (a nanny sets its
+    pre-spawn variables in the environment of the process that starts it: safe-path mode is
+    for the workers, not for the caller's own later subprocesses)."""
+    before = os.environ.get(name)
+    try:
+        yield
+    finally:
+        if before is None:
+            os.environ.pop(name, None)
+        else:
+            os.environ[name] = before
 
 
 def _worker_environment() -> dict[str, str]:
@@ -406,6 +453,70 @@ def _worker_environment() -> dict[str, str]:
 
 
 # ---------------------------------------------------------------------------------- running
+def _no_worker(client) -> SweepError:
+    address = getattr(client.scheduler, "address", None) or "the cluster"
+    return SweepError(
+        f"no worker: the Dask cluster at {address} has had no worker for "
+        f"{SWEEP_NO_WORKER_SECONDS:g} s: start one (dask worker {address}), then run the same "
+        "command again with --resume (what is written is kept)"
+    )
+
+
+def _workers_now(client) -> int:
+    try:
+        return len(client.scheduler_info().get("workers", {}))
+    except Exception:  # noqa: BLE001 - a scheduler that does not answer has no worker for us
+        return 0
+
+
+def _scatter(client, data):
+    """``data`` sent to every worker: waits :data:`SWEEP_NO_WORKER_SECONDS` for a first worker,
+    then a failed status, not Dask's TimeoutError."""
+    if not _workers_now(client):
+        try:
+            client.wait_for_workers(1, timeout=SWEEP_NO_WORKER_SECONDS)
+        except (TimeoutError, OSError):
+            raise _no_worker(client) from None
+    try:
+        return client.scatter(data, broadcast=True, hash=False, timeout=SWEEP_NO_WORKER_SECONDS)
+    except (TimeoutError, OSError):
+        raise _no_worker(client) from None
+
+
+@contextlib.contextmanager
+def _watched(client, futures):
+    """While the block waits on ``futures``, watch the cluster's workers: none for
+    :data:`SWEEP_NO_WORKER_SECONDS` cancels the futures and ends the block with a failed status
+    ("no worker"), where Dask would wait for ever."""
+    import threading
+
+    stop = threading.Event()
+    fired = []
+
+    def watch():
+        alone = None
+        while not stop.wait(SWEEP_WORKER_POLL_SECONDS):
+            if _workers_now(client):
+                alone = None
+                continue
+            alone = time.monotonic() if alone is None else alone
+            if time.monotonic() - alone > SWEEP_NO_WORKER_SECONDS:
+                fired.append(True)
+                with contextlib.suppress(Exception):
+                    client.cancel(list(futures))
+                return
+
+    thread = threading.Thread(target=watch, daemon=True, name="perturb-worker-watch")
+    thread.start()
+    try:
+        yield fired
+    finally:
+        stop.set()
+        thread.join(SWEEP_WORKER_POLL_SECONDS * 2)
+    if fired:
+        raise _no_worker(client)
+
+
 @frozen
 class RunStats:
     """How a run of tasks went.
@@ -456,7 +567,7 @@ def run_tasks(
     rounds = 0
     while pending:
         # the job once to every worker, not inside every task (an axis of 10^6 values is 9 MB)
-        blob = client.scatter(packed, broadcast=True, hash=False)
+        blob = _scatter(client, packed)
         token = uuid.uuid4().hex[:8]
         futures = {}
         for number in pending:
@@ -474,28 +585,32 @@ def run_tasks(
             futures[future] = number
         orphaned: list[int] = []
         try:
-            for future in as_completed(futures, loop=client.loop):
-                number = futures[future]
-                try:
-                    # a result lost with its worker after it finished is recomputed: this waits
-                    result = future.result()
-                except FutureCancelledError as exc:
-                    # the scattered job went down with the only worker holding it (a worker that
-                    # joined after the scatter has no copy): not the chunk's fault, sent again
-                    orphaned.append(number)
-                    lost[number] = " ".join(f"{type(exc).__name__}: {exc}".split())
-                    continue
-                except Exception as exc:  # noqa: BLE001 - a chunk that kept killing its workers
-                    lost[number] = " ".join(f"{type(exc).__name__}: {exc}".split())
-                    continue
-                cpu += result.get("cpu", 0.0)
-                clock = time.perf_counter()
-                write(number, result)
-                writing += time.perf_counter() - clock
-                tasks += 1
-                done += _points(chunking, number)
-                notify(label, done, total)
-                future.release()
+            with _watched(client, futures) as fired:
+                for future in as_completed(futures, loop=client.loop):
+                    if fired:
+                        break
+                    number = futures[future]
+                    try:
+                        # a result lost with its worker after it finished is recomputed: waits
+                        result = future.result()
+                    except FutureCancelledError as exc:
+                        # the scattered job went down with the only worker holding it (a worker
+                        # that joined after the scatter has no copy): not the chunk's fault,
+                        # sent again
+                        orphaned.append(number)
+                        lost[number] = " ".join(f"{type(exc).__name__}: {exc}".split())
+                        continue
+                    except Exception as exc:  # noqa: BLE001 - a chunk that kept killing workers
+                        lost[number] = " ".join(f"{type(exc).__name__}: {exc}".split())
+                        continue
+                    cpu += result.get("cpu", 0.0)
+                    clock = time.perf_counter()
+                    write(number, result)
+                    writing += time.perf_counter() - clock
+                    tasks += 1
+                    done += _points(chunking, number)
+                    notify(label, done, total)
+                    future.release()
         except BaseException:
             client.cancel(list(futures))
             raise
@@ -522,19 +637,10 @@ def run_calls(cluster: Cluster, function, payload, calls: list[tuple], *, label:
     (a problem, a problem from a file travelling by value) sent to every worker once; the results
     in the order of ``calls``. A call whose worker died again and again gives the exception in its
     place (the others are kept)."""
-    import cloudpickle
     from distributed import as_completed
 
     client = cluster.client
-    module = sys.modules.get(type(payload).__module__)
-    registered = module is not None and not _importable_elsewhere(module.__name__)
-    if registered:
-        cloudpickle.register_pickle_by_value(module)
-    try:
-        blob = client.scatter(cloudpickle.dumps(payload), broadcast=True, hash=False)
-    finally:
-        if registered:
-            cloudpickle.unregister_pickle_by_value(module)
+    blob = _scatter(client, _pickled(payload, payload))
     key = uuid.uuid4().hex
     futures = {
         client.submit(_call_packed, blob, key, function, tuple(args), pure=False): i
@@ -544,15 +650,18 @@ def run_calls(cluster: Cluster, function, payload, calls: list[tuple], *, label:
     done = 0
     notify(label, done, len(calls))
     try:
-        for future in as_completed(futures, loop=client.loop):
-            index = futures[future]
-            try:
-                results[index] = future.result()
-            except Exception as exc:  # noqa: BLE001 - a call that kept killing its workers
-                results[index] = exc
-            done += 1
-            notify(label, done, len(calls))
-            future.release()
+        with _watched(client, futures) as fired:
+            for future in as_completed(futures, loop=client.loop):
+                if fired:
+                    break
+                index = futures[future]
+                try:
+                    results[index] = future.result()
+                except Exception as exc:  # noqa: BLE001 - a call that kept killing its workers
+                    results[index] = exc
+                done += 1
+                notify(label, done, len(calls))
+                future.release()
     except BaseException:
         client.cancel(list(futures))
         raise

@@ -104,7 +104,7 @@ class SweepStore:
             ``path`` holds something else than this sweep (another sweep, other data, a file),
             or a sweep without ``resume``, or nothing with ``resume``; its folder does not exist.
         """
-        path = Path(path)
+        path = _through_link(Path(path))
         if path.exists() or path.is_symlink():
             attrs = _attrs_of(path) if path.is_dir() and not path.is_symlink() else None
             if attrs is None:
@@ -159,7 +159,7 @@ class SweepStore:
         """
         from perturb.sweep.lock import StoreLock
 
-        path = Path(path)
+        path = _through_link(Path(path))
         created = cls.check(path, job.spec, resume=resume, version=version) is False
         if created:
             try:
@@ -179,7 +179,7 @@ class SweepStore:
             # checked again under the lock: another driver may have changed it meanwhile
             state = cls.check(path, job.spec, resume=resume, version=version)
             if state is True:
-                return cls._open(path, lock, job.spec.validate)
+                return cls._open(path, lock, job)
             _empty_folder(path)  # this sweep's store, its creation cut short: made again
             return cls._create(path, job, version, chunk_points(), extra, lock)
         except BaseException:
@@ -191,15 +191,32 @@ class SweepStore:
             raise
 
     @classmethod
-    def _open(cls, path: Path, lock, validate: bool) -> SweepStore:
+    def _open(cls, path: Path, lock, job: SweepJob) -> SweepStore:
+        """Open the store to resume ``job``: an array whose metadata is missing or unreadable
+        (deleted, the whole array gone) is made again, of fill values, so that its chunks are
+        computed again and the store opens as the Dataset it promises."""
         zarr = _zarr()
-        group = zarr.open_group(str(path), mode="r+")
+        group = zarr.open_group(str(path), mode="r+", use_consolidated=False)
         attrs = dict(group.attrs)
         grid = json.loads(attrs["grid"])
         shape = tuple(len(axis["values"]) for axis in grid)
         chunking = Chunking(shape, attrs["chunk"])
         names = tuple(axis["name"] for axis in grid)
-        return cls(path, group, chunking, names, lock, validate)
+        missing = [n for n in _expected_arrays(job) if not _array_metadata_ok(path / n)]
+        if missing:
+            for name in missing:
+                if (path / name).is_symlink() or (
+                    (path / name).exists() and not (path / name).is_dir()
+                ):
+                    raise _refuse(
+                        path,
+                        f"is damaged: {name} there is not a Zarr array perturb wrote",
+                        "move it away (perturb removes nothing it did not write), then --resume",
+                    )
+            _layout(group, job, chunking, tuple(job.spec.model.state_names()), set(missing))
+            group.attrs.update({"complete": False})
+            _consolidate(path)
+        return cls(path, group, chunking, names, lock, job.spec.validate)
 
     @classmethod
     def _create(cls, path, job, version, points, extra, lock) -> SweepStore:
@@ -218,29 +235,7 @@ class SweepStore:
             group = zarr.open_group(str(path), mode="w-", attributes=attributes)
         except Exception as exc:  # noqa: BLE001 - any reason it cannot be created
             raise _refuse(path, f"cannot be created ({exc})", "choose a writable path") from None
-        dims = {
-            "component": np.array(names, dtype=str),
-            "time": np.asarray(spec.times, dtype=float),
-            "multiplier": np.arange(len(names)),
-            "check": np.array(check_names(), dtype=str),
-        }
-        for axis in grid.axes:
-            _coordinate(group, axis.name, np.asarray(axis.values, dtype=float))
-        for name, values in dims.items():
-            _coordinate(group, name, values)
-        sizes = {name: len(values) for name, values in dims.items()}
-        for var in variables(spec.validate):
-            shape = (*grid.shape, *(sizes[d] for d in var.dims))
-            chunks = (*chunking.chunk, *(sizes[d] for d in var.dims))
-            group.create_array(
-                stored_name(var.name, grid.names),
-                shape=shape,
-                chunks=chunks,
-                dtype=str if var.dtype == "str" else var.dtype,
-                fill_value=var.fill,
-                dimension_names=(*grid.names, *var.dims),
-                attributes=dict(var.attrs),
-            )
+        _layout(group, job, chunking, names)
         group.attrs.update(
             {
                 "model_class": type(spec.model).__qualname__,
@@ -296,7 +291,14 @@ class SweepStore:
             if dims[: len(self.swept)] != self.swept or name in self.swept:
                 continue  # a coordinate
             key = array.metadata.encode_chunk_key(where + (0,) * (array.ndim - len(where)))
-            if not (self.path / name / key).is_file():
+            chunk = self.path / name / key
+            if chunk.is_symlink() or (chunk.exists() and not chunk.is_file()):
+                raise _refuse(
+                    self.path,
+                    f"is damaged: {name}/{key} there is not a chunk file (a folder, a link)",
+                    "move it away (perturb removes nothing it did not write), then --resume",
+                )
+            if not chunk.is_file():
                 return False
             try:
                 values[name] = np.asarray(array[region])
@@ -376,13 +378,76 @@ def _writing_every_chunk():
         yield
 
 
-def _coordinate(group, name: str, values: np.ndarray) -> None:
+def _through_link(path: Path) -> Path:
+    """``path``, or the folder a symbolic link there points to (a store named through a link is
+    the store it links to; a link to nothing, or to a file, stays a link and is refused)."""
+    if path.is_symlink():
+        target = path.resolve()
+        if target.is_dir() and not target.is_symlink():
+            return target
+    return path
+
+
+def _layout(group, job: SweepJob, chunking: Chunking, names, only=None) -> None:
+    """Make the store's arrays (every one, or those named in ``only``, made again over
+    whatever is left of them): a coordinate per swept parameter and per dimension, a variable
+    per quantity, of fill values."""
+    spec = job.spec
+    grid = spec.grid
+    dims = {
+        "component": np.array(names, dtype=str),
+        "time": np.asarray(spec.times, dtype=float),
+        "multiplier": np.arange(len(names)),
+        "check": np.array(check_names(), dtype=str),
+    }
+    coordinates = {axis.name: np.asarray(axis.values, dtype=float) for axis in grid.axes}
+    for name, values in {**coordinates, **dims}.items():
+        if only is None or name in only:
+            _coordinate(group, name, values, overwrite=only is not None)
+    sizes = {name: len(values) for name, values in dims.items()}
+    for var in variables(spec.validate):
+        name = stored_name(var.name, grid.names)
+        if only is not None and name not in only:
+            continue
+        group.create_array(
+            name,
+            shape=(*grid.shape, *(sizes[d] for d in var.dims)),
+            chunks=(*chunking.chunk, *(sizes[d] for d in var.dims)),
+            dtype=str if var.dtype == "str" else var.dtype,
+            fill_value=var.fill,
+            dimension_names=(*grid.names, *var.dims),
+            attributes=dict(var.attrs),
+            overwrite=only is not None,
+        )
+
+
+def _expected_arrays(job: SweepJob) -> list[str]:
+    """The names of every array a store of ``job`` holds."""
+    grid = job.spec.grid
+    names = [axis.name for axis in grid.axes] + ["component", "time", "multiplier", "check"]
+    return names + [stored_name(var.name, grid.names) for var in variables(job.spec.validate)]
+
+
+def _array_metadata_ok(folder: Path) -> bool:
+    """Whether ``folder`` holds the readable metadata of a Zarr array (format 3)."""
+    meta = folder / "zarr.json"
+    if folder.is_symlink() or not folder.is_dir() or meta.is_symlink() or not meta.is_file():
+        return False
+    try:
+        data = json.loads(meta.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return False
+    return isinstance(data, dict) and data.get("node_type") == "array"
+
+
+def _coordinate(group, name: str, values: np.ndarray, overwrite: bool = False) -> None:
     array = group.create_array(
         name,
         shape=values.shape,
         chunks=values.shape,
         dtype=str if values.dtype.kind in "US" else values.dtype,
         dimension_names=(name,),
+        overwrite=overwrite,
     )
     array[...] = values
 

@@ -1,10 +1,10 @@
-"""``--format json``: one JSON document (the commands' JSON contracts)."""
+"""``--format json``: one JSON document (the commands' JSON contracts), always valid JSON
+(:func:`perturb.report.json_text.json_text`: a non-finite number is ``null``, and named)."""
 
 from __future__ import annotations
 
-import json
-
 from perturb.report.formats.base import Format
+from perturb.report.json_text import json_text
 
 
 def _problems(entries) -> str:
@@ -16,7 +16,7 @@ def _problems(entries) -> str:
         }
         for name, summary, specs in entries
     ]
-    return json.dumps(problems, allow_nan=True) + "\n"
+    return json_text(problems) + "\n"
 
 
 def _solution(output) -> str:
@@ -28,45 +28,45 @@ def _solution(output) -> str:
 def _validation(report) -> str:
     from perturb.report.validation import validation_as_dict
 
-    return json.dumps(validation_as_dict(report), allow_nan=True) + "\n"
+    return json_text(validation_as_dict(report)) + "\n"
 
 
 def _work_precision(result) -> str:
     from perturb.report.workprecision import work_precision_as_dict
 
-    return json.dumps(work_precision_as_dict(result), allow_nan=True) + "\n"
+    return json_text(work_precision_as_dict(result)) + "\n"
 
 
 def _response(result) -> str:
     from perturb.report.response import response_as_dict
 
-    return json.dumps(response_as_dict(result), allow_nan=False) + "\n"
+    return json_text(response_as_dict(result)) + "\n"
 
 
 def _families(output) -> str:
     from perturb.report.families import as_dict
 
-    return json.dumps(as_dict(output.families, output.problem, output.flags)) + "\n"
+    return json_text(as_dict(output.families, output.problem, output.flags)) + "\n"
 
 
 def _phase(output) -> str:
     from perturb.report.phase import phase_as_dict
 
-    return json.dumps(phase_as_dict(output.dataset)) + "\n"
+    return json_text(phase_as_dict(output.dataset)) + "\n"
 
 
 def _reproduction(done) -> str:
-    return json.dumps(done.reproduction.as_dict(done.report), allow_nan=True) + "\n"
+    return json_text(done.reproduction.as_dict(done.report)) + "\n"
 
 
 def _sweep(output) -> str:
     from perturb.report.sweep import sweep_as_dict
 
-    return json.dumps(sweep_as_dict(output.dataset), allow_nan=True) + "\n"
+    return json_text(sweep_as_dict(output.dataset)) + "\n"
 
 
 def _failure(payload: dict) -> str:
-    return json.dumps(payload, allow_nan=True) + "\n"
+    return json_text(payload) + "\n"
 
 
 FORMAT = Format(
