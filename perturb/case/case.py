@@ -13,12 +13,14 @@ order scan of validation — instead of re-creating problems to learn what a par
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable, Mapping
 
 import attrs
 import numpy as np
 from attrs import field, frozen
 
+from perturb._defaults import DERIVED_CACHE_SIZE
 from perturb.case.parameters import EPSILON_KEY, ParameterMap
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.system import QuasilinearSystem, Regime
@@ -46,6 +48,14 @@ class CaseColumns:
 
 def _no_check(values: dict) -> dict:
     return dict(values)
+
+
+@functools.lru_cache(maxsize=DERIVED_CACHE_SIZE)
+def _identity_map(system: QuasilinearSystem, names: tuple[str, ...]) -> ParameterMap:
+    """Each system symbol the value of its name; ε the system's own parameter (1/μ if large)."""
+    own = system.parameter.name
+    epsilon = own if system.regime is not Regime.LARGE else f"1/{own}"
+    return ParameterMap.declare(system.parameters, names, {}, epsilon=epsilon)
 
 
 @frozen
@@ -105,6 +115,34 @@ class Case:
                 InvalidParameterError,
             )  # fmt: skip
         object.__setattr__(self, "_point", self.map.evaluate(self.values))
+
+    @classmethod
+    def of(
+        cls,
+        system: QuasilinearSystem,
+        values: Mapping[str, float],
+        *,
+        family: str | None = None,
+        check: Callable[[dict], dict] = _no_check,
+        model_of: Callable | None = None,
+    ) -> Case:
+        """The case of a bare ``system`` at ``values``: each of its symbols the value of its
+        name, ε its own parameter (``epsilon``, or ``1/mu`` in the large-parameter regime) —
+        the door for a system given with numbers (a problem declares its own map instead).
+
+        Examples
+        --------
+        >>> import sympy as sp
+        >>> from perturb import EPS, QuasilinearSystem
+        >>> from perturb.case import Case
+        >>> x, v, k = sp.symbols("x v k")
+        >>> system = QuasilinearSystem([x], [v], [1], [-EPS * k * x**3], parameters=[k])
+        >>> case = Case.of(system, {"k": 2.0, "epsilon": 0.1})
+        >>> case.symbol_values, case.epsilon, case.at(epsilon=0.2).epsilon
+        ({'k': 2.0}, 0.1, 0.2)
+        """
+        mapping = _identity_map(system, tuple(values))
+        return cls(system, mapping, values, family, check=check, model_of=model_of)
 
     # ------------------------------------------------------------------ the point
     @property

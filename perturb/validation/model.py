@@ -7,7 +7,6 @@ probing): ``problems.Problem`` implements it, and :class:`SystemModel` makes a b
 
 from __future__ import annotations
 
-import functools
 import math
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
@@ -15,8 +14,7 @@ from collections.abc import Callable, Mapping
 import numpy as np
 from attrs import evolve, field, frozen
 
-from perturb._defaults import DERIVED_CACHE_SIZE
-from perturb.case import Case, ParameterMap
+from perturb.case import Case
 from perturb.errors import bad_value
 from perturb.method import PoincareMethod
 from perturb.oracle import Integrator, SymbolicRHS
@@ -528,21 +526,12 @@ class SystemModel(Model):
         return evolve(self, values={**self.values, self.quasilinear.parameter.name: value})
 
 
-@functools.lru_cache(maxsize=DERIVED_CACHE_SIZE)
-def _identity_map(system: QuasilinearSystem, names: tuple[str, ...]) -> ParameterMap:
-    """Each system symbol the value of its name; ε the system's own parameter (1/μ if large)."""
-    own = system.parameter.name
-    epsilon = own if system.regime is not Regime.LARGE else f"1/{own}"
-    return ParameterMap.declare(system.parameters, names, {}, epsilon=epsilon)
-
-
 def _identity_case(model: Model, values: Mapping[str, float]) -> Case:
     """The case of a model whose parameters are its system's symbols (the adapter at the door:
     another point's model is the model's own :meth:`Model.with_parameters`)."""
     system = model.system()
-    return Case(
-        system, _identity_map(system, tuple(values)), values,
-        check=lambda point: check_system_values(system, point),
+    return Case.of(
+        system, values, check=lambda point: check_system_values(system, point),
         model_of=lambda case: model.with_parameters(**case.values),
     )  # fmt: skip
 
