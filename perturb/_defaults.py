@@ -796,6 +796,31 @@ SYMMETRY_TOL = 1e-9
 #: five unknowns); a budget spent leaves the census at interior points to find closed branches.
 FOLD_SECONDS = 30.0
 
+#: Budget of the order-N census at a window's end (every real root of the order-N equations,
+#: certified): one oscillator's order-3 equations (degree 9 in two unknowns, 81 complex roots)
+#: take 0.1-0.3 s; a budget spent leaves the first-order seeds alone (said nowhere: they were
+#: the seeds before).
+ORDER_CENSUS_SECONDS = 10.0
+
+#: The order-N census is tried when the Bezout bound of the order-N equations (the product of
+#: their total degrees) is at most this: one oscillator to order 3 (9 x 9 = 81) or 4 (121) and
+#: two at order 1 take well under a second; a chain of three at order 2 (7^6 = 117649) spends
+#: any budget (measured: 20 s not enough), so its first-order seeds are the only ones.
+ORDER_CENSUS_BEZOUT = 400
+
+#: How far beyond the window (in the line's scaled unit μ: σ when sweeping Ω) the response's
+#: curves are followed, and the first-order folds taken as seeds: a branch of the order-N
+#: equations whose first-order counterpart turns just outside the window is continued in from
+#: there, and a fold of the order-N curve within this of the window is reported (marked
+#: outside). The order-N fold lies O(ε) in σ from the first-order one (0.04 for a softening
+#: Duffing at ε = 0.1); half a unit of σ covers that with room.
+FOLD_REACH = 0.5
+
+#: Beyond the window the continuation's largest step is this share of the reach's width (within
+#: it, the window's own MAX_STEP_FRACTION): a narrow sweep's reach, many windows wide, is
+#: crossed in a few hundred steps, not thousands.
+REACH_STEP_SHARE = 0.25
+
 # -- perturb.steady.evaluate
 #: An order-N point whose Newton step to the order-(N−1) equations moves it by less than this
 #: fraction of its amplitudes has a counterpart one order lower (the orders' roots differ by

@@ -17,13 +17,23 @@ import math
 import numpy as np
 from attrs import field, frozen
 
-from perturb._defaults import SAME_CONTINUED_POINT, WINDOW_MARGIN
+from perturb._defaults import FOLD_REACH, SAME_CONTINUED_POINT, WINDOW_MARGIN
 from perturb.continuation import TestFunction, locate_on_curve
-from perturb.steady.census import same_orbit
+from perturb.continuation.reading import read_segment
+from perturb.steady.census import order_census, same_orbit
 from perturb.steady.evaluate import PointEvaluator
+from perturb.steady.exact import exact_number
 from perturb.steady.traced import trace
+from perturb.system import EPS
 
-__all__ = ["Continued", "ResponseCurve", "SpecialResponse", "continued_response", "window_of"]
+__all__ = [
+    "Continued",
+    "ResponseCurve",
+    "SpecialResponse",
+    "continued_response",
+    "reach_of",
+    "window_of",
+]
 
 
 @frozen
@@ -144,13 +154,83 @@ def _dedupe(found: list[SpecialResponse], harmonics, group) -> list[SpecialRespo
     return sorted(out, key=lambda p: p.value)
 
 
+def reach_of(line, low: float, high: float) -> tuple[float, float]:
+    """The window [low, high] widened by ``FOLD_REACH`` (in the line's scaled unit μ) on each
+    side, where the problem accepts the values (a side shrunk toward the window until it does)."""
+    margin = FOLD_REACH / line.scale
+    ends = []
+    for edge, outward in ((low, -margin), (high, margin)):
+        step = outward
+        while step and line.invalid(edge + step):
+            step = step / 2 if abs(step) > 1e-6 * margin else 0.0
+        ends.append(edge + step)
+    return min(ends[0], low), max(ends[1], high)
+
+
+def _order_seeds(equations, order: int, line, evaluator, ends):
+    """``seeds(cap) -> [(u, λ)]``: the order-N census at ``ends`` (:func:`order_census`), each
+    root kept when its amplitudes are below ``cap`` and the series describes it there (its terms
+    decrease and an order-(N−1) root is reached from it: :class:`PointEvaluator`)."""
+    symbols = {p.name: p for p in equations.system.parameters}
+
+    def seeds(cap: float):
+        found = []
+        for lam in ends:
+            values, eps = line.at(lam)
+            fixed = {symbols[k]: exact_number(v) for k, v in zip(line.names, values, strict=True)}
+            fixed[EPS] = exact_number(eps)
+            roots, why = order_census(equations, order, fixed)
+            if why:
+                return []  # the first-order seeds alone, as before the order-N census
+            found += [(u, lam) for u in roots if float(np.max(np.abs(u))) <= cap]
+        if not found:
+            return []
+        terms = evaluator.evaluate([u for u, _ in found], [v for _, v in found], check_lower=False)
+        found = [f for f, why in zip(found, terms["reasons"], strict=True) if not why]
+        return [(u, v) for u, v in found if not evaluator.lower_root(u, v)[0]]
+
+    return seeds
+
+
+def _in_window(curve, mu_low: float, mu_high: float):
+    """The runs of ``curve`` inside [mu_low, mu_high]: (index array, first point or None, last
+    point or None), the ends read on the segments that cross the window's edges."""
+    mu = curve.points[:, -1]
+    inside = (mu >= mu_low) & (mu <= mu_high)
+    runs = []
+    k = 0
+    while k < len(mu):
+        if not inside[k]:
+            k += 1
+            continue
+        end = k
+        while end + 1 < len(mu) and inside[end + 1]:
+            end += 1
+        runs.append((k, end))
+        k = end + 1
+    out = []
+    for a, b in runs:
+        before = after = None
+        if a > 0:
+            edge = mu_low if mu[a - 1] < mu_low else mu_high
+            before = read_segment(curve, a - 1, edge)
+        if b < len(mu) - 1:
+            edge = mu_low if mu[b + 1] < mu_low else mu_high
+            after = read_segment(curve, b, edge)
+        out.append((np.arange(a, b + 1), before, after))
+    return out
+
+
 def continued_response(equations, order: int, line, grid) -> Continued:
     """Every order-N point at each grid value, the dense curves and their special points (see
     the module notes); ``line`` the sweep's :class:`~perturb.steady.line.ParameterLine`."""
     grid = np.asarray(grid, dtype=float)
     low, high = window_of(line, float(grid[0]), float(grid[-1]))
-    traced = trace(equations, order, line, low, high)
+    reach = reach_of(line, low, high)
     evaluator = PointEvaluator(equations, line)
+    seeds = _order_seeds(equations, order, line, evaluator, (low, high)) if order >= 1 else None
+    traced = trace(equations, order, line, low, high, reach=reach, order_seeds=seeds)
+    mu_low, mu_high = float(line.mu(low)), float(line.mu(high))
     coords = equations.coordinates
     names = [s.name for s in equations.amplitudes]
     readings_at = traced.at(grid)
@@ -171,31 +251,50 @@ def continued_response(equations, order: int, line, grid) -> Continued:
     tests = _multiplier_tests(evaluator, line)
     for branch in traced.branches:
         curve = branch.curve
-        lam = line.lam(curve.points[:, -1])
-        dense = evaluator.evaluate(curve.points[:, :-1], lam, check_lower="along")
-        stability = dense["stability"]
-        curves.append(
-            ResponseCurve(
-                values=np.asarray(lam),
-                amplitudes=curve.points[:, :-1],
-                measures={m: dense[m] for m in ("peak", "first-harmonic", "initial")},
-                stable=stability.stable,
-                series_ok=[not r for r in dense["reasons"]],
-                largest=np.abs(stability.multipliers[:, 0]),
-                arclength=curve.arclength,
-                status=curve.message,
-                multipliers=stability.multipliers,
+        located = [
+            p for p in curve.special if p.kind == "fold" or mu_low <= p.x[-1] <= mu_high
+        ]  # folds in the reach, the others in the window
+        for run, before, after in _in_window(curve, mu_low, mu_high):
+            ends = [x for x in (before,) if x is not None]
+            tail = [x for x in (after,) if x is not None]
+            points = np.vstack([*ends, curve.points[run], *tail])
+            arclength = curve.arclength[run]
+            if before is not None:
+                arclength = np.concatenate(([arclength[0] - _gap(before, points[1])], arclength))
+            if after is not None:
+                arclength = np.concatenate((arclength, [arclength[-1] + _gap(after, points[-2])]))
+            if len(points) < 2:
+                continue
+            lam = line.lam(points[:, -1])
+            dense = evaluator.evaluate(points[:, :-1], lam, check_lower="along")
+            stability = dense["stability"]
+            curves.append(
+                ResponseCurve(
+                    values=np.asarray(lam),
+                    amplitudes=points[:, :-1],
+                    measures={m: dense[m] for m in ("peak", "first-harmonic", "initial")},
+                    stable=stability.stable,
+                    series_ok=[not r for r in dense["reasons"]],
+                    largest=np.abs(stability.multipliers[:, 0]),
+                    arclength=arclength,
+                    status=curve.message,
+                    multipliers=stability.multipliers,
+                )
             )
-        )
-        located = list(curve.special)
-        for test, batch_test in tests:
-            values = [batch_test(mu) for mu in stability.multipliers]
-            for k in range(len(values) - 1):
-                a, b = values[k], values[k + 1]
-                if math.isfinite(a) and math.isfinite(b) and a != 0 and (a > 0) != (b > 0):
-                    point = locate_on_curve(curve, test, k, a, b)
-                    if point is not None:
-                        located.append(point)
+            offset = int(run[0]) - (1 if before is not None else 0)
+            for test, batch_test in tests:
+                values = [batch_test(mu) for mu in stability.multipliers]
+                for k in range(len(values) - 1):
+                    a, b = values[k], values[k + 1]
+                    inner = 0 <= offset + k and offset + k + 1 < len(curve.points)
+                    if not inner or (before is not None and k == 0):
+                        continue  # the edge segment: a reading, not a segment of the curve
+                    if after is not None and k == len(values) - 2:
+                        continue
+                    if math.isfinite(a) and math.isfinite(b) and a != 0 and (a > 0) != (b > 0):
+                        point = locate_on_curve(curve, test, offset + k, a, b)
+                        if point is not None:
+                            located.append(point)
         for point in located:
             u, value = point.x[:-1], float(line.lam(point.x[-1]))
             at = evaluator.evaluate(u, [value])
@@ -212,6 +311,10 @@ def continued_response(equations, order: int, line, grid) -> Continued:
             )
     special = _dedupe(special, traced.harmonics, traced.group)
     return Continued(readings, curves, special, traced.failures, traced, evaluator)
+
+
+def _gap(a, b) -> float:
+    return float(np.linalg.norm(np.asarray(a) - np.asarray(b)))
 
 
 def _point(batch, k: int, stability) -> dict:
