@@ -25,9 +25,9 @@ import sympy as sp
 from perturb._defaults import (
     CENSUS_SAME_ORBIT,
     FOLD_SECONDS,
+    MAX_SHIFT_DIVISOR,
     ORDER_CENSUS_BEZOUT,
     ORDER_CENSUS_SECONDS,
-    MAX_SHIFT_DIVISOR,
     SYMMETRY_PROBES,
     SYMMETRY_SEED,
     SYMMETRY_TOL,
