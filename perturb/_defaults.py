@@ -546,6 +546,31 @@ TRUE_CURVE_MULTIPLIER_TOL = 1e-9
 #: lie orders of magnitude further apart.
 TRUE_CURVE_SAME_ORBIT = 1e-6
 
+# -- perturb.response.true_maps, true_branches (the whole diagram of the true responses)
+#: Newton on the minimally augmented system {R = 0, ψ = 0} of a special point: converged when a
+#: step is below this (relative to max(1, |x|), in the scaled unknowns); its gradient of ψ by
+#: central differences of this relative step (shots accurate to ~1e-15: the difference's error
+#: ~1e-15/1e-6 + 1e-12, far below the 1e-8 asked of a located point); a point that needs more
+#: than REFINE_MAX_ITER steps keeps the secant's location, and says so.
+REFINE_TOL = 1e-11
+REFINE_STEP = 1e-6
+REFINE_MAX_ITER = 12
+#: The first step onto a branch born at a branch point or a period doubling, along the null
+#: direction, as a fraction of the continuation's largest step: far enough that the corrector on
+#: the hyperplane across it finds the new branch, not the parent (which crosses it at distance
+#: ~0 only at the birth), near enough to stay in its basin.
+BRANCH_SWITCH_FRACTION = 0.25
+#: The longest cascade of period doublings followed by default (a response of 2 periods: the
+#: first doubling), and the most a user may ask for (``--max-period``): past 16 periods a
+#: cascade's steps are closer than the location's own tolerance in most systems (Feigenbaum's
+#: ratio 4.67: the fifth doubling lies 2e-3 of the first interval from the accumulation point).
+MAX_PERIOD_DEFAULT = 2
+MAX_PERIOD_CAP = 16
+#: The most branches one diagram follows (each a continuation of up to the --true budget): a
+#: symmetric system's pair at each of a few pitchforks and their doublings is tens; past it the
+#: remaining births are listed, not followed.
+MAX_BRANCHES = 64
+
 # -- perturb.continuation.reading
 #: Two readings closer than this (relative to max(1, |x|)) are one point: the same crossing seen
 #: from the two segments that share an end, far below any distance between distinct branches.

@@ -52,6 +52,7 @@ class TrueFamily:
         self.cycles = drive.p
         self.params = (*system.parameters, system.parameter)
         exprs = first_order_expressions(system, {})
+        self.expressions = tuple(exprs)
         self.frequency = excitation_frequency(system, {})
         self.family = DrivenFamily.build(
             system.state_symbols, drive.phase, exprs, self.frequency, self.params, drive.p,
@@ -143,6 +144,23 @@ class TrueFamily:
             lam, y0, self.norms(lam, y0), self._peaks(shot), self._harmonics(shot), mu, stable
         )
 
+    def point_of_orbit(self, lam: float, y0, monodromy, orbit, periods: int) -> TruePoint:
+        """The true point of a response of ``periods`` response periods from its composed
+        monodromy and its orbit sampled over all of them."""
+        from perturb.oracle.orbit import multipliers_of
+
+        mono = np.asarray(monodromy, dtype=float)
+        mu = multipliers_of(mono) if np.all(np.isfinite(mono)) else np.full(len(y0), math.nan)
+        largest = float(np.max(np.abs(mu))) if np.all(np.isfinite(mu)) else math.nan
+        stable = None if abs(largest - 1.0) <= TRUE_CURVE_MULTIPLIER_TOL else largest < 1.0
+        if not math.isfinite(largest):
+            stable = None
+        orbit = np.asarray(orbit)
+        peaks = {name: _peak(orbit[i]) for i, name in enumerate(self.names)}
+        return TruePoint(
+            lam, y0, self.norms(lam, y0), peaks, self._harmonics_of(orbit, periods), mu, stable
+        )
+
     def norms(self, lam: float, y0) -> dict:
         """The analytic curve's measure of each resonant coordinate at (y0, λ)."""
         nu = self.omega(lam) / self.cycles
@@ -158,7 +176,9 @@ class TrueFamily:
         return {name: _peak(orbit[i]) for i, name in enumerate(self.names)}
 
     def _harmonics(self, shot) -> dict:
-        orbit = np.asarray(shot.orbit)
+        return self._harmonics_of(np.asarray(shot.orbit), 1)
+
+    def _harmonics_of(self, orbit: np.ndarray, periods: int) -> dict:
         out = {}
         for name, (i, m) in self.harmonics.items():
             if orbit.size == 0:
@@ -167,7 +187,7 @@ class TrueFamily:
             samples = orbit[i]
             k = np.arange(samples.size)
             # resonant harmonic m of s = θ/p: exp(-i m θ_k/p), θ_k = 2πp k/n
-            phase = np.exp(-2j * math.pi * m * k / samples.size)
+            phase = np.exp(-2j * math.pi * m * periods * k / samples.size)
             out[name] = float(2.0 * abs(np.sum(samples * phase)) / samples.size)
         return out
 
