@@ -121,12 +121,13 @@ def _pitchforks(record: Record, half: MapEquations) -> list[Birth]:
         if not (math.isfinite(a) and math.isfinite(b)) or a == 0 or (a > 0) == (b > 0):
             continue
         point = locate_on_curve(curve, test, k, a, b)
-        if point is None:
-            continue
-        x, _ = refine(half, _half_test, point.x)
+        # beside a branch point the full map's corrector may fail on the segment: Newton on the
+        # augmented system (regular there) starts from the end nearer the zero instead
+        start = point.x if point is not None else curve.points[k if abs(a) < abs(b) else k + 1]
+        x, _ = refine(half, _half_test, start)
         located, note = x is not None, "symmetry-breaking pitchfork (half-period map at -1)"
         if x is None:
-            x = point.x
+            x = start
             note += "; Newton on the augmented system did not converge: the secant's point"
         mono = half.monodromy(x)
         if mono is None:
@@ -162,7 +163,7 @@ def _doublings(record: Record, max_period: int) -> list[Birth]:
     """The period doublings on a record's curve, refined; a birth each when 2k <= max_period."""
     out = []
     eqs = record.equations
-    for p in record.curve.of_kind(PERIOD_DOUBLING):
+    for p in record.curve.of_kind(PERIOD_DOUBLING):  # the map's corrector is regular there
         x, _ = refine(eqs, _half_test, p.x)  # det(M + I): the same function of the map's M
         located = x is not None
         note = "" if located else "Newton on the augmented system did not converge"

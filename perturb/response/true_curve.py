@@ -416,4 +416,4 @@ def _in_parameter(message: str, setup, equations) -> str:
         return f"({names}) = ({', '.join(f'{v:.6g}' for v in values)})"
 
     message = re.sub(r"u = \[([^\]]*)\]", state, message)
-    return message.replace("λ = ", f"{setup.parameter} = ")
+    return message.replace("λ", setup.parameter)

@@ -136,3 +136,52 @@ def test_max_period_out_of_range_is_one_line(bad):
     problem = get_problem("forced-duffing").create()
     with pytest.raises(InvalidParameterError, match="max_period"):
         problem_response(problem, "Omega", [1.0, 1.1], true=10, max_period=bad)
+
+
+def test_the_command_line_names_each_branch_its_parent_and_birth(capsys):
+    import json
+
+    from perturb.cli import main
+
+    argv = [
+        "response",
+        "forced-duffing",
+        "--set",
+        "eps=1",
+        "--set",
+        "zeta=0.05",
+        "--set",
+        "Omega=1.2",
+        "--order",
+        "1",
+        "--sweep",
+        "F=0.01:6:7",
+        "--true",
+        "--max-period",
+        "1",
+    ]
+    assert main([*argv, "--format", "json"]) == 0
+    entry = json.loads(capsys.readouterr().out)["true_curve"]
+    births = [(c["period"], c["parent"], c["birth"]) for c in entry["curves"]]
+    assert births[0] == (1, None, "seed")
+    assert (1, 0, "branch-point") in births
+    (pitchfork,) = [b for b in entry["curves"][0]["bifurcations"] if b["kind"] == "branch-point"]
+    assert abs(pitchfork["value"] - 4.1916738) < 1e-6 and pitchfork["located"]
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "born at the branch-point at F = 4.19167380" in out
+    assert "amplitude: max |x| over a period" in out
+
+
+@pytest.mark.parametrize(("extra", "words"), [
+    (["--true", "--max-period", "0"], "--max-period 0: give a whole number from 1"),
+    (["--true", "--max-period", "17"], "to 16"),
+    (["--true", "--max-period", "two"], "give a whole number"),
+    (["--max-period", "2"], "add --true"),
+])  # fmt: skip
+def test_max_period_on_the_command_line(capsys, extra, words):
+    from perturb.cli import main
+
+    code = main(["response", "forced-duffing", "--sweep", "Omega=1:1.1:3", *extra])
+    err = capsys.readouterr().err
+    assert code == 2 and words in err and len(err.strip().splitlines()) == 1
