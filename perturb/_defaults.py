@@ -833,6 +833,16 @@ ORDER_CENSUS_SECONDS = 10.0
 #: any budget (measured: 20 s not enough), so its first-order seeds are the only ones.
 ORDER_CENSUS_BEZOUT = 400
 
+#: A root of the order-N census seeds a curve only when the series' own estimate of its error
+#: (the last correction, max over a period of |x_N - x_(N-1)|) is at most this fraction of its
+#: amplitude, the limit of its validity (VALIDITY_ESTIMATE_LIMIT): a truncated series has roots
+#: far from every motion whose terms still decrease (the forced Duffing at its defaults, order 3,
+#: Omega = 1.48, past the true jump-down 1.2629: an "upper branch" of amplitude 5.8 with a
+#: correction of 17 % of it; order 2, amplitude 15: 30 %), where a motion the series describes
+#: has a correction of 1e-7 to a few per cent. A branch whose seeds are all above it is still
+#: seeded by the first-order census, as before the order-N census.
+ORDER_SEED_ERROR = 0.1
+
 #: How far beyond the window (in the line's scaled unit μ: σ when sweeping Ω) the response's
 #: curves are followed, and the first-order folds taken as seeds: a branch of the order-N
 #: equations whose first-order counterpart turns just outside the window is continued in from
@@ -840,6 +850,13 @@ ORDER_CENSUS_BEZOUT = 400
 #: outside). The order-N fold lies O(ε) in σ from the first-order one (0.04 for a softening
 #: Duffing at ε = 0.1); half a unit of σ covers that with room.
 FOLD_REACH = 0.5
+
+#: A fold of order N and one of the order below (or of the first-order equations) are the same
+#: fold when their amplitudes agree to this fraction of the larger (and the nearest such in
+#: (amplitudes, μ) is taken, each once): the series moves a fold's amplitude by O(ε) of it,
+#: while a response's two folds differ in amplitude by O(1) (jump-up 0.9, jump-down 4.0 on the
+#: README's Duffing).
+FOLD_PAIRING = 0.3
 
 #: Beyond the window the continuation's largest step is this share of the reach's width (within
 #: it, the window's own MAX_STEP_FRACTION): a narrow sweep's reach, many windows wide, is

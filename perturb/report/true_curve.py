@@ -118,6 +118,30 @@ def _amplitudes(point, measure: str) -> str:
     return "  ".join(f"|{c}| = {point.amplitude(c, measure):.6g}" for c in point.norms)
 
 
+def _listed(curves) -> list:
+    """The special points to print: ``(point, "curve k[, j]", times)`` by value, one entry for
+    a point met on several curves (where they meet) and for the two of a symmetric pair (the
+    same kind, value and amplitude); a doubled orbit's meeting with its parent (``crossing``)
+    is its parent's period doubling, printed there."""
+    entries: list = []
+    for index, curve in enumerate(curves.curves, start=1):
+        seen_here: list = []
+        for b in curve.bifurcations:
+            if b.kind == "crossing":
+                continue
+            key = (b.kind, round(b.value, 9), round(max(b.peaks.values(), default=0.0), 6))
+            here = next((e for e in entries if e[0] == key), None)
+            if here is None:
+                entries.append([key, b, [index], 1])
+                seen_here.append(key)
+            elif key in seen_here:
+                here[3] += 1
+            elif index not in here[2]:
+                here[2].append(index)
+    entries.sort(key=lambda e: e[1].value)
+    return [(b, "curve " + ", ".join(map(str, where)), times) for _, b, where, times in entries]
+
+
 def _birth(curve, parameter: str) -> str:
     if curve.parent is None:
         return f"from {', '.join(curve.branches)}"
@@ -145,7 +169,7 @@ def true_curve_lines(curves, parameter: str) -> list[str]:
             + ("" if curve.success else "STOPPED: ")
             + curve.message
         )
-    found = curves.bifurcations
+    found = _listed(curves)
     if found:
         from perturb.steady.measures import MEASURES
 
@@ -153,14 +177,19 @@ def true_curve_lines(curves, parameter: str) -> list[str]:
             "  special points of the true curves (located on them; amplitude: "
             f"{MEASURES.get(curves.measure, curves.measure)}):"
         )
-        for b in found:
+        for b, where_found, times in found:
             where = "" if b.inside else "  (outside the sweep)"
             z = b.multiplier
             torus = f", torus rotation number {b.rotation:.8g}" if math.isfinite(b.rotation) else ""
+            pair = (
+                f" x{times} (orbits that are images: x -> -x, or a period later)"
+                if times > 1
+                else ""
+            )
             lines.append(
                 f"    {b.kind:>15s} {parameter} = {b.value:.10g}   "
                 f"{_amplitudes(b, curves.measure)}   "
-                f"multiplier {z.real:+.6f}{z.imag:+.6f}i{torus}{where}"
+                f"multiplier {z.real:+.6f}{z.imag:+.6f}i{torus}   on {where_found}{pair}{where}"
                 + (f"  ({b.note})" if b.note else "")
             )
     if curves.partings:

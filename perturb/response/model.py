@@ -260,9 +260,35 @@ def problem_response(
             problem, parameter, response, branch_names_, order, budget=true, tol=tol,
             measure=measure, max_period=max_period,
         )  # fmt: skip
+        response = _refined_folds(response, curves)
     return ProblemResponse(
         problem.name, parameter, response, branch_names_, spine, true_points, curves
     )
+
+
+def _refined_folds(response, curves):
+    """The analytic folds with the true fold each one is near (``Fold.true_value``): the
+    nearest fold of a true curve of the response's period whose max ``|x|`` agrees within
+    ``FOLD_PAIRING``, within the sweep's width."""
+    import attrs
+
+    from perturb._defaults import FOLD_PAIRING
+
+    true = [b for c in curves.curves if c.period == 1 for b in c.bifurcations if b.kind == "fold"]
+    width = response.grid[-1] - response.grid[0]
+    folds = []
+    for fold in response.folds:
+        size = max(fold.peak.values(), default=math.nan)  # both carry max |x|, whatever is drawn
+        near = []
+        for b in true:
+            other = max(b.peaks.values(), default=math.nan)
+            if math.isfinite(size) and abs(other - size) > FOLD_PAIRING * max(size, 1e-300):
+                continue
+            if abs(b.value - fold.value) <= width:
+                near.append(b)
+        best = min(near, key=lambda b: abs(b.value - fold.value), default=None)
+        folds.append(attrs.evolve(fold, true_value=best.value if best else math.nan))
+    return attrs.evolve(response, folds=tuple(folds))
 
 
 def check_measure(measure: str) -> str:

@@ -152,13 +152,14 @@ def order_census(equations, order: int, fixed: dict) -> tuple[list[np.ndarray], 
         degrees = [sp.Poly(r, *unknowns).total_degree() for r in rows]
     except sp.PolynomialError:
         return [], "the order-N equations are not polynomial in the amplitudes"
-    if any(not c.is_Rational for r in rows for c in sp.Poly(r, *unknowns).coeffs()):
-        return [], "the order-N equations' coefficients are not exact rationals"
     if math.prod(max(d, 1) for d in degrees) > ORDER_CENSUS_BEZOUT:
         return [], f"the order-N equations are too large (degrees {degrees})"
 
     def solve():
-        found = real_roots(rows, unknowns, seconds=ORDER_CENSUS_SECONDS, floats=True)
+        try:
+            found = real_roots(rows, unknowns, seconds=ORDER_CENSUS_SECONDS, floats=True)
+        except (ValueError, TypeError, sp.PolynomialError) as exc:  # not over the rationals
+            return [], f"the order-N equations could not be solved exactly ({exc})"
         if found.status is RootStatus.NO_REAL_ROOT:
             return [], ""
         if not found.status.success:

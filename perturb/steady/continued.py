@@ -14,10 +14,17 @@ from __future__ import annotations
 import cmath
 import math
 
+import attrs
 import numpy as np
 from attrs import field, frozen
 
-from perturb._defaults import FOLD_REACH, SAME_CONTINUED_POINT, WINDOW_MARGIN
+from perturb._defaults import (
+    FOLD_PAIRING,
+    FOLD_REACH,
+    ORDER_SEED_ERROR,
+    SAME_CONTINUED_POINT,
+    WINDOW_MARGIN,
+)
 from perturb.continuation import TestFunction, locate_on_curve
 from perturb.continuation.reading import read_segment
 from perturb.steady.census import order_census, same_orbit
@@ -41,7 +48,12 @@ class SpecialResponse:
     """A located special point of the order-N response.
 
     ``kind``: ``fold``, ``branch-point``, ``neimark-sacker`` or ``period-doubling``; ``inside``:
-    within the sweep's range (else just beside it, in the window).
+    within the sweep's range (else just beside it, in the window). A fold's ``uncertainty`` is
+    the series' own estimate of its error in the swept parameter: the distance to the same fold
+    one order lower (NaN where that order has no fold beside it: the series cannot tell);
+    ``first_order`` the same fold of the first-order equations (NaN: none beside it).
+    ``steepness``: |dλ/ds| of the curve it was located on (a branch point is met on both curves
+    through it; the transversal one's location is kept).
     """
 
     kind: str
@@ -51,6 +63,9 @@ class SpecialResponse:
     peak: dict
     inside: bool
     multipliers: tuple = field(converter=tuple, factory=tuple)
+    uncertainty: float = math.nan
+    first_order: float = math.nan
+    steepness: float = field(default=math.nan, eq=False, repr=False)
 
 
 @frozen
@@ -128,7 +143,8 @@ def _multiplier_tests(evaluator, line):
 
 def _dedupe(found: list[SpecialResponse], harmonics, group) -> list[SpecialResponse]:
     """One entry per point: images under the time shifts dropped, a fold at a branch point
-    dropped (a pitchfork)."""
+    dropped (a pitchfork), a branch point met on both curves through it once (the transversal
+    curve's location kept)."""
     out: list[SpecialResponse] = []
 
     def u(point):
@@ -136,6 +152,11 @@ def _dedupe(found: list[SpecialResponse], harmonics, group) -> list[SpecialRespo
 
     def close(p, q):
         scale = max(1.0, abs(p.value))
+        if p.kind == q.kind == "branch-point":  # met on both curves: the turning one's secant
+            reach = math.sqrt(SAME_CONTINUED_POINT)  # locates it in λ to the square root only
+            return abs(p.value - q.value) <= reach * scale and float(
+                np.max(np.abs(u(p) - u(q)))
+            ) <= reach * max(1.0, float(np.max(np.abs(u(p)))))
         return (
             abs(p.value - q.value) <= SAME_CONTINUED_POINT * scale
             and same_orbit(u(p), u(q), harmonics, group)
@@ -146,7 +167,9 @@ def _dedupe(found: list[SpecialResponse], harmonics, group) -> list[SpecialRespo
             )
         )
 
-    ranked = sorted(found, key=lambda p: p.kind != "branch-point")  # branch points first
+    # branch points first, the one on the curve crossing transversally (|dλ/ds| largest: the
+    # one whose secant converged) before the one on the curve that turns there
+    ranked = sorted(found, key=lambda p: (p.kind != "branch-point", -p.steepness))
     for point in ranked:
         if any(close(point, kept) for kept in out):
             continue
@@ -169,8 +192,10 @@ def reach_of(line, low: float, high: float) -> tuple[float, float]:
 
 def _order_seeds(equations, order: int, line, evaluator, ends):
     """``seeds(cap) -> [(u, λ)]``: the order-N census at ``ends`` (:func:`order_census`), each
-    root kept when its amplitudes are below ``cap`` and the series describes it there (its terms
-    decrease and an order-(N−1) root is reached from it: :class:`PointEvaluator`)."""
+    root kept when its amplitudes are below ``cap`` and the series describes it there: its terms
+    decrease, an order-(N−1) root is reached from it (:class:`PointEvaluator`) and the last
+    correction is at most ``ORDER_SEED_ERROR`` of its amplitude (most roots of a truncated
+    series are far from every motion, their corrections as large as they are)."""
     symbols = {p.name: p for p in equations.system.parameters}
 
     def seeds(cap: float):
@@ -185,9 +210,22 @@ def _order_seeds(equations, order: int, line, evaluator, ends):
             found += [(u, lam) for u in roots if float(np.max(np.abs(u))) <= cap]
         if not found:
             return []
-        terms = evaluator.evaluate([u for u, _ in found], [v for _, v in found], check_lower=False)
-        found = [f for f, why in zip(found, terms["reasons"], strict=True) if not why]
-        return [(u, v) for u, v in found if not evaluator.lower_root(u, v)[0]]
+        with np.errstate(over="ignore", invalid="ignore"):  # a truncated series' far roots
+            terms = evaluator.evaluate([u for u, _ in found], [v for _, v in found],
+                                       check_lower=False)  # fmt: skip
+            found = [f for f, why in zip(found, terms["reasons"], strict=True) if not why]
+            if not found:
+                return []
+            full = evaluator.evaluate([u for u, _ in found], [v for _, v in found])
+        kept = []
+        for k, seed in enumerate(found):
+            sizes = [float(full["peak"][c][k]) for c in full["peak"]]
+            errors = [full["error"][k][c] for c in full["peak"]]
+            relative = max((e / max(s, 1e-300) for e, s in zip(errors, sizes, strict=True)),
+                           default=math.inf)  # fmt: skip
+            if not full["reasons"][k] and relative <= ORDER_SEED_ERROR:
+                kept.append(seed)
+        return kept
 
     return seeds
 
@@ -307,10 +345,66 @@ def continued_response(equations, order: int, line, grid) -> Continued:
                     peak={c: float(at["peak"][c][0]) for c in coords},
                     inside=bool(grid[0] <= value <= grid[-1]),
                     multipliers=tuple(complex(z) for z in at["stability"].multipliers[0]),
+                    steepness=abs(float(point.tangent[-1])),
                 )
             )
     special = _dedupe(special, traced.harmonics, traced.group)
+    special = _fold_errors(special, equations, order, line, traced, (low, high), reach)
     return Continued(readings, curves, special, traced.failures, traced, evaluator)
+
+
+def _folds_of(curves, line) -> list[np.ndarray]:
+    """The folds of continued curves as points (u, λ) in the swept parameter."""
+    return [
+        np.append(p.x[:-1], float(line.lam(p.x[-1]))) for c in curves for p in c.of_kind("fold")
+    ]
+
+
+def _matched(folds: list, others: list, line) -> list[float]:
+    """For each fold (u, λ), λ of the fold among ``others`` it is paired with (NaN: none): pairs
+    taken nearest first in (u, μ), each fold of ``others`` used once, and only one lying beside
+    it (amplitudes within ``FOLD_PAIRING`` of its size)."""
+    pairs = []
+    for i, a in enumerate(folds):
+        for j, b in enumerate(others):
+            size = max(1.0, float(np.max(np.abs(a[:-1]))))
+            du = float(np.max(np.abs(np.abs(a[:-1]) - np.abs(b[:-1])))) / size
+            if du > FOLD_PAIRING:
+                continue
+            dmu = abs(float(line.mu(a[-1]) - line.mu(b[-1])))
+            pairs.append((math.hypot(du, dmu), i, j))
+    out = [math.nan] * len(folds)
+    used: set = set()
+    for _, i, j in sorted(pairs):
+        if math.isnan(out[i]) and j not in used:
+            out[i] = float(others[j][-1])
+            used.add(j)
+    return out
+
+
+def _fold_errors(special, equations, order: int, line, traced, window, reach):
+    """Each order-N fold with its uncertainty (the same fold one order lower: the order-(N−1)
+    curves traced over the same window, the first-order ones at N = 1) and its first-order fold
+    (paired one to one, not merely the nearest: two folds never share one)."""
+    folds = [s for s in special if s.kind == "fold"]
+    if not folds:
+        return special
+    points = [np.append(list(s.amplitudes.values()), s.value) for s in folds]
+    first = _matched(points, _folds_of(traced.first, line), line)
+    if order >= 2:
+        evaluator = PointEvaluator(equations, line, order - 1)
+        seeds = _order_seeds(equations, order - 1, line, evaluator, window)
+        lower = trace(equations, order - 1, line, *window, reach=reach, order_seeds=seeds)
+        below = _matched(points, _folds_of([b.curve for b in lower.branches], line), line)
+    else:
+        below = first
+    out = []
+    for s in special:
+        if s.kind == "fold":
+            k = folds.index(s)
+            s = attrs.evolve(s, uncertainty=abs(s.value - below[k]), first_order=first[k])
+        out.append(s)
+    return out
 
 
 def _gap(a, b) -> float:
