@@ -21,6 +21,9 @@ seeds; this module follows what is born on them, as AUTO-07p and BifurcationKit.
   by a period: a doubled orbit's other half) is not followed twice.
 * **Neimark–Sacker.** The rotation number of the torus born there: the argument of the complex
   multiplier over 2π.
+* **Linear systems** (a Mathieu equation): every response is a multiple of another, and what is
+  born at a branch point is a line of responses at one λ, not a curve: the special points are
+  located and listed, nothing is followed from them.
 
 Each branch is a record: its period (in response periods of the parent problem), its parent and
 the kind of point that bore it (``seed`` for the curves through the analytic branches).
@@ -230,6 +233,7 @@ def follow_births(setup, base, seeded, *, lam_range, step, budget, max_period, g
         record.branches, record.shots, record.failure = list(names), shots, failure
         records.append(record)
     symmetric = half_period_symmetry(setup)
+    linear = _linear(setup)
     half = MapEquations(base, half=True) if symmetric else None
     maps = {1: one}
     failures: list[str] = []
@@ -245,6 +249,8 @@ def follow_births(setup, base, seeded, *, lam_range, step, budget, max_period, g
             births += pitchforks
         births += _other_branch_points(record, births)
         births += _doublings(record, max_period)
+        if linear:  # refined and listed, but what is born there is a line of responses
+            births = []
         for birth in births:
             if len(records) >= MAX_BRANCHES:
                 failures.append(
@@ -279,6 +285,15 @@ def follow_births(setup, base, seeded, *, lam_range, step, budget, max_period, g
                 child.shots, child.failure = base.shots - before, equations.last_failure
                 records.append(child)
     return records, failures
+
+
+def _linear(setup) -> bool:
+    """Whether the equations of motion are linear in the state (a Mathieu equation): every
+    response is then a multiple of another, and a branch point bears a line of them."""
+    import sympy as sp
+
+    state = list(setup.system.state_symbols)
+    return all(sp.diff(e, a, b) == 0 for e in setup.expressions for a in state for b in state)
 
 
 def _known(records, equations, x) -> bool:

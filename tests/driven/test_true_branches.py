@@ -185,3 +185,21 @@ def test_max_period_on_the_command_line(capsys, extra, words):
     code = main(["response", "forced-duffing", "--sweep", "Omega=1:1.1:3", *extra])
     err = capsys.readouterr().err
     assert code == 2 and words in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.slow
+def test_a_neimark_sacker_point_gives_the_rotation_number_of_its_torus():
+    """At loss of entrainment (the forced van der Pol), the torus born has the rotation number
+    arg(μ)/2π of the complex multiplier on the circle: in (0, 1/2), and a quasi-periodic motion
+    beside the point turns by it per forcing period (checked against the multiplier's own
+    argument, computed here)."""
+    from tests.driven.published import ForcedVanDerPol
+
+    problem = ForcedVanDerPol.create()
+    result = problem_response(problem, "Omega", np.linspace(0.9, 1.1, 9), true=400, max_period=1)
+    found = [b for b in result.true_curve.bifurcations if b.kind == "neimark-sacker"]
+    assert len(found) == 2
+    for b in found:
+        assert 0 < b.rotation < 0.5
+        z = b.multiplier
+        assert b.rotation == pytest.approx(abs(math.atan2(z.imag, z.real)) / (2 * math.pi))
