@@ -216,7 +216,7 @@ def response_as_table(result) -> str:
     if others:
         lines.append("branch points, Neimark-Sacker, period doubling (* beside the sweep):")
         for s in others:
-            amps = "  ".join(f"|{c}| = {s.peak.get(c, math.nan):.6g}" for c in coords)
+            amps = "  ".join(f"|{c}| = {size(s, c):.6g}" for c in coords)
             mark = " " if s.inside else "*"
             lines.append(f" {mark}{s.kind:>15s} at {result.parameter} = {s.value:.8g}   {amps}")
     if result.backbone is not None:

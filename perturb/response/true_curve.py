@@ -280,7 +280,7 @@ def _true_curve(setup, record, grid, anchors=(), records=()) -> TrueCurve:
     lo, hi = setup.range
     curve, equations = record.curve, record.equations
     points = []
-    for x in curve.points:
+    for x in _with_ends(curve, lo, hi):
         y0, lam = equations.unscale(x)
         try:
             points.append(_point(setup, record, lam, y0)[0])
@@ -329,6 +329,25 @@ def _true_curve(setup, record, grid, anchors=(), records=()) -> TrueCurve:
         _in_parameter(message, setup, equations), record.shots, record.period,
         parent, record.birth, record.born_at,
     )  # fmt: skip
+
+
+def _with_ends(curve, lo: float, hi: float) -> list:
+    """The curve's points with its crossings of the sweep's ends inserted where they fall: the
+    true curve reaches the ends exactly (read on the segments that cross them, polished)."""
+    from perturb.continuation.reading import read_segment
+
+    out = []
+    for k, x in enumerate(curve.points):
+        out.append(x)
+        if k + 1 == len(curve.points):
+            break
+        a, b = float(x[-1]), float(curve.points[k + 1][-1])
+        ends = [e for e in (lo, hi) if min(a, b) < e < max(a, b)]
+        for end in sorted(ends, reverse=b < a):
+            here = read_segment(curve, k, end)
+            if here is not None:
+                out.append(here)
+    return out
 
 
 def _anchor(anchors, found):

@@ -66,6 +66,14 @@ class SpecialResponse:
     uncertainty: float = math.nan
     first_order: float = math.nan
     steepness: float = field(default=math.nan, eq=False, repr=False)
+    first_harmonic: dict = field(factory=dict)
+
+    def amplitude(self, coordinate: str | None = None, measure: str = "initial") -> float:
+        """``coordinate``'s amplitude by ``measure`` (``peak``, ``first-harmonic`` or
+        ``initial``), as a response point's."""
+        table = {"peak": self.peak, "first-harmonic": self.first_harmonic, "initial": self.norms}
+        values = table[measure] or self.norms
+        return next(iter(values.values())) if coordinate is None else values[coordinate]
 
 
 @frozen
@@ -346,6 +354,7 @@ def continued_response(equations, order: int, line, grid) -> Continued:
                     inside=bool(grid[0] <= value <= grid[-1]),
                     multipliers=tuple(complex(z) for z in at["stability"].multipliers[0]),
                     steepness=abs(float(point.tangent[-1])),
+                    first_harmonic={c: float(at["first-harmonic"][c][0]) for c in coords},
                 )
             )
     special = _dedupe(special, traced.harmonics, traced.group)

@@ -50,6 +50,14 @@ class Fold:
     peak: dict = field(factory=dict)
     uncertainty: float = field(default=math.nan, converter=float)
     true_value: float = field(default=math.nan, converter=float)
+    first_harmonic: dict = field(factory=dict)
+
+    def amplitude(self, coordinate: str | None = None, measure: str = "initial") -> float:
+        """``coordinate``'s amplitude by ``measure`` (``peak``, ``first-harmonic`` or
+        ``initial``), as a response point's."""
+        table = {"peak": self.peak, "first-harmonic": self.first_harmonic, "initial": self.norms}
+        values = table[measure] or self.norms
+        return next(iter(values.values())) if coordinate is None else values[coordinate]
 
     def band_note(self, parameter: str) -> str:
         """What a point within the fold's uncertainty says of it."""

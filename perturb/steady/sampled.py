@@ -59,7 +59,7 @@ def response_of(result: Continued, *, system: str, parameter: str, order: int, e
             continue
         folds.append(
             Fold(s.value, s.amplitudes, s.norms, s.first_order, "", inside=s.inside, peak=s.peak,
-                 uncertainty=s.uncertainty)
+                 uncertainty=s.uncertainty, first_harmonic=s.first_harmonic)
         )  # fmt: skip
     points = [_marked(p, folds, parameter) for p in points]
     response = FrequencyResponse(

@@ -203,3 +203,8 @@ def test_a_neimark_sacker_point_gives_the_rotation_number_of_its_torus():
         assert 0 < b.rotation < 0.5
         z = b.multiplier
         assert b.rotation == pytest.approx(abs(math.atan2(z.imag, z.real)) / (2 * math.pi))
+
+
+def test_the_true_curve_reaches_the_sweeps_ends_exactly(diagram):
+    values = [p.value for p in diagram.curves[0].points]
+    assert 0.01 in values and 26.0 in values

@@ -91,16 +91,14 @@ def plot_frequency_response(result, *, coordinate: str | None = None, ax=None, t
         folds = [f for f in response.folds if low <= f.value <= high]
         _draw_fold_bands(ax, folds, result.parameter)
         if folds:
-            size = [(f.peak if measure == "peak" and f.peak else f.norms) for f in folds]
-            ax.plot([f.value for f in folds], [s.get(coordinate, math.nan) for s in size],
+            ax.plot([f.value for f in folds], [f.amplitude(coordinate, measure) for f in folds],
                     "o", mfc="none", color="k", label="fold")  # fmt: skip
         marks = {"branch-point": ("s", "branch point"), "neimark-sacker": ("D", "Neimark-Sacker"),
                  "period-doubling": ("^", "period doubling")}  # fmt: skip
         for kind, (marker, label) in marks.items():
             found = [p for p in response.special if p.kind == kind and low <= p.value <= high]
             if found:
-                heights = [(p.peak if measure == "peak" else p.norms).get(coordinate, math.nan)
-                           for p in found]  # fmt: skip
+                heights = [p.amplitude(coordinate, measure) for p in found]
                 ax.plot([p.value for p in found], heights, marker, mfc="none", color="k",
                         label=label)  # fmt: skip
         if result.backbone is not None and result.backbone.coordinate == coordinate:
