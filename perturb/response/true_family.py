@@ -72,6 +72,8 @@ class TrueFamily:
         }  # fmt: skip
         self._case = problem.case()
         self._values: dict[float, np.ndarray] = {}
+        self._directions: dict[float, np.ndarray] = {}
+        self._last_case: tuple = (math.nan, None)
         self.range = (float(grid[0]), float(grid[-1]))
 
     def continuation_range(self) -> tuple[float, float, float]:
@@ -94,11 +96,15 @@ class TrueFamily:
         return ends[0], ends[1], step
 
     def case(self, lam: float):
-        """The problem's :class:`perturb.case.Case` at λ; OutsideDomain if the problem refuses it."""
-        try:
-            return self._case.at(**{self.parameter: float(lam)})
-        except ValueError as exc:  # the problem's own check: InvalidParameterError and kin
-            raise OutsideDomain(f"{self.parameter} = {lam:.10g}: {exc}") from None
+        """The problem's :class:`perturb.case.Case` at λ; OutsideDomain if the problem refuses it
+        (the last one kept: the values and the direction ask for the same λ)."""
+        lam = float(lam)
+        if self._last_case[0] != lam:
+            try:
+                self._last_case = (lam, self._case.at(**{self.parameter: lam}))
+            except ValueError as exc:  # the problem's own check: InvalidParameterError and kin
+                raise OutsideDomain(f"{self.parameter} = {lam:.10g}: {exc}") from None
+        return self._last_case[1]
 
     def values(self, lam: float) -> np.ndarray:
         """The system's parameter values (and its own ε or μ last) at λ; OutsideDomain if
@@ -117,13 +123,21 @@ class TrueFamily:
         return self._values[lam]
 
     def direction(self, lam: float) -> np.ndarray:
-        """dp/dλ at λ: the case's exact derivatives (of μ = 1/ε too, in the large regime)."""
-        case = self.case(lam)
-        rates, eps_rate = case.rate(self.parameter)
-        own = eps_rate
-        if self.system.regime is Regime.LARGE:
-            own = -eps_rate / case.epsilon**2
-        return np.array([rates.get(p.name, 0.0) for p in self.params[:-1]] + [own], dtype=float)
+        """dp/dλ at λ: the case's exact derivatives (of μ = 1/ε too, in the large regime); kept
+        per λ like :meth:`values` (a corrector asks at the same λ for every shot)."""
+        lam = float(lam)
+        if lam not in self._directions:
+            case = self.case(lam)
+            rates, eps_rate = case.rate(self.parameter)
+            own = eps_rate
+            if self.system.regime is Regime.LARGE:
+                own = -eps_rate / case.epsilon**2
+            if len(self._directions) > 4096:
+                self._directions.clear()
+            self._directions[lam] = np.array(
+                [rates.get(p.name, 0.0) for p in self.params[:-1]] + [own], dtype=float
+            )
+        return self._directions[lam]
 
     def omega(self, lam: float) -> float:
         return float(self._omega(*self.values(lam)))
