@@ -62,17 +62,17 @@ def _field(force):
     return f
 
 
-def _map(y, force, half):
+def _map(y, force, half, periods=1):
     from scipy.integrate import solve_ivp
 
-    span = (math.pi if half else 2 * math.pi) / OMEGA
+    span = (math.pi if half else 2 * math.pi * periods) / OMEGA
     sol = solve_ivp(_field(force), (0.0, span), [*y, 1.0, 0.0, 0.0, 1.0], method="DOP853",
                     rtol=1e-12, atol=1e-14)  # fmt: skip
     end, mono = sol.y[:2, -1], sol.y[2:, -1].reshape(2, 2)
     return (-end, -mono) if half else (end, mono)
 
 
-def reference(value, state, half):
+def reference(value, state, half, periods=1):
     from scipy.optimize import brentq
 
     y = np.array(state, dtype=float)
@@ -80,12 +80,12 @@ def reference(value, state, half):
     def test(force):
         nonlocal y
         for _ in range(30):
-            image, jac = _map(y, force, half)
+            image, jac = _map(y, force, half, periods)
             step = np.linalg.solve(jac - np.eye(2), -(image - y))
             y = y + step
             if float(np.max(np.abs(step))) < 1e-12 * max(1.0, float(np.max(np.abs(y)))):
                 break
-        return float(np.linalg.det(_map(y, force, half)[1] + np.eye(2)))
+        return float(np.linalg.det(_map(y, force, half, periods)[1] + np.eye(2)))
 
     return brentq(test, value - 1e-4, value + 1e-4, xtol=1e-13, rtol=1e-15)
 
@@ -114,22 +114,25 @@ def main() -> None:
         if k == 2:
             kept = curves
     print()
-    print("| kind | curve | F (perturb) | F (scipy DOP853 + Newton + Brent) | difference |")
+    print("| kind | curve (period) | F (perturb) | F (scipy DOP853 + Newton + Brent) | "
+          "difference |")  # fmt: skip
     print("|---|---|---|---|---|")
     seen = set()
+    worst = 0.0
     for index, curve in enumerate(kept.curves):
         for b in curve.bifurcations:
             key = (b.kind, round(b.value, 7))
-            if b.kind not in ("branch-point", "period-doubling") or key in seen or curve.period > 1:
+            if b.kind not in ("branch-point", "period-doubling") or key in seen:
                 continue
             seen.add(key)
             half = b.kind == "branch-point" and curve.parent is None
             if b.kind == "branch-point" and not half:
                 continue
-            ref = reference(b.value, b.state, half)
-            print(
-                f"| {b.kind} | {index + 1} | {b.value:.12f} | {ref:.12f} | {abs(b.value - ref):.1e} |"
-            )
+            ref = reference(b.value, b.state, half, curve.period)
+            worst = max(worst, abs(b.value - ref))
+            print(f"| {b.kind} | {index + 1} ({curve.period}) | {b.value:.12f} | {ref:.12f} | "
+                  f"{abs(b.value - ref):.1e} |")  # fmt: skip
+    print(f"\nlargest difference: {worst:.1e}")
 
 
 if __name__ == "__main__":
