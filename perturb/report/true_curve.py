@@ -123,6 +123,8 @@ def _listed(curves) -> list:
     a point met on several curves (where they meet) and for the two of a symmetric pair (the
     same kind, value and amplitude); a doubled orbit's meeting with its parent (``crossing``)
     is its parent's period doubling, printed there."""
+    from perturb.response.true_results import same_point
+
     entries: list = []
     for index, curve in enumerate(curves.curves, start=1):
         seen_here: list = []
@@ -130,14 +132,17 @@ def _listed(curves) -> list:
             if b.kind == "crossing":
                 continue
             key = (b.kind, round(b.value, 9), round(max(b.peaks.values(), default=0.0), 6))
-            here = next((e for e in entries if e[0] == key), None)
+            here = next((e for e in entries if e[0] == key or same_point(b, e[1])), None)
             if here is None:
                 entries.append([key, b, [index], 1])
                 seen_here.append(key)
             elif key in seen_here:
                 here[3] += 1
-            elif index not in here[2]:
-                here[2].append(index)
+            else:
+                if b.located and not here[1].located:  # the better location shown
+                    here[1] = b
+                if index not in here[2]:
+                    here[2].append(index)
     entries.sort(key=lambda e: e[1].value)
     return [(b, "curve " + ", ".join(map(str, where)), times) for _, b, where, times in entries]
 

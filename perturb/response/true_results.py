@@ -10,7 +10,7 @@ from attrs import field, frozen
 from perturb._defaults import TRUE_CURVE_SAME_ORBIT
 from perturb.errors import bad_value
 
-__all__ = ["Parting", "TrueBifurcation", "TrueCurve", "TrueCurves", "TruePoint"]
+__all__ = ["Parting", "TrueBifurcation", "TrueCurve", "TrueCurves", "TruePoint", "same_point"]
 
 #: The kinds of special points, as reported.
 FOLD, BRANCH_POINT = "fold", "branch-point"
@@ -232,7 +232,7 @@ class TrueCurves:
         they overlap, e.g. a curve stopped by its budget and another from a second seed) once."""
         out: list = []
         for b in sorted((b for c in self.curves for b in c.bifurcations), key=lambda b: b.value):
-            if not any(_same_point(b, seen) for seen in out):
+            if not any(same_point(b, seen) for seen in out):
                 out.append(b)
         return tuple(out)
 
@@ -246,7 +246,7 @@ def _by_measure(norms, peaks, harmonics, coordinate, measure) -> float:
     return float(values.get(coordinate, math.nan))
 
 
-def _same_point(a: TrueBifurcation, b: TrueBifurcation) -> bool:
+def same_point(a: TrueBifurcation, b: TrueBifurcation) -> bool:
     """The same special point: the same kind, value and amplitudes. A branch point is where two
     curves cross, met on each: located in the parameter to the secant's tolerance, but on the
     curve that turns there (a pitchfork) in amplitude only to its square root."""
