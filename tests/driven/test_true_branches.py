@@ -208,3 +208,56 @@ def test_a_neimark_sacker_point_gives_the_rotation_number_of_its_torus():
 def test_the_true_curve_reaches_the_sweeps_ends_exactly(diagram):
     values = [p.value for p in diagram.curves[0].points]
     assert 0.01 in values and 26.0 in values
+
+
+@pytest.mark.slow
+def test_a_cascade_on_an_asymmetric_oscillator_period_2_then_4():
+    """The twin-well Duffing about its right well (no x -> -x symmetry): the period-1 orbit
+    doubles (Jordan & Smith: period 2 by Γ = 0.27), the period-2 orbit born there doubles in
+    turn; each doubling against scipy's DOP853 on the well's own equation, Newton on the k-period
+    map and Brent on det(M_k + I), to 1e-8; the period-4 orbit is followed."""
+    from tests.driven.published import DAMPING, FREQUENCY, TwinWell
+
+    zeta, omega = DAMPING / (2 * math.sqrt(2)), FREQUENCY / math.sqrt(2)
+
+    def shot(y, gamma, periods):
+        def f(t, z):
+            x, v = z[0], z[1]
+            m = z[2:].reshape(2, 2)
+            jac = np.array([[0.0, 1.0], [-1.0 - 3 * x - 1.5 * x * x, -2 * zeta]])
+            acc = -x - 2 * zeta * v - 1.5 * x**2 - 0.5 * x**3 + gamma / 2 * math.cos(omega * t)
+            return [v, acc, *(jac @ m).ravel()]
+
+        sol = solve_ivp(f, (0.0, 2 * math.pi * periods / omega), [*y, 1.0, 0.0, 0.0, 1.0],
+                        method="DOP853", rtol=1e-12, atol=1e-14)  # fmt: skip
+        return sol.y[:2, -1], sol.y[2:, -1].reshape(2, 2)
+
+    def reference(b, periods):
+        y = np.array(b.state, dtype=float)
+
+        def test(gamma):
+            nonlocal y
+            for _ in range(30):
+                end, mono = shot(y, gamma, periods)
+                step = np.linalg.solve(mono - np.eye(2), -(end - y))
+                y = y + step
+                if float(np.max(np.abs(step))) < 1e-12:
+                    break
+            return float(np.linalg.det(shot(y, gamma, periods)[1] + np.eye(2)))
+
+        return brentq(test, b.value - 1e-4, b.value + 1e-4, xtol=1e-13, rtol=1e-15)
+
+    problem = TwinWell.create()
+    curves = problem_response(problem, "Gamma", np.linspace(0.02, 0.4, 5), true=1000,
+                              max_period=4).true_curve  # fmt: skip
+    first = min((b for b in curves.curves[0].bifurcations if b.kind == "period-doubling"),
+                key=lambda b: b.value)  # fmt: skip
+    assert 0.20 < first.value < 0.27
+    assert abs(first.value - reference(first, 1)) <= LOCATED
+    doubled = [c for c in curves.curves if c.period == 2 and c.parent == 0]
+    assert doubled and abs(doubled[0].born_at - first.value) < 1e-12
+    second = min((b for b in doubled[0].bifurcations if b.kind == "period-doubling"),
+                 key=lambda b: b.value)  # fmt: skip
+    assert first.value < second.value
+    assert abs(second.value - reference(second, 2)) <= LOCATED
+    assert any(c.period == 4 and c.birth == "period-doubling" for c in curves.curves)
