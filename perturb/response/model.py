@@ -268,13 +268,15 @@ def problem_response(
 
 def _refined_folds(response, curves):
     """The analytic folds with the true fold each one is near (``Fold.true_value``): the
-    nearest fold of a true curve of the response's period whose max ``|x|`` agrees within
+    nearest fold of a true curve through the analytic branches whose max ``|x|`` agrees within
     ``FOLD_PAIRING``, within the sweep's width."""
     import attrs
 
     from perturb._defaults import FOLD_PAIRING
 
-    true = [b for c in curves.curves if c.period == 1 for b in c.bifurcations if b.kind == "fold"]
+    true = [  # on the curves through the analytic branches, not those born on them
+        b for c in curves.curves if c.parent is None for b in c.bifurcations if b.kind == "fold"
+    ]
     width = response.grid[-1] - response.grid[0]
     folds = []
     for fold in response.folds:
