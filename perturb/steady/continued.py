@@ -30,6 +30,7 @@ from perturb.continuation.reading import read_segment
 from perturb.steady.census import order_census, same_orbit
 from perturb.steady.evaluate import PointEvaluator
 from perturb.steady.exact import exact_number
+from perturb.steady.point import by_measure
 from perturb.steady.traced import trace
 from perturb.system import EPS
 
@@ -71,9 +72,7 @@ class SpecialResponse:
     def amplitude(self, coordinate: str | None = None, measure: str = "initial") -> float:
         """``coordinate``'s amplitude by ``measure`` (``peak``, ``first-harmonic`` or
         ``initial``), as a response point's."""
-        table = {"peak": self.peak, "first-harmonic": self.first_harmonic, "initial": self.norms}
-        values = table[measure] or self.norms
-        return next(iter(values.values())) if coordinate is None else values[coordinate]
+        return by_measure(self, coordinate, measure)
 
 
 @frozen
@@ -108,10 +107,9 @@ class Continued:
     evaluator: object = field(eq=False, repr=False, default=None)
 
 
-def window_of(line, low: float, high: float) -> tuple[float, float]:
-    """The sweep's range widened by ``WINDOW_MARGIN`` on each side, where the problem accepts
-    the values (a side shrunk toward the sweep until it does)."""
-    margin = WINDOW_MARGIN * (high - low)
+def _widened(line, low: float, high: float, margin: float) -> tuple[float, float]:
+    """[low, high] widened by ``margin`` on each side, where the problem accepts the values (a
+    side shrunk toward the range until it does)."""
     ends = []
     for edge, outward in ((low, -margin), (high, margin)):
         step = outward
@@ -119,6 +117,12 @@ def window_of(line, low: float, high: float) -> tuple[float, float]:
             step = step / 2 if abs(step) > 1e-6 * margin else 0.0
         ends.append(edge + step)
     return ends[0], ends[1]
+
+
+def window_of(line, low: float, high: float) -> tuple[float, float]:
+    """The sweep's range widened by ``WINDOW_MARGIN`` on each side, where the problem accepts
+    the values (a side shrunk toward the sweep until it does)."""
+    return _widened(line, low, high, WINDOW_MARGIN * (high - low))
 
 
 def _multiplier_tests(evaluator, line):
@@ -188,14 +192,8 @@ def _dedupe(found: list[SpecialResponse], harmonics, group) -> list[SpecialRespo
 def reach_of(line, low: float, high: float) -> tuple[float, float]:
     """The window [low, high] widened by ``FOLD_REACH`` (in the line's scaled unit μ) on each
     side, where the problem accepts the values (a side shrunk toward the window until it does)."""
-    margin = FOLD_REACH / line.scale
-    ends = []
-    for edge, outward in ((low, -margin), (high, margin)):
-        step = outward
-        while step and line.invalid(edge + step):
-            step = step / 2 if abs(step) > 1e-6 * margin else 0.0
-        ends.append(edge + step)
-    return min(ends[0], low), max(ends[1], high)
+    below, above = _widened(line, low, high, FOLD_REACH / line.scale)
+    return min(below, low), max(above, high)
 
 
 def _order_seeds(equations, order: int, line, evaluator, ends):

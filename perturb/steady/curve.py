@@ -22,7 +22,7 @@ import math
 
 from attrs import field, frozen
 
-from perturb.steady.point import ResponsePoint
+from perturb.steady.point import ResponsePoint, by_measure
 
 __all__ = ["Fold", "FrequencyResponse", "ResponsePoint", "trace_branches"]
 
@@ -55,9 +55,7 @@ class Fold:
     def amplitude(self, coordinate: str | None = None, measure: str = "initial") -> float:
         """``coordinate``'s amplitude by ``measure`` (``peak``, ``first-harmonic`` or
         ``initial``), as a response point's."""
-        table = {"peak": self.peak, "first-harmonic": self.first_harmonic, "initial": self.norms}
-        values = table[measure] or self.norms
-        return next(iter(values.values())) if coordinate is None else values[coordinate]
+        return by_measure(self, coordinate, measure)
 
     def band_note(self, parameter: str) -> str:
         """What a point within the fold's uncertainty says of it."""
