@@ -26,12 +26,12 @@ HERE = Path(__file__).parent
 EPS, ZETA, GAMMA, FORCE = 0.05, 0.1, 1.0, 1.0  # forced-duffing's defaults
 
 
-def _shot(y, omega):
+def _shot(y, omega, eps=EPS, force=FORCE):
     def field(t, z):
         x, v = z[0], z[1]
         m = z[2:].reshape(2, 2)
-        jac = np.array([[0.0, 1.0], [-1.0 - 3 * EPS * GAMMA * x * x, -2 * EPS * ZETA]])
-        acc = -x + EPS * (-2 * ZETA * v - GAMMA * x**3 + FORCE * math.cos(omega * t))
+        jac = np.array([[0.0, 1.0], [-1.0 - 3 * eps * GAMMA * x * x, -2 * eps * ZETA]])
+        acc = -x + eps * (-2 * ZETA * v - GAMMA * x**3 + force * math.cos(omega * t))
         return [v, acc, *(jac @ m).ravel()]
 
     sol = solve_ivp(field, (0, 2 * math.pi / omega), [*y, 1.0, 0.0, 0.0, 1.0], method="DOP853",
@@ -39,12 +39,12 @@ def _shot(y, omega):
     return sol.y[:2, -1], sol.y[2:, -1].reshape(2, 2)
 
 
-def _true_fold(fold) -> float:
+def _true_fold(fold, eps=EPS, force=FORCE) -> float:
     omega0 = fold.value
     a, b = fold.amplitudes["a_x"], fold.amplitudes["b_x"]
 
     def system(z):
-        end, mono = _shot(z[:2], z[2])
+        end, mono = _shot(z[:2], z[2], eps, force)
         return [*(end - z[:2]), np.linalg.det(mono - np.eye(2))]
 
     z, info, ier, message = fsolve(system, [a, omega0 * b, omega0], xtol=1e-13, full_output=True)
@@ -73,6 +73,16 @@ def test_the_true_fold_lies_within_the_series_band(duffing):
     jump_up, jump_down = folds[1]
     assert abs(jump_up.value - truths[0]) <= jump_up.uncertainty
     assert math.isnan(jump_down.uncertainty) and math.isnan(jump_down.first_order)
+
+
+def test_at_a_smaller_eps_the_band_narrows_and_still_holds_the_truth():
+    """ε = 0.02, F = 0.5 at order 3: bands of 3e-10 and 1e-6, the true folds 6e-12 and 2e-8 away."""
+    problem = get_problem("forced-duffing").create(eps=0.02, F=0.5)
+    folds = problem_response(problem, "Omega", np.linspace(1.0, 1.06, 61), order=3).response.folds
+    assert len(folds) == 2
+    for fold in folds:
+        assert 0 < fold.uncertainty < 1e-5
+        assert abs(fold.value - _true_fold(fold, 0.02, 0.5)) <= fold.uncertainty
 
 
 def test_points_within_the_band_are_marked_table_json_and_stderr(capsys):
