@@ -33,7 +33,9 @@ from __future__ import annotations
 
 import math
 
+import attrs
 import numpy as np
+from attrs import define, field, frozen
 
 from perturb._defaults import (
     BRANCH_SWITCH_FRACTION,
@@ -50,28 +52,40 @@ __all__ = ["Birth", "Record", "follow_births"]
 SEED = "seed"
 
 
+@frozen
 class Birth:
-    """A special point that bears a branch: where, what kind, the new branch's direction and
-    period, refined or not (``note`` says how it was located)."""
+    """A special point that bears a branch: its kind, where (``x``, scaled), the new branch's
+    direction there and period, the record it lies on, whether it was refined (``note`` says how
+    it was located)."""
 
-    def __init__(self, kind, x, direction, period, parent, located, note, symmetric=False):
-        self.kind, self.x, self.direction = kind, np.asarray(x, dtype=float), direction
-        self.period, self.parent, self.located, self.note = period, parent, located, note
-        self.symmetric = symmetric
+    kind: str
+    x: np.ndarray = field(converter=lambda v: np.asarray(v, dtype=float), eq=False)
+    direction: np.ndarray = field(eq=False)
+    period: int
+    parent: object = field(eq=False)
+    located: bool
+    note: str
+    symmetric: bool = False
 
 
+@define(eq=False)
 class Record:
-    """One branch of the diagram: its continued curve (scaled unknowns), the map equations it was
-    followed on (its period ``period`` in response periods), its parent record (None for a seeded
-    curve), the kind of its birth and where (λ), and its refined special points."""
+    """One branch of the diagram, as it is built: its continued curve (scaled unknowns), the map
+    equations it was followed on (its ``period`` in response periods), its parent record's index
+    (None for a seeded curve), the kind of its birth and where (λ), its refined special points
+    ``(kind, x, located, note)``, the analytic branches on it, the shots it took and its last
+    failure."""
 
-    def __init__(self, curve, equations, period, parent=None, birth=SEED, born_at=math.nan):
-        self.curve, self.equations, self.period = curve, equations, int(period)
-        self.parent, self.birth, self.born_at = parent, birth, float(born_at)
-        self.refined: list = []  # (kind, x, located, note, multiplier)
-        self.branches: list[str] = []
-        self.shots = 0
-        self.failure = ""
+    curve: object
+    equations: object
+    period: int = field(converter=int)
+    parent: int | None = None
+    birth: str = SEED
+    born_at: float = field(default=math.nan, converter=float)
+    refined: list = field(factory=list)
+    branches: list = field(factory=list)
+    shots: int = 0
+    failure: str = ""
 
 
 def _on(curve, x) -> bool:
@@ -262,8 +276,7 @@ def follow_births(setup, base, seeded, *, lam_range, step, budget, max_period, g
             equations = maps.setdefault(birth.period, MapEquations(base, birth.period))
             signs = (1.0, -1.0) if birth.kind == BRANCH_POINT else (1.0,)
             for sign in signs:
-                oriented = Birth(birth.kind, birth.x, sign * birth.direction, birth.period,
-                                 birth.parent, birth.located, birth.note)  # fmt: skip
+                oriented = attrs.evolve(birth, direction=sign * birth.direction)
                 start, d = _switch(equations, oriented, step)
                 if start is None:
                     failures.append(
