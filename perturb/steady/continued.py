@@ -403,8 +403,10 @@ def _fold_errors(special, equations, order: int, line, traced, window, reach):
         seeds = _order_seeds(equations, order - 1, line, evaluator, window)
         lower = trace(equations, order - 1, line, *window, reach=reach, order_seeds=seeds)
         below = _matched(points, _folds_of([b.curve for b in lower.branches], line), line)
-    else:
+    elif order == 1:
         below = first
+    else:  # the first-order equations themselves: no order below them
+        below = [math.nan] * len(folds)
     out = []
     for s in special:
         if s.kind == "fold":
