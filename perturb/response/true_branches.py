@@ -155,13 +155,16 @@ def _pitchforks(record: Record, half: MapEquations) -> list[Birth]:
     return out
 
 
-def _other_branch_points(record: Record, known: list[Birth]) -> list[Birth]:
-    """Branch points of the bordered determinant not among the refined pitchforks: the second
-    kernel direction of [M − I | s] orthogonal to the tangent."""
+def _other_branch_points(record: Record, known: list[Birth], records) -> list[Birth]:
+    """Branch points of the bordered determinant not among the refined pitchforks and doublings
+    (this record's, or another's where this curve meets it: its birth, or where it rejoins its
+    parent): the second kernel direction of [M − I | s] orthogonal to the tangent."""
     out = []
     eqs = record.equations
+    refined = [b.x for b in known] + [r[1] for other in records for r in other.refined]
     for p in record.curve.of_kind(BRANCH_POINT):
-        if any(abs(p.x[-1] - b.x[-1]) <= 1e-6 * max(1.0, abs(p.x[-1])) for b in known):
+        reach = 1e-6 if p.located else 1e-3  # a secant that did not converge: its bracket
+        if any(abs(p.x[-1] - x[-1]) <= reach * max(1.0, abs(p.x[-1])) for x in refined):
             continue
         jac = eqs.jacobian(p.x)
         if not np.all(np.isfinite(jac)):
@@ -261,7 +264,7 @@ def follow_births(setup, base, seeded, *, lam_range, step, budget, max_period, g
             for b in pitchforks:
                 record.refined.append((BRANCH_POINT, b.x, b.located, b.note))
             births += pitchforks
-        births += _other_branch_points(record, births)
+        births += _other_branch_points(record, births, records)
         births += _doublings(record, max_period)
         if linear:  # refined and listed, but what is born there is a line of responses
             births = []
