@@ -581,6 +581,31 @@ TRUE_CURVE_MULTIPLIER_TOL = 1e-9
 #: lie orders of magnitude further apart.
 TRUE_CURVE_SAME_ORBIT = 1e-6
 
+# -- perturb.response.true_maps, true_branches (the whole diagram of the true responses)
+#: Newton on the minimally augmented system {R = 0, ψ = 0} of a special point: converged when a
+#: step is below this (relative to max(1, |x|), in the scaled unknowns); its gradient of ψ by
+#: central differences of this relative step (shots accurate to ~1e-15: the difference's error
+#: ~1e-15/1e-6 + 1e-12, far below the 1e-8 asked of a located point); a point that needs more
+#: than REFINE_MAX_ITER steps keeps the secant's location, and says so.
+REFINE_TOL = 1e-11
+REFINE_STEP = 1e-6
+REFINE_MAX_ITER = 12
+#: The first step onto a branch born at a branch point or a period doubling, along the null
+#: direction, as a fraction of the continuation's largest step: far enough that the corrector on
+#: the hyperplane across it finds the new branch, not the parent (which crosses it at distance
+#: ~0 only at the birth), near enough to stay in its basin.
+BRANCH_SWITCH_FRACTION = 0.25
+#: The longest cascade of period doublings followed by default (a response of 2 periods: the
+#: first doubling), and the most a user may ask for (``--max-period``): past 16 periods a
+#: cascade's steps are closer than the location's own tolerance in most systems (Feigenbaum's
+#: ratio 4.67: the fifth doubling lies 2e-3 of the first interval from the accumulation point).
+MAX_PERIOD_DEFAULT = 2
+MAX_PERIOD_CAP = 16
+#: The most branches one diagram follows (each a continuation of up to the --true budget): a
+#: symmetric system's pair at each of a few pitchforks and their doublings is tens; past it the
+#: remaining births are listed, not followed.
+MAX_BRANCHES = 64
+
 # -- perturb.continuation.reading
 #: Two readings closer than this (relative to max(1, |x|)) are one point: the same crossing seen
 #: from the two segments that share an end, far below any distance between distinct branches.
@@ -830,6 +855,48 @@ SYMMETRY_TOL = 1e-9
 #: Budget of the exact first-order folds on a line: a driven system's take 0.5-4 s (the absorber's
 #: five unknowns); a budget spent leaves the census at interior points to find closed branches.
 FOLD_SECONDS = 30.0
+
+#: Budget of the order-N census at a window's end (every real root of the order-N equations,
+#: certified): one oscillator's order-3 equations (degree 9 in two unknowns, 81 complex roots)
+#: take 0.1-0.3 s; a budget spent leaves the first-order seeds alone (said nowhere: they were
+#: the seeds before).
+ORDER_CENSUS_SECONDS = 10.0
+
+#: The order-N census is tried when the Bezout bound of the order-N equations (the product of
+#: their total degrees) is at most this: one oscillator to order 3 (9 x 9 = 81) or 4 (121) and
+#: two at order 1 take well under a second; a chain of three at order 2 (7^6 = 117649) spends
+#: any budget (measured: 20 s not enough), so its first-order seeds are the only ones.
+ORDER_CENSUS_BEZOUT = 400
+
+#: A root of the order-N census seeds a curve only when the series' own estimate of its error
+#: (the last correction, max over a period of |x_N - x_(N-1)|) is at most this fraction of its
+#: amplitude, the limit of its validity (VALIDITY_ESTIMATE_LIMIT): a truncated series has roots
+#: far from every motion whose terms still decrease (the forced Duffing at its defaults, order 3,
+#: Omega = 1.48, past the true jump-down 1.2629: an "upper branch" of amplitude 5.8 with a
+#: correction of 17 % of it; order 2, amplitude 15: 30 %), where a motion the series describes
+#: has a correction of 1e-7 to a few per cent. A branch whose seeds are all above it is still
+#: seeded by the first-order census, as before the order-N census.
+ORDER_SEED_ERROR = 0.1
+
+#: How far beyond the window (in the line's scaled unit μ: σ when sweeping Ω) the response's
+#: curves are followed, and the first-order folds taken as seeds: a branch of the order-N
+#: equations whose first-order counterpart turns just outside the window is continued in from
+#: there, and a fold of the order-N curve within this of the window is reported (marked
+#: outside). The order-N fold lies O(ε) in σ from the first-order one (0.04 for a softening
+#: Duffing at ε = 0.1); half a unit of σ covers that with room.
+FOLD_REACH = 0.5
+
+#: A fold of order N and one of the order below (or of the first-order equations) are the same
+#: fold when their amplitudes agree to this fraction of the larger (and the nearest such in
+#: (amplitudes, μ) is taken, each once): the series moves a fold's amplitude by O(ε) of it,
+#: while a response's two folds differ in amplitude by O(1) (jump-up 0.9, jump-down 4.0 on the
+#: README's Duffing).
+FOLD_PAIRING = 0.3
+
+#: Beyond the window the continuation's largest step is this share of the reach's width (within
+#: it, the window's own MAX_STEP_FRACTION): a narrow sweep's reach, many windows wide, is
+#: crossed in a few hundred steps, not thousands.
+REACH_STEP_SHARE = 0.25
 
 # -- perturb.steady.evaluate
 #: An order-N point whose Newton step to the order-(N−1) equations moves it by less than this

@@ -277,6 +277,12 @@ def _add_response(sub) -> None:
         "POINTS points per curve (default 1000, at most 10000)",
     )  # fmt: skip
     response.add_argument(
+        "--max-period", default=None, metavar="K", dest="max_period",
+        help="with --true: follow the period doublings of the true curves while the period stays "
+        "at most K response periods (default 2: the doubled orbits; 1: none; at most 16); the "
+        "branches born at branch points are always followed",
+    )  # fmt: skip
+    response.add_argument(
         "--plot", default=None, metavar="FILE",
         help="also save the frequency-response plot (needs matplotlib)",
     )  # fmt: skip

@@ -45,6 +45,31 @@ def _parse_true(points: str | None) -> int:
     return count
 
 
+def _parse_max_period(text: str | None, true: int) -> int | None:
+    """``--max-period K``: a whole number from 1 to ``MAX_PERIOD_CAP``, with ``--true`` only."""
+    from perturb._defaults import MAX_PERIOD_CAP
+
+    if text is None:
+        return None
+    try:
+        value = int(text)
+    except ValueError:
+        raise _UsageError(
+            f"--max-period {text!r}: give a whole number from 1 to {MAX_PERIOD_CAP}"
+        ) from None
+    if not 1 <= value <= MAX_PERIOD_CAP:
+        raise _UsageError(
+            f"--max-period {value}: give a whole number from 1 (no period doubling followed) to "
+            f"{MAX_PERIOD_CAP} (the cap: a cascade's later steps are closer than their location's "
+            "tolerance)"
+        )
+    if not true:
+        raise _UsageError(
+            f"--max-period {value}: it bounds the period doublings of the true curves; add --true"
+        )
+    return value
+
+
 def _check_domain(result) -> None:
     """Every steady state outside its series' domain: a failed run (``perturb solve``'s rule)."""
     points = result.response.points
@@ -100,13 +125,14 @@ def _cmd_response(args) -> int:
         if not (math.isfinite(tol) and tol > 0):
             raise _UsageError(f"--tol {args.tol}: give a finite number > 0, e.g. --tol 0.01")
     true = _parse_true(args.true_curve)
+    max_period = _parse_max_period(args.max_period, true)
     from perturb.cost import check_cost, response_cost
 
     check_cost(response_cost(len(grid), order, count, true), args.yes)
     plot = _check_plot(args)
     result = problem_response(
         problem, parameter, grid, order=order, validate=count, measure=args.measure, tol=tol,
-        true=true,
+        true=true, max_period=max_period,
     )  # fmt: skip
     _check_domain(result)
     if args.format != "table":  # the table shows them itself

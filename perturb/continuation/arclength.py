@@ -256,6 +256,9 @@ def _run(equations, trace, jac, h, h_min, h_max, lo, hi, domain, max_points):
             return s, f"{s.value} ({max_points} points); last at {_where(x)}"
         predictor = x + h * t
         corr = correct(equations, predictor, t)
+        if not corr.finite and not lo <= predictor[-1] <= hi and h * 0.5 >= h_min:
+            h *= 0.5  # a step past the range's end, where the equations may not be defined
+            continue
         if not corr.finite:
             s = ContinuationStatus.NOT_FINITE
             return s, f"{s.value}: near {_where(predictor)} (the curve is kept up to {_where(x)})"

@@ -16,7 +16,7 @@ from perturb._defaults import READ_MAX_ITER, SAME_READING
 from perturb.continuation.events import TestFunction, locate
 from perturb.continuation.newton import newton_fixed
 
-__all__ = ["values_at"]
+__all__ = ["read_segment", "values_at"]
 
 
 def _hermite(x0, t0, x1, t1, theta):
@@ -28,7 +28,10 @@ def _hermite(x0, t0, x1, t1, theta):
     return h00 * x0 + h10 * length * t0 + h01 * x1 + h11 * length * t1
 
 
-def _read(curve, k: int, value: float):
+def read_segment(curve, k: int, value: float):
+    """The point of ``curve``'s segment ``k`` (between points k and k + 1) at λ = ``value``
+    (inside the segment's λ-range): interpolated, then polished (see the module notes); None
+    when neither route finds it."""
     x0, x1 = curve.points[k], curve.points[k + 1]
     t0, t1 = curve.tangents[k], curve.tangents[k + 1]
     if x0[-1] == value:
@@ -84,7 +87,7 @@ def values_at(curve, values) -> list[np.ndarray]:
     for value in np.atleast_1d(np.asarray(values, dtype=float)):
         found: list[np.ndarray] = []
         for k in np.flatnonzero((low <= value) & (value <= high) & (low < high)):
-            x = _read(curve, int(k), float(value))
+            x = read_segment(curve, int(k), float(value))
             if x is None:
                 continue
             scale = max(1.0, float(np.max(np.abs(x))))

@@ -266,7 +266,7 @@ class DrivenFamily:
                 raise bad_value(name, array.tolist(), f"give {size} finite numbers")
         return np.concatenate((y0, [0.0], values, direction, np.eye(m).ravel(), np.zeros(m)))
 
-    def shoot(self, y0, values, direction, samples: int = 0) -> Shot:
+    def shoot(self, y0, values, direction, samples: int = 0, span: float | None = None) -> Shot:
         """Integrate over one response period from ``y0`` at parameter ``values``.
 
         Parameters
@@ -278,6 +278,10 @@ class DrivenFamily:
             dp/dλ, likewise (the sensitivity's direction).
         samples : int
             Also keep the state at this many equally spaced phases in [0, 2πN) (0: none).
+        span : float, optional
+            Integrate over [0, span] of the phase instead of the period (half of it for the
+            half-period map of a symmetric response); the shot's defect and monodromy are then
+            those of that map.
 
         Returns
         -------
@@ -286,10 +290,11 @@ class DrivenFamily:
         """
         m = self.state_size
         start = self._start(y0, values, direction)
+        end = self.period if span is None else float(span)
         t_eval = None
         if samples:
-            t_eval = np.linspace(0.0, self.period, int(samples) + 1)
-        traj = self.integrator.integrate(self.rhs, (0.0, self.period), start, t_eval=t_eval)
+            t_eval = np.linspace(0.0, end, int(samples) + 1)
+        traj = self.integrator.integrate(self.rhs, (0.0, end), start, t_eval=t_eval)
         z = np.asarray(traj.y_final, dtype=float) if traj.success else None
         if z is None or not np.all(np.isfinite(z)):
             nan = np.full(m, math.nan)

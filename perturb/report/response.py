@@ -34,7 +34,7 @@ def response_as_dict(result) -> dict:
     ``{"problem", "parameter", "order", "epsilon", "parameters", "points": [{"value", "branch",
     "amplitudes", "norms", "stable", "eigenvalues", "multipliers", "note", "peak",
     "first_harmonic", "error_estimate", "series_ok", "liouville", "curve"}], "folds": [{"value",
-    "norms", "amplitudes", "peak", "first_order", "inside"}], "backbone": {"coordinate",
+    "norms", "amplitudes", "peak", "first_order", "inside", "uncertainty", "true_value"}], "backbone": {"coordinate",
     "amplitudes", "values"} | null, "true": [{"value", "branch", "success", "amplitude",
     "amplitude_error", "floquet_max", "stable_true", "stable_analytic", "message",
     "true_amplitude", "measure", "within_tol", "reason", "multipliers_true",
@@ -109,6 +109,8 @@ def response_as_dict(result) -> dict:
                 "peak": _numbers(f.peak),
                 "first_order": _number(f.first_order),
                 "inside": f.inside,
+                "uncertainty": _number(f.uncertainty),
+                "true_value": _number(f.true_value),
             }
             for f in response.folds
         ],
@@ -207,12 +209,14 @@ def response_as_table(result) -> str:
         lines.append("folds (saddle-node: the response jumps here in a slow sweep; * beside it):")
         for f in response.folds:
             amps = "  ".join(f"|{c}| = {size(f, c):.6g}" for c in coords)
-            lines.append(f" {' ' if f.inside else '*'} {result.parameter} = {f.value:.8g}   {amps}")
+            lines.append(
+                f" {' ' if f.inside else '*'} {result.parameter} = {f.value:.8g}{_band(f)}   {amps}"
+            )
     others = [s for s in response.special if s.kind != "fold"]
     if others:
         lines.append("branch points, Neimark-Sacker, period doubling (* beside the sweep):")
         for s in others:
-            amps = "  ".join(f"|{c}| = {s.peak.get(c, math.nan):.6g}" for c in coords)
+            amps = "  ".join(f"|{c}| = {size(s, c):.6g}" for c in coords)
             mark = " " if s.inside else "*"
             lines.append(f" {mark}{s.kind:>15s} at {result.parameter} = {s.value:.8g}   {amps}")
     if result.backbone is not None:
@@ -272,6 +276,35 @@ def response_latex(result) -> str:
     )
 
 
+def _band(fold) -> str:
+    """`` ± δ`` (the series' own estimate of the fold's error), `` ± ?`` (it cannot tell), and
+    the true fold with ``--true``."""
+    band = f" ± {fold.uncertainty:.2g}" if math.isfinite(fold.uncertainty) else " ± ?"
+    if math.isfinite(fold.true_value):
+        band += f" (true {fold.true_value:.10g})"
+    return band
+
+
+def fold_lines(result) -> list[str]:
+    """Sentences about the folds' uncertainty when the series stands alone (no true fold
+    refines them): where the branch set may change, and the points there."""
+    response = result.response
+    lines = []
+    for f in response.folds:
+        if math.isfinite(f.true_value):
+            continue
+        marked = sum(1 for p in response.points if f.holds(p.value))
+        if not math.isfinite(f.uncertainty):
+            lines.append(f"{f.band_note(result.parameter)}; check it with --true")
+        elif marked:
+            lines.append(
+                f"{f.band_note(result.parameter)} (the series' own estimate: orders "
+                f"{response.order} and {response.order - 1} differ by that); {marked} point(s) "
+                "there are marked; check them with --true"
+            )
+    return lines
+
+
 def flag_lines(result) -> list[str]:
     """Sentences about the points whose series is outside its domain (``series_ok`` false) or
     beyond its validity: the series' own estimate of its error (``error``, per coordinate) more
@@ -306,4 +339,4 @@ def flag_lines(result) -> list[str]:
             f"(up to {ratio:.2g} at {result.parameter} = {point.value:.6g}); check them with "
             "--validate"
         )
-    return lines
+    return lines + fold_lines(result)

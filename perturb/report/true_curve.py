@@ -25,18 +25,24 @@ def _numbers(mapping: dict) -> dict:
 def true_curve_as_dict(curves) -> dict | None:
     """The ``true_curve`` entry of ``perturb response --format json`` (None without ``--true``).
 
-    ``{"budget", "tolerance", "measure", "integrator", "curves": [{"branches", "status", "success",
-    "message", "shots", "points": [{"value", "state", "norms", "peaks", "harmonics",
-    "multipliers", "stable"}]}], "bifurcations": [{"kind", "value", "curve", "norms", "peaks",
-    "multiplier", "multipliers", "inside", "located", "note"}], "partings": [{"branch", "value",
-    "analytic", "true", "difference", "tolerance", "before", "after", "note"}], "failures": [str]}``;
-    complex numbers are ``[re, im]``, non-finite numbers null (``difference`` is null where no
-    true orbit is left).
+    ``{"budget", "tolerance", "measure", "integrator", "curves": [{"branches",
+    "status", "success", "message", "shots", "period", "parent", "birth", "born_at", "points":
+    [{"value", "state", "norms", "peaks", "harmonics", "multipliers", "stable"}],
+    "bifurcations": [...]}], "bifurcations": [{"kind", "value", "curve", "norms", "peaks",
+    "multiplier", "multipliers", "inside", "located", "note", "rotation", "state", "period"}],
+    "partings": [{"branch", "value", "analytic", "true", "difference", "tolerance", "before",
+    "after", "note"}], "failures": [str]}``; complex numbers are ``[re, im]``, non-finite numbers
+    null (``difference`` is null where no true orbit is left). Each curve is one branch of the
+    diagram: its ``period`` (in response periods), its ``parent`` (the index of the curve it was
+    born on; null for a curve through the analytic branches), the kind of its ``birth``
+    (``seed``, ``branch-point``, ``period-doubling``) and where (``born_at``), and its own
+    special points (``bifurcations``, as in the list of all of them).
     """
     if curves is None:
         return None
     out_curves, bifurcations = [], []
     for index, curve in enumerate(curves.curves):
+        own = [_bifurcation(b, index, curve.period) for b in curve.bifurcations]
         out_curves.append(
             {
                 "branches": list(curve.branches),
@@ -44,6 +50,11 @@ def true_curve_as_dict(curves) -> dict | None:
                 "success": curve.success,
                 "message": curve.message,
                 "shots": curve.shots,
+                "period": curve.period,
+                "parent": curve.parent,
+                "birth": curve.birth,
+                "born_at": _number(curve.born_at),
+                "bifurcations": own,
                 "points": [
                     {
                         "value": p.value,
@@ -58,21 +69,7 @@ def true_curve_as_dict(curves) -> dict | None:
                 ],
             }
         )
-        for b in curve.bifurcations:
-            bifurcations.append(
-                {
-                    "kind": b.kind,
-                    "value": b.value,
-                    "curve": index,
-                    "norms": _numbers(b.norms),
-                    "peaks": _numbers(b.peaks),
-                    "multiplier": _complex(b.multiplier),
-                    "multipliers": [_complex(z) for z in b.multipliers],
-                    "inside": b.inside,
-                    "located": b.located,
-                    "note": b.note,
-                }
-            )
+        bifurcations.extend(own)
     return {
         "budget": curves.budget,
         "tolerance": curves.tolerance,
@@ -98,8 +95,65 @@ def true_curve_as_dict(curves) -> dict | None:
     }
 
 
-def _norms(norms: dict) -> str:
-    return "  ".join(f"|{c}| = {v:.6g}" for c, v in norms.items())
+def _bifurcation(b, index: int, period: int) -> dict:
+    return {
+        "kind": b.kind,
+        "value": b.value,
+        "curve": index,
+        "norms": _numbers(b.norms),
+        "peaks": _numbers(b.peaks),
+        "multiplier": _complex(b.multiplier),
+        "multipliers": [_complex(z) for z in b.multipliers],
+        "inside": b.inside,
+        "located": b.located,
+        "note": b.note,
+        "rotation": _number(b.rotation),
+        "state": [_number(v) for v in b.state],
+        "period": period,
+    }
+
+
+def _amplitudes(point, measure: str) -> str:
+    """Each resonant coordinate's amplitude in ``measure`` (the one the section's header names)."""
+    return "  ".join(f"|{c}| = {point.amplitude(c, measure):.6g}" for c in point.norms)
+
+
+def _listed(curves) -> list:
+    """The special points to print: ``(point, "curve k[, j]", times)`` by value, one entry for
+    a point met on several curves (where they meet) and for the two of a symmetric pair (the
+    same kind, value and amplitude); a doubled orbit's meeting with its parent (``crossing``)
+    is its parent's period doubling, printed there."""
+    from perturb.response.true_results import same_point
+
+    entries: list = []
+    for index, curve in enumerate(curves.curves, start=1):
+        seen_here: list = []
+        for b in curve.bifurcations:
+            if b.kind == "crossing":
+                continue
+            key = (b.kind, round(b.value, 9), round(max(b.peaks.values(), default=0.0), 6))
+            here = next((e for e in entries if e[0] == key or same_point(b, e[1])), None)
+            if here is None:
+                entries.append([key, b, [index], 1])
+                seen_here.append(key)
+            elif key in seen_here:
+                here[3] += 1
+            else:
+                if b.located and not here[1].located:  # the better location shown
+                    here[1] = b
+                if index not in here[2]:
+                    here[2].append(index)
+    entries.sort(key=lambda e: e[1].value)
+    return [(b, "curve " + ", ".join(map(str, where)), times) for _, b, where, times in entries]
+
+
+def _birth(curve, parameter: str) -> str:
+    if curve.parent is None:
+        return f"from {', '.join(curve.branches)}"
+    return (
+        f"period {curve.period}, born at the {curve.birth} at {parameter} = "
+        f"{curve.born_at:.10g} on curve {curve.parent + 1}"
+    )
 
 
 def true_curve_lines(curves, parameter: str) -> list[str]:
@@ -115,20 +169,32 @@ def true_curve_lines(curves, parameter: str) -> list[str]:
         span = f"{parameter} {min(values):.6g}..{max(values):.6g}" if values else "no point"
         stable = sum(1 for p in curve.points if p.stable)
         lines.append(
-            f"  curve {i} (from {', '.join(curve.branches)}): {len(curve.points)} points "
+            f"  curve {i} ({_birth(curve, parameter)}): {len(curve.points)} points "
             f"({stable} stable), {span}, {curve.shots} shots; "
             + ("" if curve.success else "STOPPED: ")
             + curve.message
         )
-    found = curves.bifurcations
+    found = _listed(curves)
     if found:
-        lines.append("  special points of the true curves (located on them):")
-        for b in found:
+        from perturb.steady.measures import MEASURES
+
+        lines.append(
+            "  special points of the true curves (located on them; amplitude: "
+            f"{MEASURES.get(curves.measure, curves.measure)}):"
+        )
+        for b, where_found, times in found:
             where = "" if b.inside else "  (outside the sweep)"
             z = b.multiplier
+            torus = f", torus rotation number {b.rotation:.8g}" if math.isfinite(b.rotation) else ""
+            pair = (
+                f" x{times} (orbits that are images: x -> -x, or a period later)"
+                if times > 1
+                else ""
+            )
             lines.append(
-                f"    {b.kind:>15s} {parameter} = {b.value:.10g}   {_norms(b.norms)}   "
-                f"multiplier {z.real:+.6f}{z.imag:+.6f}i{where}"
+                f"    {b.kind:>15s} {parameter} = {b.value:.10g}   "
+                f"{_amplitudes(b, curves.measure)}   "
+                f"multiplier {z.real:+.6f}{z.imag:+.6f}i{torus}   on {where_found}{pair}{where}"
                 + (f"  ({b.note})" if b.note else "")
             )
     if curves.partings:

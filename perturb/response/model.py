@@ -172,7 +172,7 @@ def check_request(problem, parameter: str):
 
 def problem_response(
     problem, parameter: str, grid: Sequence[float], order: int = 1, validate: int = 0,
-    measure: str = "peak", tol: float | None = None, true: int = 0,
+    measure: str = "peak", tol: float | None = None, true: int = 0, max_period: int | None = None,
 ) -> ProblemResponse:  # fmt: skip
     """The frequency response of a driven ``problem`` over ``grid`` values of ``parameter``.
 
@@ -202,7 +202,11 @@ def problem_response(
     true : int
         Continue the true periodic orbits from the branches, at most this many points per curve
         (0: not; :func:`perturb.response.true_curve.true_curves`), and mark where the analytic
-        curve parts from them by more than ``tol`` (relative, in ``measure``).
+        curve parts from them by more than ``tol`` (relative, in ``measure``); the branches born
+        on them are followed too (:mod:`perturb.response.true_branches`).
+    max_period : int, optional
+        With ``true``: period doublings are followed while the period (in response periods)
+        stays at most this (default ``MAX_PERIOD_DEFAULT``, at most ``MAX_PERIOD_CAP``).
 
     Returns
     -------
@@ -225,6 +229,10 @@ def problem_response(
     check_measure(measure)
     check_validate(validate)
     tol = DEFAULT_TOL if tol is None else check_tol(tol)
+    from perturb._defaults import MAX_PERIOD_DEFAULT
+    from perturb.response.true_curve import check_max_period
+
+    max_period = check_max_period(MAX_PERIOD_DEFAULT if max_period is None else max_period)
     case = problem.case()
     for value in grid:  # the problem's own checks at every grid value (one line, exit 2)
         point = case.at(**{parameter: float(value)})
@@ -249,11 +257,39 @@ def problem_response(
 
         curves = true_curves(
             problem, parameter, response, branch_names_, order, budget=true, tol=tol,
-            measure=measure,
+            measure=measure, max_period=max_period,
         )  # fmt: skip
+        response = _refined_folds(response, curves)
     return ProblemResponse(
         problem.name, parameter, response, branch_names_, spine, true_points, curves
     )
+
+
+def _refined_folds(response, curves):
+    """The analytic folds with the true fold each one is near (``Fold.true_value``): the
+    nearest fold of a true curve through the analytic branches whose max ``|x|`` agrees within
+    ``FOLD_PAIRING``, within the sweep's width."""
+    import attrs
+
+    from perturb._defaults import FOLD_PAIRING
+
+    true = [  # on the curves through the analytic branches, not those born on them
+        b for c in curves.curves if c.parent is None for b in c.bifurcations if b.kind == "fold"
+    ]
+    width = response.grid[-1] - response.grid[0]
+    folds = []
+    for fold in response.folds:
+        size = max(fold.peak.values(), default=math.nan)  # both carry max |x|, whatever is drawn
+        near = []
+        for b in true:
+            other = max(b.peaks.values(), default=math.nan)
+            if math.isfinite(size) and abs(other - size) > FOLD_PAIRING * max(size, 1e-300):
+                continue
+            if abs(b.value - fold.value) <= width:
+                near.append(b)
+        best = min(near, key=lambda b: abs(b.value - fold.value), default=None)
+        folds.append(attrs.evolve(fold, true_value=best.value if best else math.nan))
+    return attrs.evolve(response, folds=tuple(folds))
 
 
 def check_measure(measure: str) -> str:

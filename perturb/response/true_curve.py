@@ -40,6 +40,8 @@ import numpy as np
 
 from perturb._defaults import (
     DEFAULT_TOL,
+    MAX_PERIOD_CAP,
+    MAX_PERIOD_DEFAULT,
     SEED_TRIES,
     TRUE_CURVE_MULTIPLIER_TOL,
     TRUE_CURVE_POINTS,
@@ -47,6 +49,7 @@ from perturb._defaults import (
     TRUE_CURVE_SAMPLES,
 )
 from perturb.errors import PerturbError, bad_value
+from perturb.response.true_branches import follow_births
 from perturb.response.true_family import OutsideDomain, ScaledEquations, TrueFamily, floquet_tests
 from perturb.response.true_partings import partings
 from perturb.response.true_results import (
@@ -70,6 +73,7 @@ __all__ = [
     "TrueCurve",
     "TrueCurves",
     "TruePoint",
+    "check_max_period",
     "true_curves",
 ]
 
@@ -84,6 +88,7 @@ def true_curves(
     tol: float = DEFAULT_TOL,
     integrator=None,
     measure: str | None = None,
+    max_period: int = MAX_PERIOD_DEFAULT,
 ) -> TrueCurves:
     """The true curves of a driven ``problem``'s response over ``parameter`` (module notes).
 
@@ -107,6 +112,10 @@ def true_curves(
     measure : str, optional
         The amplitude compared where the curves part: ``initial`` (the initial-value norm),
         ``peak`` (max ``|x|``) or ``first-harmonic`` (default: the analytic response's own).
+    max_period : int
+        Follow the branches born at branch points, and the period doublings while the period
+        (in response periods) stays at most this (1: the branches born at branch points only;
+        :mod:`perturb.response.true_branches`).
 
     Returns
     -------
@@ -130,6 +139,7 @@ def true_curves(
         raise bad_value("budget", budget, "give the most points of each true curve (>= 2)")
     if not (isinstance(tol, int | float) and math.isfinite(tol) and tol > 0):
         raise bad_value("tol", tol, "give a positive relative tolerance, e.g. 0.01")
+    max_period = check_max_period(max_period)
     measure = response.measure if measure is None else measure
     if measure not in MEASURES:
         raise bad_value("measure", measure, f"choose one of {list(MEASURES)}")
@@ -148,23 +158,50 @@ def true_curves(
         seeded = _follow(setup, equations, name, candidates, curves, covered, budget)
         if isinstance(seeded, str):
             failures.append(seeded)
-    built = tuple(_true_curve(setup, equations, *entry, grid) for entry in covered)
+    lo, hi, step = setup.continuation_range()
+    records, unborn = follow_births(
+        setup, equations, covered, lam_range=(lo, hi), step=step, budget=budget,
+        max_period=max_period, grid=grid,
+    )  # fmt: skip
+    anchors = [(i, *r) for i, record in enumerate(records) for r in record.refined]
+    built = tuple(_true_curve(setup, record, grid, anchors, records) for record in records)
     found = partings(setup, equations, response, names, covered, tol, measure)
     return TrueCurves(
         parameter, built, found, int(budget), float(tol), setup.family.integrator.name,
-        tuple(failures), measure,
+        (*failures, *unborn), measure, max_period,
     )  # fmt: skip
 
 
+def check_max_period(value) -> int:
+    """A cascade's longest period: a whole number from 1 to ``MAX_PERIOD_CAP``, else one line."""
+    if isinstance(value, bool) or not isinstance(value, int | np.integer):
+        raise bad_value("max_period", value, f"give a whole number from 1 to {MAX_PERIOD_CAP}")
+    if not 1 <= value <= MAX_PERIOD_CAP:
+        raise bad_value(
+            "max_period", value,
+            f"give a whole number from 1 (no period doubling followed) to {MAX_PERIOD_CAP} (the "
+            "cap: a cascade's later steps are closer than their location's tolerance)",
+        )  # fmt: skip
+    return int(value)
+
+
 def _seeds(response, names):
-    """Per analytic branch (as traced): its name, its points ordered from the middle out."""
+    """Per analytic branch (as traced): its name, its points ordered by how far the series can
+    be trusted there (inside its domain first, then by its own relative error estimate), then
+    from the middle out."""
     by_id = {id(p): n for p, n in zip(response.points, names, strict=True)}
     out = []
+
+    def trust(point) -> tuple:
+        size = max(max(point.norms.values(), default=0.0), 1e-300)
+        error = max((v for v in point.error.values() if math.isfinite(v)), default=math.inf)
+        return (not point.series_ok, error / size)
+
     for branch in response.branches():
         if not branch:
             continue
         mid = (len(branch) - 1) / 2
-        ordered = sorted(range(len(branch)), key=lambda k: (abs(k - mid), k))
+        ordered = sorted(range(len(branch)), key=lambda k: (*trust(branch[k]), abs(k - mid), k))
         candidates = [branch[k] for k in ordered]
         name = by_id.get(id(branch[int(round(mid))]), "branch")
         top = max(max(p.norms.values(), default=0.0) for p in branch)
@@ -233,42 +270,129 @@ def _on_curve(curve, x) -> bool:
     return any(float(np.max(np.abs(r - x))) <= TRUE_CURVE_SAME_ORBIT * scale for r in readings)
 
 
-def _true_curve(setup, equations, curve, branches, shots, failure, grid) -> TrueCurve:
-    """The continued curve as true points (one sampled shot each) and special points."""
+def _true_curve(setup, record, grid, anchors=(), records=()) -> TrueCurve:
+    """A record of the diagram as true points (one sampled shot each) and special points (the
+    refined ones in place of the secant's). ``anchors``: ``(record index, kind, x, located,
+    note)`` of every refined point of the diagram: a branch point or fold the secant found
+    where this curve meets another at one of them (its birth, or where it rejoins its parent) is
+    that point (kind ``crossing`` on a curve of another period: a doubled orbit meets its
+    parent, as a period-k orbit is a 2k-periodic one, at its period doubling)."""
     lo, hi = setup.range
+    curve, equations = record.curve, record.equations
     points = []
-    for x in curve.points:
+    for x in _with_ends(curve, lo, hi):
         y0, lam = equations.unscale(x)
         try:
-            points.append(setup.point(lam, y0))
+            points.append(_point(setup, record, lam, y0)[0])
         except OutsideDomain:
             continue
     special = []
+    refined = list(record.refined)
     for found, note in _special_points(curve):
-        y0, lam = equations.unscale(found.x)
+        x, located = found.x, found.located
+        match = _refined_match(refined, found)
+        if match is not None:
+            kind, x, located, extra = refined.pop(match)
+            note = "; ".join(n for n in (note, extra) if n)
+        elif found.kind == BRANCH_POINT and any(r[0] == BRANCH_POINT for r in record.refined):
+            continue  # the secant's trace of a pitchfork refined elsewhere on the curve
+        elif found.kind in (BRANCH_POINT, FOLD) and (anchor := _anchor(anchors, found)):
+            index, kind, x, located, extra = anchor
+            lam = equations.unscale(x)[1]
+            if any(abs(b.value - lam) <= 1e-9 * max(1.0, abs(lam)) for b in special):
+                continue  # met once already (a fold twinned with the branch point)
+            crossing = kind if records[index].period == record.period else "crossing"
+            found = type(found)(crossing, x, found.tangent, found.index, 0.0, located, "")
+            note = f"where it meets curve {index + 1} (the {kind} there)"
+        y0, lam = equations.unscale(x)
         try:
-            shot = setup.family.shoot(
-                y0, setup.values(lam), setup.direction(lam), TRUE_CURVE_SAMPLES
-            )
+            here, monodromy = _point(setup, record, lam, y0)
         except OutsideDomain:
             continue
-        here = setup.point_of(lam, shot)
-        special.append(
-            TrueBifurcation(
-                kind=found.kind, value=lam, norms=here.norms, peaks=here.peaks,
-                multiplier=_critical(found.kind, shot.monodromy), multipliers=here.multipliers,
-                harmonics=here.harmonics,
-                inside=bool(lo <= lam <= hi), located=found.located,
-                note="; ".join(n for n in (found.note, note) if n),
-            )
-        )  # fmt: skip
+        special.append(_bifurcation(found.kind, lam, here, monodromy, lo, hi, located,
+                                    "; ".join(n for n in (found.note if not located else "", note)
+                                              if n)))  # fmt: skip
+    for kind, x, located, note in refined:  # refined points the continuation did not flag
+        y0, lam = equations.unscale(x)
+        try:
+            here, monodromy = _point(setup, record, lam, y0)
+        except OutsideDomain:
+            continue
+        special.append(_bifurcation(kind, lam, here, monodromy, lo, hi, located, note))
+    special.sort(key=lambda b: b.value)
     message = curve.message
-    if not curve.success and failure:
-        message += f" (last failure: {failure})"
+    if not curve.success and record.failure:
+        message += f" (last failure: {record.failure})"
+    parent = record.parent
     return TrueCurve(
-        branches, points, special, curve.status.name, curve.success,
-        _in_parameter(message, setup, equations), shots,
+        record.branches, points, special, curve.status.name, curve.success,
+        _in_parameter(message, setup, equations), record.shots, record.period,
+        parent, record.birth, record.born_at,
     )  # fmt: skip
+
+
+def _with_ends(curve, lo: float, hi: float) -> list:
+    """The curve's points with its crossings of the sweep's ends inserted where they fall: the
+    true curve reaches the ends exactly (read on the segments that cross them, polished)."""
+    from perturb.continuation.reading import read_segment
+
+    out = []
+    for k, x in enumerate(curve.points):
+        out.append(x)
+        if k + 1 == len(curve.points):
+            break
+        a, b = float(x[-1]), float(curve.points[k + 1][-1])
+        ends = [e for e in (lo, hi) if min(a, b) < e < max(a, b)]
+        for end in sorted(ends, reverse=b < a):
+            here = read_segment(curve, k, end)
+            if here is not None:
+                out.append(here)
+    return out
+
+
+def _anchor(anchors, found):
+    """The refined point of the diagram at the λ of ``found`` (a relative 1e-5: the secant's
+    reach beside a crossing of two curves), if any."""
+    reach = 1e-5 if found.located else 1e-3  # a secant that did not converge: its bracket
+    near = [a for a in anchors if abs(a[2][-1] - found.x[-1]) <= reach * max(1.0, abs(found.x[-1]))]
+    return min(near, key=lambda a: float(np.max(np.abs(a[2] - found.x)))) if near else None
+
+
+def _refined_match(refined, found):
+    """The index of the refined point of the same kind nearest the continuation's ``found``, if
+    within the secant's reach (a relative 1e-3 in λ)."""
+    same = [i for i, r in enumerate(refined) if r[0] == found.kind]
+    if not same:
+        return None
+    best = min(same, key=lambda i: abs(refined[i][1][-1] - found.x[-1]))
+    if abs(refined[best][1][-1] - found.x[-1]) <= 1e-3 * max(1.0, abs(found.x[-1])):
+        return best
+    return None
+
+
+def _bifurcation(kind, lam, here, monodromy, lo, hi, located, note) -> TrueBifurcation:
+    multiplier = _critical(kind, monodromy)  # +1 at a crossing
+    rotation = math.nan
+    if kind == NEIMARK_SACKER and math.isfinite(abs(multiplier)):
+        rotation = abs(math.atan2(multiplier.imag, multiplier.real)) / (2 * math.pi)
+    return TrueBifurcation(
+        kind=kind, value=lam, norms=here.norms, peaks=here.peaks, multiplier=multiplier,
+        multipliers=here.multipliers, harmonics=here.harmonics, inside=bool(lo <= lam <= hi),
+        located=located, note=note, rotation=rotation, state=here.state,
+    )  # fmt: skip
+
+
+def _point(setup, record, lam: float, y0):
+    """``(TruePoint, monodromy)`` of the record's map at (y0, λ): one period by the family's own
+    shot, k periods composed (peaks and harmonics over the whole k periods)."""
+    if record.period == 1:
+        shot = setup.family.shoot(y0, setup.values(lam), setup.direction(lam), TRUE_CURVE_SAMPLES)
+        return setup.point_of(lam, shot), shot.monodromy
+    at = record.equations.compose(y0, lam, TRUE_CURVE_SAMPLES)
+    if at is None:
+        raise OutsideDomain(record.equations.last_failure or f"a shot failed at {lam:g}")
+    _, monodromy, _, orbit = at
+    return setup.point_of_orbit(lam, y0, monodromy, orbit, record.period), monodromy
 
 
 def _special_points(curve):
@@ -300,5 +424,15 @@ def _critical(kind: str, monodromy) -> complex:
 
 
 def _in_parameter(message: str, setup, equations) -> str:
-    """The continuation's message speaks of λ and u: say what they are."""
-    return f"{message} [λ is {setup.parameter}; u the state x {equations.factor:.6g}]"
+    """The continuation's message speaks of λ and u, the scaled state: say them as the swept
+    parameter and the state itself."""
+    import re
+
+    names = ", ".join(s.name for s in setup.system.state_symbols)
+
+    def state(match) -> str:
+        values = [float(v) / equations.factor for v in match.group(1).split(",")]
+        return f"({names}) = ({', '.join(f'{v:.6g}' for v in values)})"
+
+    message = re.sub(r"u = \[([^\]]*)\]", state, message)
+    return message.replace("λ", setup.parameter)

@@ -52,6 +52,7 @@ class TrueFamily:
         self.cycles = drive.p
         self.params = (*system.parameters, system.parameter)
         exprs = first_order_expressions(system, {})
+        self.expressions = tuple(exprs)
         self.frequency = excitation_frequency(system, {})
         self.family = DrivenFamily.build(
             system.state_symbols, drive.phase, exprs, self.frequency, self.params, drive.p,
@@ -71,6 +72,8 @@ class TrueFamily:
         }  # fmt: skip
         self._case = problem.case()
         self._values: dict[float, np.ndarray] = {}
+        self._directions: dict[float, np.ndarray] = {}
+        self._last_case: tuple = (math.nan, None)
         self.range = (float(grid[0]), float(grid[-1]))
 
     def continuation_range(self) -> tuple[float, float, float]:
@@ -93,11 +96,15 @@ class TrueFamily:
         return ends[0], ends[1], step
 
     def case(self, lam: float):
-        """The problem's :class:`perturb.case.Case` at λ; OutsideDomain if the problem refuses it."""
-        try:
-            return self._case.at(**{self.parameter: float(lam)})
-        except ValueError as exc:  # the problem's own check: InvalidParameterError and kin
-            raise OutsideDomain(f"{self.parameter} = {lam:.10g}: {exc}") from None
+        """The problem's :class:`perturb.case.Case` at λ; OutsideDomain if the problem refuses it
+        (the last one kept: the values and the direction ask for the same λ)."""
+        lam = float(lam)
+        if self._last_case[0] != lam:
+            try:
+                self._last_case = (lam, self._case.at(**{self.parameter: lam}))
+            except ValueError as exc:  # the problem's own check: InvalidParameterError and kin
+                raise OutsideDomain(f"{self.parameter} = {lam:.10g}: {exc}") from None
+        return self._last_case[1]
 
     def values(self, lam: float) -> np.ndarray:
         """The system's parameter values (and its own ε or μ last) at λ; OutsideDomain if
@@ -116,13 +123,21 @@ class TrueFamily:
         return self._values[lam]
 
     def direction(self, lam: float) -> np.ndarray:
-        """dp/dλ at λ: the case's exact derivatives (of μ = 1/ε too, in the large regime)."""
-        case = self.case(lam)
-        rates, eps_rate = case.rate(self.parameter)
-        own = eps_rate
-        if self.system.regime is Regime.LARGE:
-            own = -eps_rate / case.epsilon**2
-        return np.array([rates.get(p.name, 0.0) for p in self.params[:-1]] + [own], dtype=float)
+        """dp/dλ at λ: the case's exact derivatives (of μ = 1/ε too, in the large regime); kept
+        per λ like :meth:`values` (a corrector asks at the same λ for every shot)."""
+        lam = float(lam)
+        if lam not in self._directions:
+            case = self.case(lam)
+            rates, eps_rate = case.rate(self.parameter)
+            own = eps_rate
+            if self.system.regime is Regime.LARGE:
+                own = -eps_rate / case.epsilon**2
+            if len(self._directions) > 4096:
+                self._directions.clear()
+            self._directions[lam] = np.array(
+                [rates.get(p.name, 0.0) for p in self.params[:-1]] + [own], dtype=float
+            )
+        return self._directions[lam]
 
     def omega(self, lam: float) -> float:
         return float(self._omega(*self.values(lam)))
@@ -143,6 +158,23 @@ class TrueFamily:
             lam, y0, self.norms(lam, y0), self._peaks(shot), self._harmonics(shot), mu, stable
         )
 
+    def point_of_orbit(self, lam: float, y0, monodromy, orbit, periods: int) -> TruePoint:
+        """The true point of a response of ``periods`` response periods from its composed
+        monodromy and its orbit sampled over all of them."""
+        from perturb.oracle.orbit import multipliers_of
+
+        mono = np.asarray(monodromy, dtype=float)
+        mu = multipliers_of(mono) if np.all(np.isfinite(mono)) else np.full(len(y0), math.nan)
+        largest = float(np.max(np.abs(mu))) if np.all(np.isfinite(mu)) else math.nan
+        stable = None if abs(largest - 1.0) <= TRUE_CURVE_MULTIPLIER_TOL else largest < 1.0
+        if not math.isfinite(largest):
+            stable = None
+        orbit = np.asarray(orbit)
+        peaks = {name: _peak(orbit[i]) for i, name in enumerate(self.names)}
+        return TruePoint(
+            lam, y0, self.norms(lam, y0), peaks, self._harmonics_of(orbit, periods), mu, stable
+        )
+
     def norms(self, lam: float, y0) -> dict:
         """The analytic curve's measure of each resonant coordinate at (y0, λ)."""
         nu = self.omega(lam) / self.cycles
@@ -158,7 +190,9 @@ class TrueFamily:
         return {name: _peak(orbit[i]) for i, name in enumerate(self.names)}
 
     def _harmonics(self, shot) -> dict:
-        orbit = np.asarray(shot.orbit)
+        return self._harmonics_of(np.asarray(shot.orbit), 1)
+
+    def _harmonics_of(self, orbit: np.ndarray, periods: int) -> dict:
         out = {}
         for name, (i, m) in self.harmonics.items():
             if orbit.size == 0:
@@ -167,7 +201,7 @@ class TrueFamily:
             samples = orbit[i]
             k = np.arange(samples.size)
             # resonant harmonic m of s = θ/p: exp(-i m θ_k/p), θ_k = 2πp k/n
-            phase = np.exp(-2j * math.pi * m * k / samples.size)
+            phase = np.exp(-2j * math.pi * m * periods * k / samples.size)
             out[name] = float(2.0 * abs(np.sum(samples * phase)) / samples.size)
         return out
 

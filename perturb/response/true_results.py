@@ -10,7 +10,7 @@ from attrs import field, frozen
 from perturb._defaults import TRUE_CURVE_SAME_ORBIT
 from perturb.errors import bad_value
 
-__all__ = ["Parting", "TrueBifurcation", "TrueCurve", "TrueCurves", "TruePoint"]
+__all__ = ["Parting", "TrueBifurcation", "TrueCurve", "TrueCurves", "TruePoint", "same_point"]
 
 #: The kinds of special points, as reported.
 FOLD, BRANCH_POINT = "fold", "branch-point"
@@ -70,7 +70,9 @@ class TrueBifurcation:
     Attributes
     ----------
     kind : str
-        ``fold``, ``branch-point``, ``period-doubling`` or ``neimark-sacker``.
+        ``fold``, ``branch-point``, ``period-doubling`` or ``neimark-sacker``; ``crossing`` on
+        a doubled orbit's curve where it meets its parent (the parent's period doubling, where
+        the two are one orbit).
     value : float
     norms, peaks : dict
         As :class:`TruePoint`'s, at the point.
@@ -84,6 +86,11 @@ class TrueBifurcation:
     note : str
     harmonics : dict
         As :class:`TruePoint`'s, at the point.
+    rotation : float
+        At a Neimark–Sacker point, the rotation number of the torus born there: the argument of
+        the complex multiplier over 2π (NaN at the other kinds).
+    state : tuple of float
+        The state at t = 0 there (empty when not known).
     """
 
     kind: str
@@ -96,6 +103,8 @@ class TrueBifurcation:
     located: bool = True
     note: str = ""
     harmonics: dict = field(factory=dict)
+    rotation: float = field(default=math.nan, converter=float)
+    state: tuple = field(default=(), converter=lambda v: tuple(float(x) for x in v))
 
     def amplitude(self, coordinate: str | None = None, measure: str = "initial") -> float:
         """As :meth:`TruePoint.amplitude`, at the special point."""
@@ -121,6 +130,18 @@ class TrueCurve:
         Where and why it ended (both directions).
     shots : int
         Integrations of the variational equations it took.
+    period : int
+        The responses' period in response periods of the problem (1; 2 past a period doubling,
+        4 past the next…).
+    parent : int or None
+        The index (in :attr:`TrueCurves.curves`) of the curve it was born on; None for a curve
+        through the analytic branches.
+    birth : str
+        How it was born: ``seed`` (through an analytic branch's state), ``branch-point`` (the
+        other branch through a branch point: the asymmetric pair at a symmetric system's
+        pitchfork) or ``period-doubling``.
+    born_at : float
+        The swept parameter at its birth (NaN for a seeded curve).
     """
 
     branches: tuple = field(converter=tuple)
@@ -130,6 +151,10 @@ class TrueCurve:
     success: bool
     message: str
     shots: int = 0
+    period: int = 1
+    parent: int | None = None
+    birth: str = "seed"
+    born_at: float = field(default=math.nan, converter=float)
 
 
 @frozen
@@ -187,6 +212,8 @@ class TrueCurves:
     measure : str
         The amplitude measure of the partings (and of a plot): ``initial``, ``peak`` or
         ``first-harmonic``.
+    max_period : int
+        The longest period (in response periods) whose period doublings were followed.
     """
 
     parameter: str
@@ -197,6 +224,7 @@ class TrueCurves:
     integrator: str = ""
     failures: tuple = field(converter=tuple, factory=tuple)
     measure: str = "initial"
+    max_period: int = 1
 
     @property
     def bifurcations(self) -> tuple:
@@ -204,7 +232,7 @@ class TrueCurves:
         they overlap, e.g. a curve stopped by its budget and another from a second seed) once."""
         out: list = []
         for b in sorted((b for c in self.curves for b in c.bifurcations), key=lambda b: b.value):
-            if not any(_same_point(b, seen) for seen in out):
+            if not any(same_point(b, seen) for seen in out):
                 out.append(b)
         return tuple(out)
 
@@ -218,7 +246,7 @@ def _by_measure(norms, peaks, harmonics, coordinate, measure) -> float:
     return float(values.get(coordinate, math.nan))
 
 
-def _same_point(a: TrueBifurcation, b: TrueBifurcation) -> bool:
+def same_point(a: TrueBifurcation, b: TrueBifurcation) -> bool:
     """The same special point: the same kind, value and amplitudes. A branch point is where two
     curves cross, met on each: located in the parameter to the secant's tolerance, but on the
     curve that turns there (a pitchfork) in amplitude only to its square root."""

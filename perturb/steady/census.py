@@ -26,6 +26,8 @@ from perturb._defaults import (
     CENSUS_SAME_ORBIT,
     FOLD_SECONDS,
     MAX_SHIFT_DIVISOR,
+    ORDER_CENSUS_BEZOUT,
+    ORDER_CENSUS_SECONDS,
     SYMMETRY_PROBES,
     SYMMETRY_SEED,
     SYMMETRY_TOL,
@@ -33,7 +35,14 @@ from perturb._defaults import (
 from perturb.cache import cached
 from perturb.steady.roots import RootStatus, real_roots
 
-__all__ = ["census", "distinct_orbits", "line_folds", "orbit_images", "shift_symmetry"]
+__all__ = [
+    "census",
+    "distinct_orbits",
+    "line_folds",
+    "orbit_images",
+    "order_census",
+    "shift_symmetry",
+]
 
 
 @lru_cache(maxsize=32)
@@ -126,6 +135,38 @@ def census(equations, fixed: dict) -> tuple[list[np.ndarray], str]:
         return [np.array([float(r[u]) for u in unknowns]) for r in found.roots], ""
 
     return cached("response-census", lambda: (sp.srepr(tuple(rows)),), solve)
+
+
+def order_census(equations, order: int, fixed: dict) -> tuple[list[np.ndarray], str]:
+    """Every real root of the order-``order`` equations D_N = 0 at the exact values ``fixed``
+    (``{symbol: Rational}``, ε among them): ``(roots, "")``, or ``([], why)`` when they are not
+    polynomial, too large to solve (Bezout bound above ``ORDER_CENSUS_BEZOUT``) or the budget
+    ``ORDER_CENSUS_SECONDS`` was spent.
+
+    Most roots of the truncated series are not motions (large amplitudes where its terms do not
+    decrease): the caller keeps those the series describes. Kept in the disk cache.
+    """
+    unknowns = list(equations.amplitudes)
+    rows = [sp.expand(e.xreplace(fixed)) for e in equations.displacement(order)]
+    try:
+        degrees = [sp.Poly(r, *unknowns).total_degree() for r in rows]
+    except sp.PolynomialError:
+        return [], "the order-N equations are not polynomial in the amplitudes"
+    if math.prod(max(d, 1) for d in degrees) > ORDER_CENSUS_BEZOUT:
+        return [], f"the order-N equations are too large (degrees {degrees})"
+
+    def solve():
+        try:
+            found = real_roots(rows, unknowns, seconds=ORDER_CENSUS_SECONDS, floats=True)
+        except (ValueError, TypeError, sp.PolynomialError) as exc:  # not over the rationals
+            return [], f"the order-N equations could not be solved exactly ({exc})"
+        if found.status is RootStatus.NO_REAL_ROOT:
+            return [], ""
+        if not found.status.success:
+            return [], f"{found.status.value} ({found.message})"
+        return [np.array([float(r[u]) for u in unknowns]) for r in found.roots], ""
+
+    return cached("response-order-census", lambda: (sp.srepr(tuple(rows)),), solve)
 
 
 def line_folds(equations, base: dict, slope: dict, lam: sp.Symbol) -> tuple[list[np.ndarray], str]:

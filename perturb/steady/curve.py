@@ -22,7 +22,7 @@ import math
 
 from attrs import field, frozen
 
-from perturb.steady.point import ResponsePoint
+from perturb.steady.point import ResponsePoint, by_measure
 
 __all__ = ["Fold", "FrequencyResponse", "ResponsePoint", "trace_branches"]
 
@@ -34,7 +34,11 @@ class Fold:
     ``value`` is the fold of the order-N response, located on its continued curve
     (``first_order``: the nearest fold of the first-order curve); ``note`` says when it could not
     be located to the tolerance; ``inside`` False for a fold just beside the sweep (in its
-    window); ``peak`` max ``|x|`` of each coordinate there.
+    window); ``peak`` max ``|x|`` of each coordinate there. ``uncertainty``: the series' own
+    estimate of the fold's error in the swept parameter, the distance to the same fold one order
+    lower (NaN where that order has none beside it: the series cannot tell where the fold is);
+    within ±``uncertainty`` of ``value`` the branch set may change. ``true_value``: the true
+    curve's fold it refines (``--true``; NaN without it, or none near).
     """
 
     value: float = field(converter=float)
@@ -44,6 +48,32 @@ class Fold:
     note: str = ""
     inside: bool = True
     peak: dict = field(factory=dict)
+    uncertainty: float = field(default=math.nan, converter=float)
+    true_value: float = field(default=math.nan, converter=float)
+    first_harmonic: dict = field(factory=dict)
+
+    def amplitude(self, coordinate: str | None = None, measure: str = "initial") -> float:
+        """``coordinate``'s amplitude by ``measure`` (``peak``, ``first-harmonic`` or
+        ``initial``), as a response point's."""
+        return by_measure(self, coordinate, measure)
+
+    def band_note(self, parameter: str) -> str:
+        """What a point within the fold's uncertainty says of it."""
+        if not math.isfinite(self.uncertainty):
+            return (
+                f"the series cannot tell where the fold at {parameter} = {self.value:.8g} is (one "
+                "order lower has no fold beside it): the branch set may change near it"
+            )
+        return (
+            f"the branch set may change within ±{self.uncertainty:.2g} of the fold at "
+            f"{parameter} = {self.value:.8g}"
+        )
+
+    def holds(self, value: float) -> bool:
+        """Whether ``value`` lies within the fold's uncertainty band (an unknown one is not
+        drawn as a band: it is said, by :meth:`band_note`, of the fold itself)."""
+        width = self.uncertainty if math.isfinite(self.uncertainty) else 0.0
+        return abs(float(value) - self.value) <= width
 
 
 @frozen

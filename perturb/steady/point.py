@@ -9,7 +9,7 @@ from attrs import field, frozen
 
 from perturb._defaults import TRIVIAL_AMPLITUDE
 
-__all__ = ["BranchPoint", "ResponsePoint"]
+__all__ = ["BranchPoint", "ResponsePoint", "by_measure"]
 
 
 @frozen
@@ -80,9 +80,16 @@ class ResponsePoint:
     def amplitude(self, coordinate: str | None = None, measure: str = "initial") -> float:
         """``coordinate``'s amplitude by ``measure`` (``peak``, ``first-harmonic`` or
         ``initial``; :data:`perturb.steady.measures.MEASURES`)."""
-        table = {"peak": self.peak, "first-harmonic": self.first_harmonic, "initial": self.norms}
-        values = table[measure] or self.norms
-        return next(iter(values.values())) if coordinate is None else values[coordinate]
+        return by_measure(self, coordinate, measure)
+
+
+def by_measure(point, coordinate: str | None, measure: str) -> float:
+    """``coordinate``'s amplitude of anything with ``peak``, ``first_harmonic`` and ``norms``
+    (a point, a fold, a special point) by ``measure``; the initial-value norm where the measure's
+    table is empty."""
+    table = {"peak": point.peak, "first-harmonic": point.first_harmonic, "initial": point.norms}
+    values = table[measure] or point.norms
+    return next(iter(values.values())) if coordinate is None else values[coordinate]
 
 
 #: The same type by the name the branch solver first gave it.

@@ -10,7 +10,6 @@ outside its domain, drawn apart and never silently taken for a motion.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
 
 import numpy as np
@@ -23,13 +22,6 @@ from perturb.steady.curve import Fold, FrequencyResponse, ResponsePoint
 from perturb.steady.exact import exact_number
 
 __all__ = ["frequency_response", "frequency_response_on", "name_at", "response_of"]
-
-
-def _first_order_folds(result: Continued) -> list[float]:
-    line = result.traced.line
-    return [
-        float(line.lam(p.value)) for curve in result.traced.first for p in curve.of_kind("fold")
-    ]
 
 
 def response_of(result: Continued, *, system: str, parameter: str, order: int, epsilon: float,
@@ -61,15 +53,15 @@ def response_of(result: Continued, *, system: str, parameter: str, order: int, e
         here = sorted(by_value.get(value, []), key=lambda p: p.amplitude(None, measure))
         points.extend(here)
         names.extend(branch_names(here, result.traced.harmonics))
-    first = _first_order_folds(result)
     folds = []
     for s in result.special:
         if s.kind != "fold":
             continue
-        nearest = min(first, key=lambda f: abs(f - s.value), default=math.nan)
         folds.append(
-            Fold(s.value, s.amplitudes, s.norms, nearest, "", inside=s.inside, peak=s.peak)
-        )
+            Fold(s.value, s.amplitudes, s.norms, s.first_order, "", inside=s.inside, peak=s.peak,
+                 uncertainty=s.uncertainty, first_harmonic=s.first_harmonic)
+        )  # fmt: skip
+    points = [_marked(p, folds, parameter) for p in points]
     response = FrequencyResponse(
         system=system,
         parameter=parameter,
@@ -86,6 +78,16 @@ def response_of(result: Continued, *, system: str, parameter: str, order: int, e
         measure=measure,
     )
     return response, names
+
+
+def _marked(point: ResponsePoint, folds, parameter: str) -> ResponsePoint:
+    """``point`` with a note when it lies within a fold's uncertainty band."""
+    import attrs
+
+    notes = [f.band_note(parameter) for f in folds if f.holds(point.value)]
+    if not notes:
+        return point
+    return attrs.evolve(point, note="; ".join(filter(None, [point.note, *notes])))
 
 
 def frequency_response_on(equations, order: int, line, grid, *, system: str, values: dict,

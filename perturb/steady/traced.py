@@ -30,7 +30,10 @@ from perturb._defaults import (
     HOMOTOPY_MARGIN,
     HOMOTOPY_MAX_STEP,
     HOMOTOPY_STEP,
+    INITIAL_STEP_FRACTION,
     LIFT_TRIES,
+    MAX_STEP_FRACTION,
+    REACH_STEP_SHARE,
 )
 from perturb.continuation import ContinuationStatus, CurveEquations, continue_both, continue_curve
 from perturb.steady.census import census, distinct_orbits, line_folds, same_orbit
@@ -44,7 +47,7 @@ __all__ = ["Branch", "Traced", "line_equations", "trace"]
 @frozen
 class Branch:
     """One order-N curve of the response (its λ in μ, see :mod:`perturb.steady.line`) and the
-    first-order curve it was lifted from."""
+    first-order curve it was lifted from (None: seeded by the order-N census itself)."""
 
     curve: object = field(eq=False)
     first: object = field(eq=False)
@@ -206,11 +209,18 @@ def _where(line, x) -> str:
 
 
 def trace(
-    equations, order: int, line, low: float, high: float, census_at=None, folds: bool = True
-) -> Traced:
+    equations, order: int, line, low: float, high: float, census_at=None, folds: bool = True,
+    reach: tuple | None = None, order_seeds=None,
+) -> Traced:  # fmt: skip
     """The order-N curves of ``equations`` on ``line`` over the window [low, high] of the swept
     parameter (see the module notes). ``census_at``: where the census is taken (default the
-    window's ends); ``folds``: seed from the exact first-order folds too (closed curves)."""
+    window's ends); ``folds``: seed from the exact first-order folds too (closed curves).
+
+    ``reach``: a range of the swept parameter holding the window, over which the curves are
+    followed and from whose first-order folds they are seeded (default the window): a branch
+    whose first-order counterpart turns just outside the window is continued into it.
+    ``order_seeds``: ``callable(cap) -> [(u, λ)]``, points of the order-N equations themselves
+    (the order-N census at the window's ends), each continued unless already on a curve."""
     n = len(equations.amplitudes)
     symbols = {p.name: p for p in equations.system.parameters}
     harmonics = tuple(equations.harmonics)
@@ -220,6 +230,8 @@ def trace(
     first_eqs = line_equations(compiled_displacement(equations, 0), line, n)
     order_eqs = line_equations(compiled_displacement(equations, order), line, n)
     mu_range = (float(line.mu(low)), float(line.mu(high)))
+    reach_low, reach_high = (low, high) if reach is None else reach
+    mu_reach = (float(line.mu(reach_low)), float(line.mu(reach_high)))
     failures: list[str] = []
     notes: list[str] = []
     seeds = []
@@ -237,7 +249,7 @@ def trace(
         folds, why = line_folds(equations, base, slope, mu)
         if why:
             failures.append(f"the first-order folds on the line: {why}")
-        seeds.extend(f for f in folds if mu_range[0] <= f[-1] <= mu_range[1])
+        seeds.extend(f for f in folds if mu_reach[0] <= f[-1] <= mu_reach[1])
     top = max((float(np.max(np.abs(s[:-1]))) for s in seeds), default=1.0)
     cap = AMPLITUDE_CAP * max(1.0, top)
 
@@ -246,7 +258,11 @@ def trace(
             return f"an amplitude beyond {cap:.3g}, {AMPLITUDE_CAP:g} times the census'"
         return "" if line.affine else line.invalid(float(line.lam(x[-1])))
 
-    options = {"lam_range": mu_range, "domain": domain}
+    options = {"lam_range": mu_reach, "domain": domain}
+    if mu_reach != mu_range:  # the window's resolution, and steps of the reach beside it
+        width, total = mu_range[1] - mu_range[0], mu_reach[1] - mu_reach[0]
+        options["step"] = INITIAL_STEP_FRACTION * width
+        options["max_step"] = MAX_STEP_FRACTION * max(width, REACH_STEP_SHARE * total)
     firsts = []
     for seed in seeds:
         if any(_on(c, seed, harmonics, group) for c in firsts):
@@ -270,6 +286,17 @@ def trace(
             continue
         traced = continue_both(order_eqs, lifted, **options)
         branches.append(Branch(traced, curve))
+        if not traced.success:
+            failures.append(f"order {order}: {traced.message}")
+    for u, lam in order_seeds(cap) if order_seeds is not None else ():
+        seed = np.append(np.asarray(u, dtype=float), float(line.mu(lam)))
+        if any(_on(b.curve, seed, harmonics, group) for b in branches):
+            continue
+        traced = continue_both(order_eqs, seed, **options)
+        if len(traced.points) < 2:
+            failures.append(f"order {order}, from {_where(line, seed)}: {traced.message}")
+            continue
+        branches.append(Branch(traced, None))
         if not traced.success:
             failures.append(f"order {order}: {traced.message}")
     return Traced(

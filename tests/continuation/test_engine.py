@@ -188,3 +188,27 @@ def test_the_small_solves_are_lapacks(n):
         assert _solve(a, b) == pytest.approx(np.linalg.solve(a, b), rel=1e-12, abs=1e-12)
     with pytest.raises(np.linalg.LinAlgError):
         _solve(np.zeros((n, n)), np.ones(n))
+
+
+def test_a_step_past_the_range_where_the_equations_are_undefined_is_shortened():
+    """A curve whose equations are not defined below λ = 0 (a forcing level F > 0), followed down
+    to the range's end 0.01 with long steps: a predictor past the end, where the residual is not
+    finite, shortens the step (it used to stop the curve short of the end: F = 0.237)."""
+    import math
+
+    import numpy as np
+
+    from perturb.continuation import ContinuationStatus, CurveEquations, continue_curve
+
+    def residual(x):
+        return [x[0] - x[1] ** 2] if x[1] >= 0 else [math.nan]
+
+    def jacobian(x):
+        return [[1.0, -2 * x[1]]] if x[1] >= 0 else [[math.nan, math.nan]]
+
+    curve = continue_curve(CurveEquations(residual, jacobian), [0.25, 0.5], lam_range=(0.01, 1.0),
+                           direction=-1.0, step=0.3, max_step=0.3)  # fmt: skip
+    assert curve.status is ContinuationStatus.LEFT_RANGE, curve.message
+    assert curve.points[-1][-1] == 0.01
+    assert abs(curve.points[-1][0] - 1e-4) < 1e-12
+    assert np.all(curve.points[:, -1] >= 0.01)

@@ -108,3 +108,19 @@ def test_bad_response_options_fail_before_any_computing(capsys, monkeypatch, arg
     monkeypatch.setattr(model, "problem_response", refuse)
     code, out, err = run(capsys, "response", "forced-duffing", "--sweep", "Omega=1:1.1:3", *argv)
     assert code == 2 and out == "" and words in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_tongue_edge_is_listed_once():
+    """A branch point is met on both curves through it: the trivial one crosses it transversally
+    (its secant converges), the nontrivial one turns there (located in λ to the square root of
+    the tolerance only); the edge is listed once, at the trivial curve's location."""
+    import numpy as np
+
+    from perturb.response.model import problem_response
+    from problems import get_problem
+
+    result = problem_response(get_problem("parametric-duffing").create(), "Omega",
+                              np.linspace(1.9, 2.1, 41))  # fmt: skip
+    edges = [s for s in result.response.special if s.kind == "branch-point"]
+    assert len(edges) == 2
+    assert all(max(s.peak.values()) == 0.0 for s in edges)  # on x = 0 itself

@@ -37,7 +37,8 @@ def plot_frequency_response(result, *, coordinate: str | None = None, ax=None, t
     matplotlib.figure.Figure
         Every continued order-N curve, stable stretches solid, unstable dashed, where the series'
         terms do not decrease dotted grey; folds as open circles, branch points, Neimark-Sacker
-        and period-doubling points by their own markers; the backbone dotted; the true orbits
+        and period-doubling points by their own markers, each fold's uncertainty band (the
+        series' own estimate) shaded ("?" where it cannot tell); the backbone dotted; the true orbits
         (``perturb response --validate K``) as crosses at their true amplitude, the analytic points
         off the truth by more than ``tol`` ringed. The amplitude is the response's ``measure``
         (max ``|x|`` by default), named on the axis.
@@ -88,17 +89,16 @@ def plot_frequency_response(result, *, coordinate: str | None = None, ax=None, t
         if any(not all(c.series_ok) for c in response.curves):
             ax.plot([], [], ":", color="0.6", label="series terms not decreasing")
         folds = [f for f in response.folds if low <= f.value <= high]
+        _draw_fold_bands(ax, folds, result.parameter)
         if folds:
-            size = [(f.peak if measure == "peak" and f.peak else f.norms) for f in folds]
-            ax.plot([f.value for f in folds], [s.get(coordinate, math.nan) for s in size],
+            ax.plot([f.value for f in folds], [f.amplitude(coordinate, measure) for f in folds],
                     "o", mfc="none", color="k", label="fold")  # fmt: skip
         marks = {"branch-point": ("s", "branch point"), "neimark-sacker": ("D", "Neimark-Sacker"),
                  "period-doubling": ("^", "period doubling")}  # fmt: skip
         for kind, (marker, label) in marks.items():
             found = [p for p in response.special if p.kind == kind and low <= p.value <= high]
             if found:
-                heights = [(p.peak if measure == "peak" else p.norms).get(coordinate, math.nan)
-                           for p in found]  # fmt: skip
+                heights = [p.amplitude(coordinate, measure) for p in found]
                 ax.plot([p.value for p in found], heights, marker, mfc="none", color="k",
                         label=label)  # fmt: skip
         if result.backbone is not None and result.backbone.coordinate == coordinate:
@@ -120,6 +120,20 @@ def plot_frequency_response(result, *, coordinate: str | None = None, ax=None, t
         ax.legend(loc="best", frameon=False)
         ax.set_title(title or f"{result.problem}: frequency response, order {response.order}")
     return fig
+
+
+def _draw_fold_bands(ax, folds, parameter: str) -> None:
+    """Each fold's uncertainty band (the series' own estimate: ± the distance to the same fold
+    one order lower), shaded; a fold whose band the series cannot tell is marked "?"."""
+    labelled = False
+    for f in folds:
+        if math.isfinite(f.uncertainty):
+            ax.axvspan(f.value - f.uncertainty, f.value + f.uncertainty, color="0.8", alpha=0.5,
+                       lw=0, label=None if labelled else "fold uncertainty (series)")  # fmt: skip
+            labelled = True
+        else:
+            ax.annotate("?", (f.value, 0), xycoords=("data", "axes fraction"), xytext=(0, 4),
+                        textcoords="offset points", ha="center", fontsize=9, color="0.3")  # fmt: skip
 
 
 def _draw_curve(ax, curve, coordinate: str, measure: str) -> None:

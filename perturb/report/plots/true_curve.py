@@ -1,7 +1,8 @@
 """The true curves drawn beside the analytic response (``perturb response --true --plot``): stable
-parts solid, unstable dotted, marginal (conservative) dash-dotted, in black; the special points
-located on them (fold, branch point, period doubling, Neimark–Sacker) and where the analytic
-curve parts from them by more than the tolerance."""
+parts solid, unstable dashed, marginal (conservative) dash-dotted; the curves through the analytic
+branches and those born at their branch points in black, the doubled orbits (period 2, 4…) in a
+colour per period; the special points located on them (fold, branch point, period doubling,
+Neimark–Sacker) and where the analytic curve parts from them by more than the tolerance."""
 
 from __future__ import annotations
 
@@ -14,7 +15,9 @@ MARKERS = {
     "period-doubling": ("s", "C1", "period doubling"),
     "neimark-sacker": ("D", "C4", "Neimark–Sacker"),
 }
-_STYLE = {True: "-", False: ":", None: "-."}
+_STYLE = {True: "-", False: "--", None: "-."}
+#: The colour of a true curve by its period (in response periods): 1 black, then one a doubling.
+_PERIOD_COLOURS = {1: "k", 2: "C5", 4: "C6", 8: "C8", 16: "C9"}
 
 
 def _segments(points, coordinate, measure):
@@ -44,9 +47,12 @@ def draw_true_curves(ax, curves, coordinate: str, parameter: str) -> None:
         return
     labelled = set()
     for curve in curves.curves:
+        colour = _PERIOD_COLOURS.get(curve.period, "C7")
         for stable, values, amplitudes in _segments(curve.points, coordinate, curves.measure):
             label = {True: "true, stable", False: "true, unstable", None: "true, marginal"}[stable]
-            ax.plot(values, amplitudes, _STYLE[stable], color="k", lw=0.9,
+            if curve.period > 1:
+                label = f"true period {curve.period}, " + label.split(", ")[1]
+            ax.plot(values, amplitudes, _STYLE[stable], color=colour, lw=0.9,
                     label=None if label in labelled else label)  # fmt: skip
             labelled.add(label)
     for kind, (marker, colour, label) in MARKERS.items():
