@@ -241,6 +241,11 @@ AXIS_MAX_VALUES = 10_000_000
 #: times over (0.55 s a period unloaded), the van der Pol oscillator's 0.7 s.
 WORK_PRECISION_PERIOD_SECONDS = 0.6
 
+#: Recorded times of a sweep's state that count as one point against the grid's limits
+#: (SWEEP_CONFIRM_POINTS, SWEEP_MAX_POINTS): a point's own results are about ten numbers, so ten
+#: times of its state weigh as much again; 10⁶ times at each of 10⁵ points would be 10¹¹ values.
+SWEEP_STATE_SHARE = 10
+
 #: Most points of one sweep even with confirmation: 10^10 float64 values per quantity are 80 GB
 #: a variable; beyond it the grid is a mistake rather than a plan.
 SWEEP_MAX_POINTS = 10_000_000_000

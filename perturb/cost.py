@@ -42,6 +42,7 @@ from perturb._defaults import (
     SWEEP_CONFIRM_POINTS,
     SWEEP_MAX_POINTS,
     SWEEP_POINT_SECONDS,
+    SWEEP_STATE_SHARE,
     SWEEP_VALIDATION_SECONDS,
     TRUE_POINT_SECONDS,
     WORK_PRECISION_PERIOD_SECONDS,
@@ -108,12 +109,18 @@ def work_precision_cost(periods: float, orders: int, repeat: int) -> Cost:
     return Cost(what, 0, seconds)
 
 
-def sweep_cost(points: int, order: int, validate: bool) -> Cost:
-    """A sweep of ``points`` points at ``order`` (each validated when ``validate``)."""
+def sweep_cost(points: int, order: int, validate: bool, times: int = 1) -> Cost:
+    """A sweep of ``points`` points at ``order`` (each validated when ``validate``), the state
+    recorded at ``times`` times of each: past :data:`SWEEP_MAX_POINTS` values of the state it is
+    refused as a grid of that many points would be."""
     per = SWEEP_VALIDATION_SECONDS if validate else SWEEP_POINT_SECONDS
     seconds = RESPONSE_DERIVE_SECONDS * _growth(order) + points * per
+    seconds += points * max(int(times) - 1, 0) * SWEEP_POINT_SECONDS
     kind = "validated sweep points" if validate else "sweep points"
-    return Cost(f"{points:,} {kind} at order {order}", points, seconds)
+    what = f"{points:,} {kind} at order {order}"
+    if times > 1:
+        what += f", the state at {times:,} times of each"
+    return Cost(what, max(points, points * int(times) // SWEEP_STATE_SHARE), seconds)
 
 
 def _duration(seconds: float) -> str:
@@ -137,17 +144,19 @@ def check_cost(cost: Cost, yes: bool) -> None:
     perturb.errors.InvalidParameterError
         One line: how much was asked, and how to confirm (or that it is past any confirmation).
     """
+    weighed = ", counting the recorded times" if "times of each" in cost.what else ""
     if cost.points > SWEEP_MAX_POINTS:
         raise InvalidParameterError(
-            f"the grid has {cost.points:,} points, more than {SWEEP_MAX_POINTS:,}; give fewer "
-            "points per axis"
+            f"the grid has {cost.points:,} points{weighed}, more than {SWEEP_MAX_POINTS:,}; give "
+            "fewer points per axis" + (" or fewer times" if weighed else "")
         )
     if yes:
         return
     if cost.points > SWEEP_CONFIRM_POINTS:
         raise InvalidParameterError(
-            f"the grid has {cost.points:,} points (more than {SWEEP_CONFIRM_POINTS:,}); check the "
-            "axes and confirm with --yes (yes=True in Python)"
+            f"the grid has {cost.points:,} points{weighed} (more than "
+            f"{SWEEP_CONFIRM_POINTS:,}); check the axes and confirm with --yes (yes=True in "
+            "Python)"
         )
     if not cost.seconds <= CONFIRM_SECONDS or not math.isfinite(cost.seconds):
         raise InvalidParameterError(
