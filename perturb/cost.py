@@ -32,7 +32,10 @@ import math
 from attrs import frozen
 
 from perturb._defaults import (
+    CENSUS_MODE_GROWTH,
+    CENSUS_SECONDS,
     CONFIRM_SECONDS,
+    NOTICE_SECONDS,
     RESPONSE_ALWAYS_SHOT,
     RESPONSE_DERIVE_SECONDS,
     RESPONSE_ORDER_GROWTH,
@@ -49,7 +52,15 @@ from perturb._defaults import (
 )
 from perturb.errors import InvalidParameterError
 
-__all__ = ["Cost", "check_cost", "response_cost", "sweep_cost", "work_precision_cost"]
+__all__ = [
+    "Cost",
+    "census_seconds",
+    "check_cost",
+    "notice",
+    "response_cost",
+    "sweep_cost",
+    "work_precision_cost",
+]
 
 
 @frozen
@@ -82,16 +93,29 @@ def _growth(order: int) -> float:
         return math.inf
 
 
-def response_cost(values: int, order: int, shots: int, true: int = 0) -> Cost:
+def census_seconds(modes: int) -> float:
+    """The certified first-order census of a driven problem of ``modes`` modes (its steady
+    states at one point, or the exact folds along a line): :data:`CENSUS_SECONDS` for one mode,
+    :data:`CENSUS_MODE_GROWTH` times more for each further mode."""
+    try:
+        return CENSUS_SECONDS * CENSUS_MODE_GROWTH ** (max(int(modes), 1) - 1)
+    except OverflowError:  # thousands of modes: past any estimate
+        return math.inf
+
+
+def response_cost(values: int, order: int, shots: int, true: int = 0, modes: int = 1) -> Cost:
     """A frequency response over ``values`` values at ``order``, ``shots`` points of each
-    branch shot against the true motion, true curves of at most ``true`` points
-    (:func:`perturb.response.model.problem_response`)."""
-    seconds = RESPONSE_DERIVE_SECONDS * _growth(order)
-    seconds += values * RESPONSE_SECONDS_PER_VALUE * max(int(order), 1)
+    branch shot against the true motion, true curves of at most ``true`` points, of a problem
+    of ``modes`` modes (:func:`perturb.response.model.problem_response`)."""
+    modes = max(int(modes), 1)
+    seconds = RESPONSE_DERIVE_SECONDS * _growth(order) * modes + census_seconds(modes)
+    seconds += values * RESPONSE_SECONDS_PER_VALUE * max(int(order), 1) * modes
     if shots:
         seconds += (shots + RESPONSE_ALWAYS_SHOT) * RESPONSE_TYPICAL_BRANCHES * SHOT_SECONDS
     seconds += true * RESPONSE_TYPICAL_BRANCHES * TRUE_POINT_SECONDS
     what = f"{values:,} response values at order {order}"
+    if modes > 1:
+        what += f" of {modes} modes"
     if shots:
         what += f", {shots} shots per branch"
     if true:
@@ -133,6 +157,15 @@ def _duration(seconds: float) -> str:
     if seconds < 3 * 86400:
         return f"{seconds / 3600:.0f} h"
     return f"{seconds / 86400:,.0f} days"
+
+
+def notice(cost: Cost) -> str | None:
+    """One line telling how long a request that may start will take, when it is past
+    :data:`~perturb._defaults.NOTICE_SECONDS` (None below): a long run is never silent, even
+    where no progress bar is drawn."""
+    if not cost.seconds > NOTICE_SECONDS:
+        return None
+    return f"this asks for about {_duration(cost.seconds)} of work ({cost.what})"
 
 
 def check_cost(cost: Cost, yes: bool) -> None:

@@ -9,7 +9,7 @@ import warnings
 import numpy as np
 
 from perturb._defaults import DEFAULT_SAMPLES
-from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError
+from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _tell, _UsageError
 from perturb.cli._values import (
     _check_plot,
     _parse_order,
@@ -191,7 +191,8 @@ def _cmd_work_precision(args) -> int:
             f"--repeat {repeat}: at most {SCENE_MAX_REPEAT} timed runs a point (the best of more "
             "buys no accuracy and multiplies the run time)"
         )
-    check_cost(work_precision_cost(periods, orders, repeat), args.yes)
+    cost = work_precision_cost(periods, orders, repeat)
+    check_cost(cost, args.yes)
     plot = _check_plot(args)
     solution = problem.solve(1)  # the horizon is periods of it: inside its domain, or refused
     domain = series_domain(solution, problem.parameter_value(), problem.symbol_values())
@@ -205,6 +206,7 @@ def _cmd_work_precision(args) -> int:
         if args.format == "json":
             print(json_text({"problem": args.problem, "status": "failed", "reason": reason}))
         raise _RunFailed(reason)
+    _tell(cost)
     result = work_precision(problem, periods=periods, orders=orders, repeat=repeat)
     if args.format == "json":
         print(json_text(work_precision_as_dict(result)))

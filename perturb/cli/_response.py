@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import sys
 
-from perturb.cli._errors import EXIT_OK, _RunFailed, _UsageError
+from perturb.cli._errors import EXIT_OK, _RunFailed, _tell, _UsageError
 from perturb.cli._values import _check_plot, _parse_order, _parse_sets, _save_plot
 from perturb.report.json_text import json_text
 
@@ -103,8 +103,11 @@ def _cmd_response(args) -> int:
     true = _parse_true(args.true_curve)
     from perturb.cost import check_cost, response_cost
 
-    check_cost(response_cost(len(grid), order, count, true), args.yes)
+    modes = len(problem.system().coordinates) if hasattr(problem, "system") else 1
+    cost = response_cost(len(grid), order, count, true, modes)
+    check_cost(cost, args.yes)
     plot = _check_plot(args)
+    _tell(cost)
     result = problem_response(
         problem, parameter, grid, order=order, validate=count, measure=args.measure, tol=tol,
         true=true,
