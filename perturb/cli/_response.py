@@ -21,6 +21,18 @@ def _parse_sweep(text: str):
         raise _UsageError(str(exc)) from None
 
 
+def _count_sweep(text: str) -> int:
+    """The number of values of ``--sweep``, counted from its text (none is made), or a usage
+    error (exit 2)."""
+    from perturb.axis import axis_size
+    from perturb.errors import InvalidParameterError
+
+    try:
+        return axis_size(text, "--sweep")
+    except InvalidParameterError as exc:
+        raise _UsageError(str(exc)) from None
+
+
 def _parse_true(points: str | None) -> int:
     """``--true [POINTS]``: the most points of each true curve (0 without --true), or a usage
     error (exit 2)."""
@@ -75,12 +87,7 @@ def _cmd_response(args) -> int:
     overrides = _parse_sets(args.sets)
     problem = cls.create(**overrides)
     order = _parse_order(args.order)
-    parameter, grid = _parse_sweep(args.sweep)
-    if parameter in overrides:
-        raise _UsageError(
-            f"--sweep {args.sweep!r}: {parameter!r} is also set with --set; sweep it or set it, "
-            "not both"
-        )
+    values = _count_sweep(args.sweep)
     try:
         count = int(args.validate)
     except ValueError:
@@ -104,8 +111,14 @@ def _cmd_response(args) -> int:
     from perturb.cost import check_cost, response_cost
 
     modes = len(problem.system().coordinates) if hasattr(problem, "system") else 1
-    cost = response_cost(len(grid), order, count, true, modes)
-    check_cost(cost, args.yes)
+    cost = response_cost(values, order, count, true, modes)
+    check_cost(cost, args.yes)  # counted from the text: no value is made before
+    parameter, grid = _parse_sweep(args.sweep)
+    if parameter in overrides:
+        raise _UsageError(
+            f"--sweep {args.sweep!r}: {parameter!r} is also set with --set; sweep it or set it, "
+            "not both"
+        )
     plot = _check_plot(args)
     _tell(cost)
     result = problem_response(
