@@ -221,7 +221,7 @@ def _cmd_work_precision(args) -> int:
     if plot is not None:
         from perturb.report.plots import plot_work_precision
 
-        _save_plot(plot_work_precision(result), plot)
+        _save_plot(plot_work_precision(result), plot, args.force)
     return EXIT_OK
 
 

@@ -144,5 +144,5 @@ def _cmd_response(args) -> int:
     if plot is not None:
         from perturb.report.plots import plot_frequency_response
 
-        _save_plot(plot_frequency_response(result), plot)
+        _save_plot(plot_frequency_response(result), plot, args.force)
     return EXIT_OK

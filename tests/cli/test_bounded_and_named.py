@@ -217,3 +217,21 @@ def test_a_problem_that_cannot_be_pickled_is_one_line(capsys, tmp_path, monkeypa
     code, out, err = run(capsys, "sweep", "lock.py", "--grid", "eps=0.05,0.1", "--format", "csv",
                          "--workers", "1", "--quiet")  # fmt: skip
     _one_error(code, out, err, "lock.py", "cannot be sent to the Dask workers", "pickl")
+
+
+def test_an_output_file_saved_by_the_user_during_the_run_is_kept(capsys, tmp_path, monkeypatch):
+    """--output is checked before the work and looked at again before it is written: a file the
+    user saved there meanwhile is theirs (one line, exit 2, the file kept)."""
+    import perturb.cli._main as entry
+
+    real = entry._COMMANDS["solve"]
+
+    def slow(args):
+        code = real(args)
+        (tmp_path / "out.json").write_text("saved meanwhile\n")
+        return code
+
+    monkeypatch.setitem(entry._COMMANDS, "solve", slow)
+    monkeypatch.chdir(tmp_path)
+    _one_error(*run(capsys, "solve", "duffing", "--output", "out.json"), "out.json")
+    assert (tmp_path / "out.json").read_text() == "saved meanwhile\n"
