@@ -185,9 +185,8 @@ def work_precision(
     ------
     perturb.errors.InvalidParameterError
         For ``periods <= 0``, ``repeat < 1``, a non-positive tolerance or step count, or an order
-        < 1 or past the engine's highest (:data:`~perturb._defaults.MAX_ORDER`: never cut in
-        silence).
-    perturb.solution.SolutionFailed
+        < 1 or past the engine's highest (12: never cut in silence).
+    perturb.SolutionFailed
         The order-1 period is not a positive number (the series outside its domain gives no
         horizon).
 
