@@ -45,9 +45,16 @@ def scatter(client, data):
         except (TimeoutError, OSError):
             raise no_worker(client) from None
     try:
-        return client.scatter(data, broadcast=True, hash=False, timeout=SWEEP_NO_WORKER_SECONDS)
-    except (TimeoutError, OSError):
-        raise no_worker(client) from None
+        return client.scatter(data, broadcast=True, hash=False)
+    except (TimeoutError, OSError) as exc:
+        if not workers_now(client):  # the workers left while the job was sent
+            raise no_worker(client) from None
+        address = getattr(client.scheduler, "address", None) or "the cluster"
+        detail = " ".join(f"{type(exc).__name__}: {exc}".split())[:200]
+        raise SweepError(
+            f"the job could not be sent to the workers of {address} ({detail}): check the "
+            "cluster's network, then run the same command again with --resume"
+        ) from None
 
 
 @contextlib.contextmanager
