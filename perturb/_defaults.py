@@ -221,6 +221,18 @@ CONFIRM_SECONDS = 3600.0
 #: typically has (lower, middle, upper), an evaluated sweep point (1-3 x 10^5 points a second,
 #: benchmarks/bench_sweep.md) and a validated one (0.07-0.3 s).
 RESPONSE_DERIVE_SECONDS = 0.5
+
+#: The certified first-order census of a driven problem (its steady states: the real roots of
+#: 2n cubic amplitude equations, Bezout 9^n): 0.35 s of CPU for one mode, and about 12 times more
+#: for each further mode (coupled Duffings, 2 modes: 4 s; the 3-mass chain: 49 s; measured by
+#: `perturb response PROBLEM --sweep Omega=1.05:1.1:3 --order 1`, benchmarks/hostile_cli.md).
+#: The response pays it once, the phase diagram at every point of its grid.
+CENSUS_SECONDS = 0.35
+CENSUS_MODE_GROWTH = 12.0
+
+#: Estimated work past which a request that may start says how long it will take, in one line
+#: on stderr (a progress bar is drawn only on a terminal; a run of minutes is never silent).
+NOTICE_SECONDS = 60.0
 RESPONSE_ORDER_GROWTH = 2.5
 RESPONSE_SECONDS_PER_VALUE = 0.02
 RESPONSE_ALWAYS_SHOT = 4
@@ -240,6 +252,11 @@ AXIS_MAX_VALUES = 10_000_000
 #: oscillator's --repeat 1 and 3 over 10 periods differ by 16.5 s a pass on a machine loaded 3
 #: times over (0.55 s a period unloaded), the van der Pol oscillator's 0.7 s.
 WORK_PRECISION_PERIOD_SECONDS = 0.6
+
+#: Recorded times of a sweep's state that count as one point against the grid's limits
+#: (SWEEP_CONFIRM_POINTS, SWEEP_MAX_POINTS): a point's own results are about ten numbers, so ten
+#: times of its state weigh as much again; 10⁶ times at each of 10⁵ points would be 10¹¹ values.
+SWEEP_STATE_SHARE = 10
 
 #: Most points of one sweep even with confirmation: 10^10 float64 values per quantity are 80 GB
 #: a variable; beyond it the grid is a mistake rather than a plan.

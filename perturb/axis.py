@@ -42,6 +42,14 @@ def _number(text: str, item: str, argument: str = "grid axis") -> float:
     return value
 
 
+def _floats(values) -> tuple:
+    """``values`` as a tuple of Python floats (an array converted at C speed: 10⁷ values in a
+    fraction of a second, where a loop over them took seconds)."""
+    if isinstance(values, np.ndarray):
+        return tuple(values.astype(float).ravel().tolist())
+    return tuple(float(x) for x in values)
+
+
 @frozen
 class Axis:
     """One swept parameter: its name and its values (ascending or not, as given).
@@ -55,7 +63,7 @@ class Axis:
     """
 
     name: str
-    values: tuple = field(converter=lambda v: tuple(float(x) for x in v))
+    values: tuple = field(converter=lambda v: _floats(v))
     spec: str = ""
 
     @property
@@ -184,7 +192,7 @@ def parse_axis(text: str, argument: str = "grid axis", most: int = AXIS_MAX_VALU
         if len(items) > most:
             raise _fail(text, f"{len(items):,} values: give at most {most:,} per axis", argument)
         values = np.array([_number(text, item, argument) for item in items])
-    if len(set(values.tolist())) != len(values):
+    if np.unique(values).size != values.size:
         raise _fail(
             text,
             "the values repeat (a point would be computed twice); give distinct values",

@@ -32,7 +32,10 @@ import math
 from attrs import frozen
 
 from perturb._defaults import (
+    CENSUS_MODE_GROWTH,
+    CENSUS_SECONDS,
     CONFIRM_SECONDS,
+    NOTICE_SECONDS,
     RESPONSE_ALWAYS_SHOT,
     RESPONSE_DERIVE_SECONDS,
     RESPONSE_ORDER_GROWTH,
@@ -42,13 +45,22 @@ from perturb._defaults import (
     SWEEP_CONFIRM_POINTS,
     SWEEP_MAX_POINTS,
     SWEEP_POINT_SECONDS,
+    SWEEP_STATE_SHARE,
     SWEEP_VALIDATION_SECONDS,
     TRUE_POINT_SECONDS,
     WORK_PRECISION_PERIOD_SECONDS,
 )
 from perturb.errors import InvalidParameterError
 
-__all__ = ["Cost", "check_cost", "response_cost", "sweep_cost", "work_precision_cost"]
+__all__ = [
+    "Cost",
+    "census_seconds",
+    "check_cost",
+    "notice",
+    "response_cost",
+    "sweep_cost",
+    "work_precision_cost",
+]
 
 
 @frozen
@@ -81,16 +93,29 @@ def _growth(order: int) -> float:
         return math.inf
 
 
-def response_cost(values: int, order: int, shots: int, true: int = 0) -> Cost:
+def census_seconds(modes: int) -> float:
+    """The certified first-order census of a driven problem of ``modes`` modes (its steady
+    states at one point, or the exact folds along a line): :data:`CENSUS_SECONDS` for one mode,
+    :data:`CENSUS_MODE_GROWTH` times more for each further mode."""
+    try:
+        return CENSUS_SECONDS * CENSUS_MODE_GROWTH ** (max(int(modes), 1) - 1)
+    except OverflowError:  # thousands of modes: past any estimate
+        return math.inf
+
+
+def response_cost(values: int, order: int, shots: int, true: int = 0, modes: int = 1) -> Cost:
     """A frequency response over ``values`` values at ``order``, ``shots`` points of each
-    branch shot against the true motion, true curves of at most ``true`` points
-    (:func:`perturb.response.model.problem_response`)."""
-    seconds = RESPONSE_DERIVE_SECONDS * _growth(order)
-    seconds += values * RESPONSE_SECONDS_PER_VALUE * max(int(order), 1)
+    branch shot against the true motion, true curves of at most ``true`` points, of a problem
+    of ``modes`` modes (:func:`perturb.response.model.problem_response`)."""
+    modes = max(int(modes), 1)
+    seconds = RESPONSE_DERIVE_SECONDS * _growth(order) * modes + census_seconds(modes)
+    seconds += values * RESPONSE_SECONDS_PER_VALUE * max(int(order), 1) * modes
     if shots:
         seconds += (shots + RESPONSE_ALWAYS_SHOT) * RESPONSE_TYPICAL_BRANCHES * SHOT_SECONDS
     seconds += true * RESPONSE_TYPICAL_BRANCHES * TRUE_POINT_SECONDS
     what = f"{values:,} response values at order {order}"
+    if modes > 1:
+        what += f" of {modes} modes"
     if shots:
         what += f", {shots} shots per branch"
     if true:
@@ -108,12 +133,18 @@ def work_precision_cost(periods: float, orders: int, repeat: int) -> Cost:
     return Cost(what, 0, seconds)
 
 
-def sweep_cost(points: int, order: int, validate: bool) -> Cost:
-    """A sweep of ``points`` points at ``order`` (each validated when ``validate``)."""
+def sweep_cost(points: int, order: int, validate: bool, times: int = 1) -> Cost:
+    """A sweep of ``points`` points at ``order`` (each validated when ``validate``), the state
+    recorded at ``times`` times of each: past :data:`SWEEP_MAX_POINTS` values of the state it is
+    refused as a grid of that many points would be."""
     per = SWEEP_VALIDATION_SECONDS if validate else SWEEP_POINT_SECONDS
     seconds = RESPONSE_DERIVE_SECONDS * _growth(order) + points * per
+    seconds += points * max(int(times) - 1, 0) * SWEEP_POINT_SECONDS
     kind = "validated sweep points" if validate else "sweep points"
-    return Cost(f"{points:,} {kind} at order {order}", points, seconds)
+    what = f"{points:,} {kind} at order {order}"
+    if times > 1:
+        what += f", the state at {times:,} times of each"
+    return Cost(what, max(points, points * int(times) // SWEEP_STATE_SHARE), seconds)
 
 
 def _duration(seconds: float) -> str:
@@ -128,6 +159,15 @@ def _duration(seconds: float) -> str:
     return f"{seconds / 86400:,.0f} days"
 
 
+def notice(cost: Cost) -> str | None:
+    """One line telling how long a request that may start will take, when it is past
+    :data:`~perturb._defaults.NOTICE_SECONDS` (None below): a long run is never silent, even
+    where no progress bar is drawn."""
+    if not cost.seconds > NOTICE_SECONDS:
+        return None
+    return f"this asks for about {_duration(cost.seconds)} of work ({cost.what})"
+
+
 def check_cost(cost: Cost, yes: bool) -> None:
     """Raise unless ``cost`` may start: at most :data:`SWEEP_MAX_POINTS` points, and, unless
     ``yes``, at most :data:`SWEEP_CONFIRM_POINTS` points and :data:`CONFIRM_SECONDS` of work.
@@ -137,17 +177,19 @@ def check_cost(cost: Cost, yes: bool) -> None:
     perturb.errors.InvalidParameterError
         One line: how much was asked, and how to confirm (or that it is past any confirmation).
     """
+    weighed = ", counting the recorded times" if "times of each" in cost.what else ""
     if cost.points > SWEEP_MAX_POINTS:
         raise InvalidParameterError(
-            f"the grid has {cost.points:,} points, more than {SWEEP_MAX_POINTS:,}; give fewer "
-            "points per axis"
+            f"the grid has {cost.points:,} points{weighed}, more than {SWEEP_MAX_POINTS:,}; give "
+            "fewer points per axis" + (" or fewer times" if weighed else "")
         )
     if yes:
         return
     if cost.points > SWEEP_CONFIRM_POINTS:
         raise InvalidParameterError(
-            f"the grid has {cost.points:,} points (more than {SWEEP_CONFIRM_POINTS:,}); check the "
-            "axes and confirm with --yes (yes=True in Python)"
+            f"the grid has {cost.points:,} points{weighed} (more than "
+            f"{SWEEP_CONFIRM_POINTS:,}); check the axes and confirm with --yes (yes=True in "
+            "Python)"
         )
     if not cost.seconds <= CONFIRM_SECONDS or not math.isfinite(cost.seconds):
         raise InvalidParameterError(

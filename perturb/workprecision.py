@@ -162,8 +162,8 @@ def work_precision(
     periods : float, optional
         Horizon in periods of the order-1 analytic solution (> 0).
     orders : int or sequence of int, optional
-        Orders of the analytic solution: ``N`` means ``1..N``.  Orders the problem refuses are
-        skipped.
+        Orders of the analytic solution: ``N`` means ``1..N``, at most the engine's highest.
+        Orders whose construction the problem refuses are skipped.
     rk4_steps : sequence of float, optional
         RK4 steps per unit time.
     scipy_methods, tolerances : sequences, optional
@@ -184,7 +184,11 @@ def work_precision(
     Raises
     ------
     perturb.errors.InvalidParameterError
-        For ``periods <= 0``, ``repeat < 1``, a non-positive tolerance or step count, or an order < 1.
+        For ``periods <= 0``, ``repeat < 1``, a non-positive tolerance or step count, or an order
+        < 1 or past the engine's highest (12: never cut in silence).
+    perturb.SolutionFailed
+        The order-1 period is not a positive number (the series outside its domain gives no
+        horizon).
 
     Examples
     --------

@@ -9,7 +9,7 @@ import warnings
 import numpy as np
 
 from perturb._defaults import DEFAULT_SAMPLES
-from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError
+from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _tell, _UsageError
 from perturb.cli._output import _emit
 from perturb.cli._values import (
     _check_plot,
@@ -154,7 +154,8 @@ def _cmd_work_precision(args) -> int:
             f"--repeat {repeat}: at most {SCENE_MAX_REPEAT} timed runs a point (the best of more "
             "buys no accuracy and multiplies the run time)"
         )
-    check_cost(work_precision_cost(periods, orders, repeat), args.yes)
+    cost = work_precision_cost(periods, orders, repeat)
+    check_cost(cost, args.yes)
     plot = _check_plot(args)
     solution = problem.solve(1)  # the horizon is periods of it: inside its domain, or refused
     domain = series_domain(solution, problem.parameter_value(), problem.symbol_values())
@@ -169,12 +170,13 @@ def _cmd_work_precision(args) -> int:
             "failure", args.format, {"problem": args.problem, "status": "failed", "reason": reason}
         )
         raise _RunFailed(reason)
+    _tell(cost)
     result = work_precision(problem, periods=periods, orders=orders, repeat=repeat)
     _emit("work-precision", args.format, result)
     if plot is not None:
         from perturb.report.plots import plot_work_precision
 
-        _save_plot(plot_work_precision(result), plot)
+        _save_plot(plot_work_precision(result), plot, args.force)
     return EXIT_OK
 
 

@@ -32,3 +32,15 @@ def pressed() -> bool:
     """Whether Ctrl-C was pressed during this run (False where signals cannot be watched and
     none was seen: then every ``KeyboardInterrupt`` outside a user's code is one)."""
     return bool(PRESSED)
+
+
+def _tell(cost) -> None:
+    """Say on stderr, in one line, how long a confirmed or unasked request will take when it is
+    past :data:`perturb._defaults.NOTICE_SECONDS` (:func:`perturb.cost.notice`)."""
+    import sys
+
+    from perturb.cost import notice
+
+    line = notice(cost)
+    if line is not None:
+        print(f"perturb: warning: {line}", file=sys.stderr)  # a warning: never an error line

@@ -126,6 +126,8 @@ def _to_file(args) -> Iterator[None]:
             yield
         finally:  # a failed run's output (e.g. its JSON failure record) is written too
             if buffer.getvalue():
+                # looked at again: a file the user saved there during the run is theirs
+                check_file(path, "--output", force=getattr(args, "force", False))
                 write_file(target, buffer.getvalue())
 
 

@@ -57,7 +57,7 @@ def _cmd_phase(args) -> int:
     from perturb.report.phase import PhaseOutput
 
     if plot is not None:
-        _plot(dataset, plot, args.map == "first-order")
+        _plot(dataset, plot, args.map == "first-order", args.force)
     _emit("phase", args.format, PhaseOutput(dataset, args.output))
     import numpy as np
 
@@ -66,7 +66,7 @@ def _cmd_phase(args) -> int:
     return EXIT_FAILED if missing else EXIT_OK  # lines that failed elsewhere are listed above
 
 
-def _plot(dataset, path, first_order: bool) -> None:
+def _plot(dataset, path, first_order: bool, force: bool = False) -> None:
     import numpy as np
 
     from perturb.report.phase import _special
@@ -81,4 +81,4 @@ def _plot(dataset, path, first_order: bool) -> None:
         np.asarray(dataset[name].values), special, xname=x_name, yname=y_name,
         title=f"{dataset.attrs['problem']}: stable steady states ({which})",
     )  # fmt: skip
-    _save_plot(figure, path)
+    _save_plot(figure, path, force)

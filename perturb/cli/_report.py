@@ -17,11 +17,11 @@ from perturb.errors import InvalidParameterError, ProblemLoadError, UnknownNameE
 
 def _load(scene):
     """The scene's problem, created with its parameters and family (errors name the scene file)."""
-    from perturb.scene import check_parameter_names, check_sweep_names
+    from perturb.scene import check_parameter_names, check_sweep_names, problem_spec
     from problems import load_problem
 
     try:
-        cls = load_problem(scene.problem_spec)
+        cls = load_problem(problem_spec(scene))
     except (UnknownNameError, ProblemLoadError) as exc:
         raise scene.error(f"[problem] name: {exc}") from None
     check_parameter_names(scene, [s.name for s in cls.parameter_specs], cls.name)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import sys
 
-from perturb.cli._errors import EXIT_OK, _RunFailed, _UsageError
+from perturb.cli._errors import EXIT_OK, _RunFailed, _tell, _UsageError
 from perturb.cli._output import _emit
 from perturb.cli._values import _check_plot, _parse_order, _parse_sets, _save_plot
 
@@ -17,6 +17,18 @@ def _parse_sweep(text: str):
 
     try:
         return parse_sweep(text)
+    except InvalidParameterError as exc:
+        raise _UsageError(str(exc)) from None
+
+
+def _count_sweep(text: str) -> int:
+    """The number of values of ``--sweep``, counted from its text (none is made), or a usage
+    error (exit 2)."""
+    from perturb.axis import axis_size
+    from perturb.errors import InvalidParameterError
+
+    try:
+        return axis_size(text, "--sweep")
     except InvalidParameterError as exc:
         raise _UsageError(str(exc)) from None
 
@@ -99,12 +111,7 @@ def _cmd_response(args) -> int:
     overrides = _parse_sets(args.sets)
     problem = cls.create(**overrides)
     order = _parse_order(args.order)
-    parameter, grid = _parse_sweep(args.sweep)
-    if parameter in overrides:
-        raise _UsageError(
-            f"--sweep {args.sweep!r}: {parameter!r} is also set with --set; sweep it or set it, "
-            "not both"
-        )
+    values = _count_sweep(args.sweep)
     try:
         count = int(args.validate)
     except ValueError:
@@ -128,8 +135,17 @@ def _cmd_response(args) -> int:
     max_period = _parse_max_period(args.max_period, true)
     from perturb.cost import check_cost, response_cost
 
-    check_cost(response_cost(len(grid), order, count, true), args.yes)
+    modes = len(problem.case().system.coordinates)
+    cost = response_cost(values, order, count, true, modes)
+    check_cost(cost, args.yes)  # counted from the text: no value is made before
+    parameter, grid = _parse_sweep(args.sweep)
+    if parameter in overrides:
+        raise _UsageError(
+            f"--sweep {args.sweep!r}: {parameter!r} is also set with --set; sweep it or set it, "
+            "not both"
+        )
     plot = _check_plot(args)
+    _tell(cost)
     result = problem_response(
         problem, parameter, grid, order=order, validate=count, measure=args.measure, tol=tol,
         true=true, max_period=max_period,
@@ -144,5 +160,5 @@ def _cmd_response(args) -> int:
     if plot is not None:
         from perturb.report.plots import plot_frequency_response
 
-        _save_plot(plot_frequency_response(result), plot)
+        _save_plot(plot_frequency_response(result), plot, args.force)
     return EXIT_OK

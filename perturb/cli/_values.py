@@ -136,12 +136,14 @@ def _check_plot(args) -> Path | None:
     return target
 
 
-def _save_plot(figure, target: Path) -> None:
-    """Save ``figure`` into ``target`` (checked by :func:`_check_plot`) in its extension's format."""
+def _save_plot(figure, target: Path, force: bool = False) -> None:
+    """Save ``figure`` into ``target`` (checked by :func:`_check_plot`) in its extension's format;
+    looked at again just before (a file the user saved there meanwhile is theirs)."""
     import io
 
-    from perturb.report.written import write_file
+    from perturb.report.written import check_file, write_file
 
     buffer = io.BytesIO()
     figure.savefig(buffer, format=target.suffix[1:].lower())
+    check_file(target, "--plot", force=force, plot=True)
     write_file(target, buffer.getvalue())

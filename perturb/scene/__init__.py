@@ -1,11 +1,13 @@
 """Scenes: a TOML file naming a problem, its parameters and the outputs wanted
 (``perturb report SCENE.toml --output DIR``).
 
-Modules: :mod:`.spec` (the :class:`Scene` value object and its strict parser), :mod:`.run` (the
+Modules: :mod:`.spec` (the :class:`Scene` value object and its strict parser), :mod:`.files`
+(a scene read from its file, paths in it taken from its folder), :mod:`.run` (the
 lazy pipeline: computes only what the outputs need). Writing the folder is the report leaf
 :mod:`perturb.report.scene_output`, imported by the CLI only: a scene's results stay data.
 """
 
+from perturb.scene.files import problem_spec, read_scene
 from perturb.scene.spec import (
     EULER_PLOTS,
     MAP_PLOTS,
@@ -20,7 +22,6 @@ from perturb.scene.spec import (
     check_parameter_names,
     check_sweep_names,
     parse_scene,
-    read_scene,
 )
 
 
@@ -48,6 +49,7 @@ __all__ = [
     "check_parameter_names",
     "check_sweep_names",
     "parse_scene",
+    "problem_spec",
     "read_scene",
     "run_scene",
 ]

@@ -152,7 +152,7 @@ def check_scene(scene: Scene, problem, yes: bool = False) -> None:
     """
     model = as_model(problem)
     outputs = scene.outputs
-    _check_cost(scene, yes)
+    _check_cost(scene, yes, len(problem.system().coordinates) if hasattr(problem, "system") else 1)
     if scene.response is not None and outputs.needs_response:
         from perturb.errors import InvalidParameterError
         from perturb.response.model import check_request, parse_sweep
@@ -182,8 +182,9 @@ def check_scene(scene: Scene, problem, yes: bool = False) -> None:
         choose(scene.integrator)  # an unknown name fails here, before any work
 
 
-def _check_cost(scene: Scene, yes: bool) -> None:
-    """The scene's expensive sections, estimated together (:func:`perturb.cost.check_cost`)."""
+def _check_cost(scene: Scene, yes: bool, modes: int = 1) -> None:
+    """The scene's expensive sections, estimated together (:func:`perturb.cost.check_cost`;
+    ``modes``: the problem's, for the certified census of a ``[response]``)."""
     from perturb.cost import Cost, check_cost, response_cost, sweep_cost
     from perturb.errors import InvalidParameterError
 
@@ -194,12 +195,12 @@ def _check_cost(scene: Scene, yes: bool) -> None:
         from perturb.response.model import parse_sweep
 
         _, grid = parse_sweep(scene.response.sweep, "sweep")
-        parts.append(response_cost(len(grid), scene.order, scene.response.validate))
+        parts.append(response_cost(len(grid), scene.order, scene.response.validate, 0, modes))
     if scene.sweep is not None and outputs.needs_sweep:
         from perturb.sweep.grid import Grid, parse_axis
 
         size = Grid(tuple(parse_axis(a) for a in scene.sweep.grid)).size
-        parts.append(sweep_cost(size, scene.order, scene.sweep.validate))
+        parts.append(sweep_cost(size, scene.order, scene.sweep.validate, len(scene.sweep.times)))
     for part in parts:
         cost = part if not cost.what else cost + part
     try:

@@ -1,4 +1,5 @@
-"""A scene file and its strict parser: :class:`Scene`, :func:`parse_scene`, :func:`read_scene`.
+"""A scene file and its strict parser: :class:`Scene`, :func:`parse_scene` (read from a file by
+:mod:`perturb.scene.files`).
 
 A scene is a TOML file naming a problem, its parameters, the solve settings and the outputs wanted
 (``perturb report SCENE.toml --output DIR``)::
@@ -36,7 +37,6 @@ from perturb._defaults import (
     MAX_ORDER,
     MAX_TIMES,
     MAX_VALIDATE,
-    SCENE_MAX_BYTES,
     SCENE_MAX_PERIODS,
     SCENE_MAX_REPEAT,
     SCENE_MAX_SAMPLES_PER_PERIOD,
@@ -61,7 +61,6 @@ __all__ = [
     "check_parameter_names",
     "check_sweep_names",
     "parse_scene",
-    "read_scene",
 ]
 
 #: The plots a scene may ask for (``[outputs] plots``), each a function of perturb.report.plots.
@@ -258,7 +257,7 @@ class Scene:
     folder : str
         The folder of the scene file: a relative path inside the scene (a problem file,
         ``"my_oscillator.py:MyOscillator"``) is taken from there, not from the working folder
-        ("" for a scene given as text: the working folder).
+        ("" for a scene given as text: the working folder; :func:`perturb.scene.problem_spec`).
     """
 
     problem: str
@@ -280,44 +279,6 @@ class Scene:
     def error(self, detail: str) -> SceneError:
         """A :class:`SceneError` about this scene, prefixed with its source."""
         return SceneError(f"{self.source}: {detail}")
-
-    @property
-    def problem_spec(self) -> str:
-        """:attr:`problem` with a relative problem file (``file.py`` or ``file.py:Class``) taken
-        from the scene's :attr:`folder`."""
-        return _resolve_file(self.problem, self.folder)
-
-
-#: The suffix that marks a problem named by its file (as ``perturb solve FILE.py:Class`` does).
-_PY_SUFFIX = ".py"
-
-
-def _resolve_file(spec: str, folder: str) -> str:
-    """``spec`` (a problem name, ``path/to/file.py[:Class]`` or ``module:Class``) with a
-    relative file path joined to ``folder``; names and modules unchanged.
-
-    Examples
-    --------
-    >>> _resolve_file("user.py:Mine", "/data/scenes")
-    '/data/scenes/user.py:Mine'
-    >>> _resolve_file("duffing", "/data/scenes")
-    'duffing'
-    """
-    import os
-
-    if not folder:
-        return spec
-    if spec.endswith(_PY_SUFFIX):
-        target, tail = spec, ""
-    else:
-        target, sep, name = spec.rpartition(":")
-        if not sep or not target.endswith(_PY_SUFFIX):
-            return spec
-        tail = f":{name}"
-    path = os.path.expanduser(target)
-    if os.path.isabs(path):
-        return spec
-    return os.path.join(folder, path) + tail
 
 
 # ---------------------------------------------------------------------------------- the schema
@@ -621,32 +582,6 @@ def parse_scene(text: str, source: str = "<scene>", folder: str = "") -> Scene:
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"{source}: malformed TOML: {' '.join(str(exc).split())}") from None
     return attrs.evolve(_parse_data(data, source, text), folder=str(folder))
-
-
-def read_scene(path) -> Scene:
-    """The :class:`Scene` in the file ``path`` (UTF-8 TOML, a byte-order mark allowed); see
-    :func:`parse_scene`. Relative paths inside it (a problem file) are taken from the scene
-    file's folder.
-
-    Raises
-    ------
-    perturb.errors.SceneError
-        The file cannot be read (missing, a folder, a FIFO or a device, larger than
-        :data:`~perturb._defaults.SCENE_MAX_BYTES`) or decoded, or its content is not a valid
-        scene.
-    """
-    import os
-
-    from perturb._files import UnreadableFile, read_capped
-
-    try:
-        text = read_capped(path, SCENE_MAX_BYTES).decode("utf-8-sig")  # a byte-order mark read
-    except UnreadableFile as exc:
-        raise SceneError(f"{path}: cannot read the scene file ({exc}); check the path") from None
-    except UnicodeDecodeError:
-        raise SceneError(f"{path}: the scene file is not UTF-8 text; save it as UTF-8") from None
-    folder = os.path.dirname(os.path.abspath(os.fspath(path)))
-    return parse_scene(text, str(path), folder)
 
 
 def check_sweep_names(scene: Scene, known: Iterable[str], problem: str) -> None:

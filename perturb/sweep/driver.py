@@ -33,7 +33,6 @@ from perturb._defaults import (
     SWEEP_CONNECT_SECONDS,
     SWEEP_HANDSHAKE_BYTES,
     SWEEP_MAX_CHUNK_POINTS,
-    SWEEP_NO_WORKER_SECONDS,
     SWEEP_OVERHEAD_SHARE,
     SWEEP_PILOT_GROWTH,
     SWEEP_PILOT_POINTS,
@@ -42,14 +41,14 @@ from perturb._defaults import (
     SWEEP_RESCATTERS,
     SWEEP_TASK_OVERHEAD_SECONDS,
     SWEEP_TASK_SECONDS,
-    SWEEP_WORKER_POLL_SECONDS,
     SWEEP_WORKERS_PER_CORE,
 )
-from perturb.errors import InvalidParameterError, SweepError
+from perturb.errors import InvalidParameterError
 from perturb.progress import notify
 from perturb.sweep.grid import Chunking
 from perturb.sweep.spec import SweepJob
 from perturb.sweep.task import run_chunk
+from perturb.sweep.watch import scatter, watched
 
 __all__ = [
     "Cluster",
@@ -453,70 +452,6 @@ def _worker_environment() -> dict[str, str]:
 
 
 # ---------------------------------------------------------------------------------- running
-def _no_worker(client) -> SweepError:
-    address = getattr(client.scheduler, "address", None) or "the cluster"
-    return SweepError(
-        f"no worker: the Dask cluster at {address} has had no worker for "
-        f"{SWEEP_NO_WORKER_SECONDS:g} s: start one (dask worker {address}), then run the same "
-        "command again with --resume (what is written is kept)"
-    )
-
-
-def _workers_now(client) -> int:
-    try:
-        return len(client.scheduler_info().get("workers", {}))
-    except Exception:  # noqa: BLE001 - a scheduler that does not answer has no worker for us
-        return 0
-
-
-def _scatter(client, data):
-    """``data`` sent to every worker: waits :data:`SWEEP_NO_WORKER_SECONDS` for a first worker,
-    then a failed status, not Dask's TimeoutError."""
-    if not _workers_now(client):
-        try:
-            client.wait_for_workers(1, timeout=SWEEP_NO_WORKER_SECONDS)
-        except (TimeoutError, OSError):
-            raise _no_worker(client) from None
-    try:
-        return client.scatter(data, broadcast=True, hash=False, timeout=SWEEP_NO_WORKER_SECONDS)
-    except (TimeoutError, OSError):
-        raise _no_worker(client) from None
-
-
-@contextlib.contextmanager
-def _watched(client, futures):
-    """While the block waits on ``futures``, watch the cluster's workers: none for
-    :data:`SWEEP_NO_WORKER_SECONDS` cancels the futures and ends the block with a failed status
-    ("no worker"), where Dask would wait for ever."""
-    import threading
-
-    stop = threading.Event()
-    fired = []
-
-    def watch():
-        alone = None
-        while not stop.wait(SWEEP_WORKER_POLL_SECONDS):
-            if _workers_now(client):
-                alone = None
-                continue
-            alone = time.monotonic() if alone is None else alone
-            if time.monotonic() - alone > SWEEP_NO_WORKER_SECONDS:
-                fired.append(True)
-                with contextlib.suppress(Exception):
-                    client.cancel(list(futures))
-                return
-
-    thread = threading.Thread(target=watch, daemon=True, name="perturb-worker-watch")
-    thread.start()
-    try:
-        yield fired
-    finally:
-        stop.set()
-        thread.join(SWEEP_WORKER_POLL_SECONDS * 2)
-    if fired:
-        raise _no_worker(client)
-
-
 @frozen
 class RunStats:
     """How a run of tasks went.
@@ -567,7 +502,7 @@ def run_tasks(
     rounds = 0
     while pending:
         # the job once to every worker, not inside every task (an axis of 10^6 values is 9 MB)
-        blob = _scatter(client, packed)
+        blob = scatter(client, packed)
         token = uuid.uuid4().hex[:8]
         futures = {}
         for number in pending:
@@ -585,7 +520,7 @@ def run_tasks(
             futures[future] = number
         orphaned: list[int] = []
         try:
-            with _watched(client, futures) as fired:
+            with watched(client, futures) as fired:
                 for future in as_completed(futures, loop=client.loop):
                     if fired:
                         break
@@ -640,7 +575,7 @@ def run_calls(cluster: Cluster, function, payload, calls: list[tuple], *, label:
     from distributed import as_completed
 
     client = cluster.client
-    blob = _scatter(client, _pickled(payload, payload))
+    blob = scatter(client, _pickled(payload, payload))
     key = uuid.uuid4().hex
     futures = {
         client.submit(_call_packed, blob, key, function, tuple(args), pure=False): i
@@ -650,7 +585,7 @@ def run_calls(cluster: Cluster, function, payload, calls: list[tuple], *, label:
     done = 0
     notify(label, done, len(calls))
     try:
-        with _watched(client, futures) as fired:
+        with watched(client, futures) as fired:
             for future in as_completed(futures, loop=client.loop):
                 if fired:
                     break

@@ -271,13 +271,17 @@ def phase_diagram(
         check_new_store(output)
     (x_name, xs), (y_name, ys) = _axes(problem, grid)
     check_request(problem, x_name)
-    from perturb.cost import Cost, check_cost, response_cost
+    from perturb.cost import Cost, census_seconds, check_cost, response_cost
 
-    seconds = ys.size * response_cost(xs.size, order, shots=0).seconds
-    if columns:
-        seconds += xs.size * response_cost(ys.size, order, shots=0).seconds
-    check_cost(Cost(f"{xs.size * ys.size:,} points", xs.size * ys.size, seconds), yes)
     case = problem.case()
+    modes = len(case.system.coordinates)
+    seconds = ys.size * response_cost(xs.size, order, shots=0, modes=modes).seconds
+    if columns:
+        seconds += xs.size * response_cost(ys.size, order, shots=0, modes=modes).seconds
+    if proved:  # the certified first-order count at every point
+        seconds += xs.size * ys.size * census_seconds(modes)
+    what = f"{xs.size * ys.size:,} points" + (f" of {modes} modes" if modes > 1 else "")
+    check_cost(Cost(what, xs.size * ys.size, seconds), yes)
     for name, values in ((x_name, xs), (y_name, ys)):
         for value in values:  # the problem's own checks at every value (one line, exit 2)
             case.at(**{name: float(value)})

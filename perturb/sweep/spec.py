@@ -229,7 +229,6 @@ def check_spec(
             "with_parameters gives none): it cannot be swept"
         )
     order = _order(order)
-    check_cost(sweep_cost(grid.size, order, bool(validate)), bool(yes))
     tol = _positive("tol", tol, f"pass a positive relative tolerance such as {DEFAULT_TOL}")
     periods = _positive("periods", periods, "pass a positive number of periods, e.g. 10")
     if validate and periods * SAMPLES_PER_PERIOD > MAX_OUTPUT_SAMPLES:  # validate's own rule
@@ -244,6 +243,7 @@ def check_spec(
         raise bad_value("times", times, "pass a list of finite times") from None
     if not times or len(times) > MAX_TIMES or not all(math.isfinite(t) for t in times):
         raise bad_value("times", times, f"pass 1 to {MAX_TIMES} finite times")
+    check_cost(sweep_cost(grid.size, order, bool(validate), len(times)), bool(yes))
     if integrator is not None:
         from perturb.oracle import choose
 

@@ -79,6 +79,9 @@ class Case:
     server: str = ""
     twice: bool = False
     label: str = ""
+    group: str = ""
+    pre: tuple = ()
+    ops: tuple = ()
 
     @property
     def name(self) -> str:
@@ -676,9 +679,12 @@ def _driven_cases() -> list[Case]:
 
 
 def corpus() -> list[Case]:
-    """Every case, grouped by surface."""
+    """Every case, grouped by surface (the classes of :mod:`tests.cli.hostile_classes` after the
+    first corpus's)."""
+    from tests.cli.hostile_classes import more_cases
+
     return [*_response_cases(), *_sweep_cases(), *_report_cases(), *_file_cases(),
-            *_driven_cases()]  # fmt: skip
+            *_driven_cases(), *more_cases()]  # fmt: skip
 
 
 # ---------------------------------------------------------------------------------- running
@@ -694,12 +700,23 @@ def snapshot(folder: Path) -> dict[str, str]:
     return out
 
 
-def prepare(case: Case, folder: Path) -> dict[str, str]:
-    """Write the user's files into ``folder``; return their digests."""
+def prepare(case: Case, folder: Path, env: dict | None = None) -> dict[str, str]:
+    """Write the user's files into ``folder``, run the case's earlier commands (``pre``: a
+    report or a store made first) and its operations on the folder (``ops``: see
+    :func:`tests.cli.hostile_classes.apply`); return the digests of what is there."""
     for name, text in {**USER_FILES, **dict(case.files)}.items():
         path = folder / name
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text) if isinstance(text, str) else path.write_bytes(text)
+    for argv in case.pre:
+        subprocess.run(
+            [sys.executable, "-m", "perturb", *argv], capture_output=True, cwd=folder,
+            env={**os.environ, **(env or {})}, stdin=subprocess.DEVNULL, timeout=HEAVY,
+        )  # fmt: skip
+    if case.ops:
+        from tests.cli.hostile_classes import apply
+
+        apply(case.ops, folder)
     return snapshot(folder)
 
 
@@ -739,6 +756,30 @@ class _Server:
         self.sock.close()
 
 
+class _DaskScheduler:
+    """A real ``dask scheduler`` on 127.0.0.1 with no worker (a cluster left without workers)."""
+
+    def __init__(self):
+        with socket.socket() as probe:
+            probe.bind(("127.0.0.1", 0))
+            self.port = probe.getsockname()[1]
+        self.process = subprocess.Popen(
+            [sys.executable, "-m", "dask", "scheduler", "--host", "127.0.0.1", "--port",
+             str(self.port), "--no-dashboard"],
+            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+        )  # fmt: skip
+        deadline = time.monotonic() + QUICK
+        while time.monotonic() < deadline:
+            with socket.socket() as probe:
+                if probe.connect_ex(("127.0.0.1", self.port)) == 0:
+                    return
+            time.sleep(0.2)
+
+    def close(self):
+        self.process.terminate()
+        self.process.wait(QUICK)
+
+
 @dataclass
 class Outcome:
     code: int | None
@@ -750,8 +791,10 @@ class Outcome:
 
 def run_case(case: Case, folder: Path, env: dict | None = None) -> Outcome:
     """Run ``case`` in ``folder`` (a fresh process, its time bound enforced) and judge it."""
-    before = prepare(case, folder)
-    server = _Server(case.server) if case.server else None
+    before = prepare(case, folder, env)
+    server = None
+    if case.server:
+        server = _DaskScheduler() if case.server == "dask" else _Server(case.server)
     argv = [a.replace("{port}", str(server.port)) if server else a for a in case.argv]
     environment = {**os.environ, **(env or {})}
     runs = 2 if case.twice else 1
@@ -828,12 +871,16 @@ def _inside(name: str, outputs, code, case) -> bool:
     return any(name == o or name.startswith(o.rstrip("/") + "/") or o == "." for o in outputs)
 
 
+def _not_json(word: str):
+    raise ValueError(f"{word} is not JSON")
+
+
 def _nonsense(case: Case, out: str) -> list[str]:
     argv = case.argv
     fmt = argv[argv.index("--format") + 1] if "--format" in argv[:-1] else "table"
     if fmt == "json" and "--output" not in argv:
         try:
-            json.loads(out)
+            json.loads(out, parse_constant=_not_json)  # NaN, Infinity: not JSON
         except ValueError:
             return ["exit 0 with unreadable JSON"]
     if argv[0] == "solve" and _NON_FINITE.search(out):

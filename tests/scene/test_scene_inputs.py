@@ -11,7 +11,7 @@ import pytest
 from perturb._defaults import MAX_TIMES, SCENE_MAX_BYTES
 from perturb.cli import main
 from perturb.errors import SceneError
-from perturb.scene import read_scene
+from perturb.scene import problem_spec, read_scene
 from tests.cli.hostile_files import GOOD_FILE, PROBLEM_FILES
 
 GOOD = PROBLEM_FILES[GOOD_FILE][0]
@@ -50,11 +50,11 @@ def test_a_problem_file_is_taken_from_the_scenes_folder(tmp_path, monkeypatch, c
 
 def test_an_absolute_problem_file_and_a_name_are_left_as_written(tmp_path):
     (tmp_path / "scene.toml").write_text(SCENE.format(name="/elsewhere/user.py:Good"))
-    assert read_scene(tmp_path / "scene.toml").problem_spec == "/elsewhere/user.py:Good"
+    assert problem_spec(read_scene(tmp_path / "scene.toml")) == "/elsewhere/user.py:Good"
     (tmp_path / "scene.toml").write_text(SCENE.format(name="duffing"))
-    assert read_scene(tmp_path / "scene.toml").problem_spec == "duffing"
+    assert problem_spec(read_scene(tmp_path / "scene.toml")) == "duffing"
     (tmp_path / "scene.toml").write_text(SCENE.format(name="lib/user.py"))
-    assert read_scene(tmp_path / "scene.toml").problem_spec == str(tmp_path / "lib" / "user.py")
+    assert problem_spec(read_scene(tmp_path / "scene.toml")) == str(tmp_path / "lib" / "user.py")
 
 
 def test_a_scene_saved_with_a_byte_order_mark_is_read(tmp_path):

@@ -86,9 +86,9 @@ def _free_port() -> int:
 
 
 def test_a_cluster_without_workers_is_a_failed_status(tmp_path, capsys, monkeypatch):
-    import perturb.sweep.driver as driver
+    import perturb.sweep.watch as watch
 
-    monkeypatch.setattr(driver, "SWEEP_NO_WORKER_SECONDS", 2.0)
+    monkeypatch.setattr(watch, "SWEEP_NO_WORKER_SECONDS", 2.0)
     port = _free_port()
     address = f"tcp://127.0.0.1:{port}"
     scheduler = subprocess.Popen(
