@@ -21,6 +21,8 @@ A first-order curve that cannot be lifted, and an order-N curve that stops insid
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import sympy as sp
 from attrs import field, frozen
@@ -36,6 +38,7 @@ from perturb._defaults import (
     REACH_STEP_SHARE,
 )
 from perturb.continuation import ContinuationStatus, CurveEquations, continue_both, continue_curve
+from perturb.errors import InvalidParameterError
 from perturb.steady.census import census, distinct_orbits, line_folds, same_orbit
 from perturb.steady.compiled import compiled_displacement
 from perturb.steady.exact import exact_number
@@ -128,8 +131,13 @@ def line_equations(compiled, line, n: int) -> CurveEquations:
                 memo[key] = special(x)
             else:
                 lam = float(line.lam(x[-1]))
-                values, eps = line.at(lam)
-                rate, eps_rate = line.rate(lam)
+                try:
+                    values, eps = line.at(lam)
+                    rate, eps_rate = line.rate(lam)
+                except InvalidParameterError:  # a step past the problem's values: not a point
+                    nan = np.full(n, math.nan)  # of the curve (the corrector fails, the step
+                    memo[key] = (nan, np.full((n, n + 1), math.nan))  # is shortened)
+                    return memo[key]
                 g, grad = compiled.values_and_gradient(np.concatenate((x[:-1], values, [eps])))
                 g_mu = (grad[:, n : n + len(names)] @ rate + grad[:, -1] * eps_rate) / line.scale
                 memo[key] = (g, np.hstack((grad[:, :n], g_mu[:, None])))
