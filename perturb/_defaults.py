@@ -730,8 +730,15 @@ SEPARATRIX_OFFSET = 1e-4
 SEPARATRIX_MARGIN = 1.5
 SEPARATRIX_SPAN = 200.0
 
-#: A ramp's rates for its study of the delay: the given rate and these fractions of it.
-RAMP_RATE_FRACTIONS = (1.0, 0.5, 0.25)
+#: A ramp's jump is the largest change of its envelope over this many drive periods: a window
+#: of periods, not a share of the ramp, shrinks in the ramped parameter with the rate (the
+#: response needs ~1/(eps zeta) of time to fall to the other branch; ten periods see its start).
+RAMP_JUMP_PERIODS = 10
+
+#: The jump is the first run of windows changing by at least this share of the largest change:
+#: after a jump the response swings about its new branch (an overshoot, beats), by less than the
+#: jump itself but by more than a fifth of it.
+RAMP_JUMP_SHARE = 0.5
 
 # -- perturb.sweep.evaluate
 #: A sampled component whose step from the end of the period back to its start exceeds this many

@@ -123,41 +123,42 @@ class SlowFlow:
         return out
 
     # ---------------------------------------------------------------------- the section
-    def _angles(self, phase: float) -> list[float]:
+    def _angles(self, phase, rows: int) -> list[np.ndarray]:
+        phase = np.broadcast_to(np.asarray(phase, dtype=float), (rows,))
         return [m * phase / self.response_periods for m in self.harmonics]
 
-    def to_section(self, u, phase: float = 0.0) -> np.ndarray:
-        """The state on the section at drive phase ``phase`` of amplitudes ``u`` (shape (2r,)
-        or (M, 2r)): shape (m,) or (M, m), by the first-order solution."""
+    def to_section(self, u, phase=0.0) -> np.ndarray:
+        """The state on the section at drive phase ``phase`` (a number, or one per row) of
+        amplitudes ``u`` (shape (2r,) or (M, 2r)): shape (m,) or (M, m), by the first-order
+        solution."""
         u = np.asarray(u, dtype=float)
         flat = u.reshape(-1, len(self.amplitudes))
         out = np.zeros((flat.shape[0], len(self.names)))
         nu = self.omega / self.response_periods
         n = len(self.names) // 2
-        for i, (c, m, psi) in enumerate(
-            zip(self.coordinates, self.harmonics, self._angles(phase), strict=True)
-        ):
+        angles = self._angles(phase, flat.shape[0])
+        for i, (c, m, psi) in enumerate(zip(self.coordinates, self.harmonics, angles, strict=True)):
             a, b = flat[:, 2 * i], flat[:, 2 * i + 1]
             k = self.names.index(c)
-            out[:, k] = a * math.cos(psi) + b * math.sin(psi)
-            out[:, k + n] = m * nu * (-a * math.sin(psi) + b * math.cos(psi))
+            out[:, k] = a * np.cos(psi) + b * np.sin(psi)
+            out[:, k + n] = m * nu * (-a * np.sin(psi) + b * np.cos(psi))
         return out.reshape(*u.shape[:-1], len(self.names))
 
-    def from_section(self, y, phase: float = 0.0) -> np.ndarray:
-        """The amplitudes of the state ``y`` (shape (m,) or (M, m)) on the section at drive
-        phase ``phase`` (the inverse of :meth:`to_section` on the resonant coordinates)."""
+    def from_section(self, y, phase=0.0) -> np.ndarray:
+        """The amplitudes of the state ``y`` (shape (m,) or (M, m)) at drive phase ``phase`` (a
+        number, or one per row): the inverse of :meth:`to_section` on the resonant coordinates
+        (the variation of constants of the first-order solution)."""
         y = np.asarray(y, dtype=float)
         flat = y.reshape(-1, len(self.names))
         out = np.zeros((flat.shape[0], len(self.amplitudes)))
         nu = self.omega / self.response_periods
         n = len(self.names) // 2
-        for i, (c, m, psi) in enumerate(
-            zip(self.coordinates, self.harmonics, self._angles(phase), strict=True)
-        ):
+        angles = self._angles(phase, flat.shape[0])
+        for i, (c, m, psi) in enumerate(zip(self.coordinates, self.harmonics, angles, strict=True)):
             k = self.names.index(c)
             x, w = flat[:, k], flat[:, k + n] / (m * nu)
-            out[:, 2 * i] = x * math.cos(psi) - w * math.sin(psi)
-            out[:, 2 * i + 1] = x * math.sin(psi) + w * math.cos(psi)
+            out[:, 2 * i] = x * np.cos(psi) - w * np.sin(psi)
+            out[:, 2 * i + 1] = x * np.sin(psi) + w * np.cos(psi)
         return out.reshape(*y.shape[:-1], len(self.amplitudes))
 
     # ---------------------------------------------------------------------- equilibria
@@ -218,7 +219,7 @@ class SlowFlow:
                 result = solve_ivp(
                     lambda t, u: -self.rate(u), (0.0, SEPARATRIX_SPAN / self.epsilon), start,
                     method="DOP853", rtol=1e-9, atol=1e-12, events=outside,
-                    max_step=self.period * 2,
+                    max_step=self.period,
                 )  # fmt: skip
                 curve = np.vstack([eq.amplitudes[None], result.y.T])
                 curves.append(self.to_section(curve, phase))
