@@ -465,8 +465,10 @@ def _run(job, sink, found, local, workers, scheduler, client, timeout, problem) 
                 codes[local_codes == known + i] = known + j
             if len(found) > before:
                 sink.update({"found": json.dumps([_encode_state(f) for f in found])})
-        sink.write(number, {**result, "code": codes,
-                            "session": np.full(codes.shape, session, dtype=np.int32)})  # fmt: skip
+        arrays = {name: result[name] for name in ("periods", "final", "initial")}
+        arrays["code"] = codes
+        arrays["session"] = np.full(codes.shape, session, dtype=np.int32)
+        sink.write(number, arrays)
 
     clock = time.perf_counter()
     if local:

@@ -41,7 +41,9 @@ def test_the_map_is_a_dataset_of_codes_with_meanings(grid_map):
     lower = grid_map.fractions[0]
     assert lower.error == pytest.approx(math.sqrt(lower.fraction * (1 - lower.fraction) / 900))
     # the initial states are the grid's
-    np.testing.assert_array_equal(ds["initial"].values[3, 5], [ds["x"].values[5], ds["xdot"].values[3]])
+    np.testing.assert_array_equal(
+        ds["initial"].values[3, 5], [ds["x"].values[5], ds["xdot"].values[3]]
+    )
 
 
 def test_grid_fractions_agree_with_random_sampling(bistable, grid_map):
@@ -69,7 +71,9 @@ def test_an_independent_map_by_plain_scipy_agrees_off_the_boundary(grid_map):
     for di, dj in ((0, 1), (2, 1), (1, 0), (1, 2)):
         interior &= padded[di : di + 30, dj : dj + 30] == codes
     rng = np.random.default_rng(2)
-    picks = [tuple(p) for p in np.argwhere(interior)[rng.choice(int(interior.sum()), 8, replace=False)]]
+    picks = [
+        tuple(p) for p in np.argwhere(interior)[rng.choice(int(interior.sum()), 8, replace=False)]
+    ]
     near_boundary = [tuple(p) for p in np.argwhere(~interior)[::40][:2]]
     period = 2 * math.pi / 1.05
 
