@@ -450,8 +450,10 @@ def _run(job, sink, found, local, workers, scheduler, client, timeout, problem) 
     done = job.size - sum(sizes.values())
     label = f"basins {chart.problem}"
     lost: list[str] = []
+    cpu = [0.0]
 
     def write(number: int, result: dict) -> None:
+        cpu[0] += float(result.get("cpu", 0.0))
         codes = np.asarray(result["code"]).astype(np.int16)
         if result["found"]:
             from perturb.dynamics.attractors import StateKind, SteadyOrbit
@@ -495,7 +497,7 @@ def _run(job, sink, found, local, workers, scheduler, client, timeout, problem) 
     dataset = _dataset(job, sink, chart_now)
     fractions = _fractions(dataset, chart_now)
     dataset.attrs.update(
-        seconds=seconds, points_computed=sum(sizes.values()),
+        seconds=seconds, task_cpu_seconds=cpu[0], points_computed=sum(sizes.values()),
         fractions=json.dumps([[f.code, f.name, f.count, f.fraction, f.error] for f in fractions]),
     )  # fmt: skip
     axes = _axis_names(job.axes, job.box)
