@@ -262,6 +262,20 @@ def basins(
         Bad input, checked before any work: a grid that is not two coordinates of the state, a
         component or base value not in the state space, a cap below 1, a store holding anything
         else, too much work without ``yes``.
+
+    Examples
+    --------
+    The bistable forced Duffing (Omega = 1.05): which of its two stable responses each state of
+    a coarse grid reaches.
+
+    >>> import perturb
+    >>> from problems import get_problem
+    >>> duffing = get_problem("forced-duffing").create(Omega=1.05)
+    >>> result = perturb.basins(duffing, ["x=-3:3:8", "xdot=-3:3:8"])
+    >>> [f.name for f in result.fractions], sum(f.count for f in result.fractions)
+    (['lower', 'upper'], 64)
+    >>> [s.name for s in result.catalogue.saddles]
+    ['middle']
     """
     from perturb.dynamics.attractors import catalogue as make_catalogue
     from perturb.dynamics.attractors import decode, encode

@@ -138,11 +138,28 @@ def ramp(
     coordinate : str, optional
         Whose envelope (default: the reference coordinate).
 
+    Returns
+    -------
+    Ramp
+        The response curve's folds between the ends, and each run (direction, rate) with its
+        jump, the fold it left and the delay.
+
     Raises
     ------
     InvalidParameterError
         A rate of zero, a ramp that does not move (the same ends, or a parameter that does not
         move the drive frequency, or moves more than it), a problem that is not driven.
+
+    Examples
+    --------
+    Up through the hysteresis band of a forced Duffing: the jump down comes just after the fold.
+
+    >>> import perturb
+    >>> from problems import get_problem
+    >>> duffing = get_problem("forced-duffing").create(eps=0.02, F=0.5)
+    >>> up = perturb.ramp(duffing, "Omega", 0.99, 1.06, 5e-6).runs[0]
+    >>> round(up.fold, 4), 0 < up.delay < 0.005
+    (1.0424, True)
     """
     from perturb.response.hysteresis import slow_sweep
     from perturb.steady.line import excitation_frequency

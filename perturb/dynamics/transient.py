@@ -120,7 +120,18 @@ def transient(
     ------
     InvalidParameterError
         A component not in the state, a value not finite, periods below 1, a problem that is not
-        driven, a catalogue with no stable state (nothing to settle on: the message says why).
+        driven.
+
+    Examples
+    --------
+    From rest the bistable forced Duffing settles on its small response:
+
+    >>> import perturb
+    >>> from problems import get_problem
+    >>> duffing = get_problem("forced-duffing").create(Omega=1.05)
+    >>> result = perturb.transient(duffing, {"x": 0.0, "xdot": 0.0}, 200)
+    >>> result.settled, result.success
+    ('lower', True)
     """
     from perturb.dynamics.attractors import catalogue as make_catalogue
     from perturb.dynamics.classify import Outcome, classify

@@ -52,8 +52,8 @@ def plot_basins(x, y, codes, names, attractors=(), saddles=(), separatrix=(), *,
     >>> codes = (x[None, :] > 0).astype(int) + 0 * y[:, None]
     >>> fig = plot_basins(x, y, codes, {0: "left", 1: "right"}, [("left", [[-0.5, 0]])],
     ...                   xname="x", yname="xdot")
-    >>> fig.axes[0].get_xlabel()
-    'x'
+    >>> fig.axes[0].get_xlabel(), fig.axes[0].get_ylabel()
+    ('$x$', '$\\\\dot{x}$')
     """
     x, y = _axis(x, "x"), _axis(y, "y")
     field = np.asarray(codes, dtype=int)
@@ -119,6 +119,21 @@ def plot_transient(times, x, envelope, slow_envelope, phase, slow_phase, *, coor
     coordinate : str
     settle_time : float, optional
         When the motion settled (a vertical line).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from perturb.report.plots.dynamics import plot_transient
+    >>> t = np.linspace(0, 100, 401)
+    >>> envelope = 1 - np.exp(-t / 30)
+    >>> fig = plot_transient(t, envelope * np.cos(t), envelope, 1 - np.exp(-t / 28), 0 * t, 0 * t,
+    ...                      coordinate="x", settle_time=80.0)
+    >>> len(fig.axes)
+    2
     """
     t = np.asarray(times, dtype=float)
     with publication_style():
@@ -151,6 +166,20 @@ def plot_ramp(runs, folds=(), *, parameter: str, coordinate: str, title=None):
     runs : sequence of (label, values, envelope, jump)
     folds : sequence of float
     parameter, coordinate : str
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from perturb.report.plots.dynamics import plot_ramp
+    >>> w = np.linspace(0.99, 1.06, 200)
+    >>> up = np.where(w < 1.045, 1 + 20 * (w - 0.99), 0.2)
+    >>> fig = plot_ramp([("up", w, up, 1.045)], [1.0424], parameter="Omega", coordinate="x")
+    >>> fig.axes[0].get_ylabel()
+    'max |x| per drive period'
     """
     with publication_style():
         fig, axes = new_figure(1, 1)
