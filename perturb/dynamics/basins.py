@@ -319,6 +319,18 @@ def basins(
         from perturb.sweep.api import require_extra
 
         require_extra()
+    if output is not None:  # the store checked before any work (and its lock free now)
+        import perturb
+        from perturb.dynamics.chunks import request_fingerprint
+        from perturb.sweep.lock import StoreLock
+        from perturb.sweep.store import MapStore
+
+        fingerprint = request_fingerprint(
+            motion.label, problem.parameters_in_force(), order, float(phase), axes, box,
+            base_state, cap, backend, int(seed), perturb.__version__,
+        )  # fmt: skip
+        if MapStore.check_map(output, fingerprint, resume) is not False:
+            StoreLock(output).acquire().release()
     stored = _stored_catalogue(output) if resume else None
     found_before: list = []
     if stored is not None:

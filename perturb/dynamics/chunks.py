@@ -21,7 +21,7 @@ from attrs import field, frozen
 
 from perturb.sweep.grid import Chunking
 
-__all__ = ["BasinJob", "basin_chunk"]
+__all__ = ["BasinJob", "basin_chunk", "request_fingerprint"]
 
 
 @frozen
@@ -86,24 +86,36 @@ class BasinJob:
         return out
 
     def fingerprint(self, version: str) -> str:
-        """What the study's store holds: the problem and its values, the section, the states'
-        rule, the cap and the integrator (a resumed run must be this very study)."""
-        catalogue = self.catalogue
-        what = {
-            "kind": "basins",
-            "problem": catalogue.problem,
-            "values": {k: float(v) for k, v in sorted(catalogue.values.items())},
-            "order": catalogue.order,
-            "phase": catalogue.phase,
-            "axes": [[n, np.asarray(v, dtype=float).tolist()] for n, v in self.axes],
-            "box": [list(b) for b in self.box],
-            "base": self.base.tolist(),
-            "cap": self.cap,
-            "backend": self.backend,
-            "seed": self.seed,
-            "version": version,
-        }
-        return hashlib.sha256(json.dumps(what, sort_keys=True).encode()).hexdigest()
+        """What the study's store holds (:func:`request_fingerprint` of this job)."""
+        chart = self.catalogue
+        return request_fingerprint(
+            chart.problem, chart.values, chart.order, chart.phase, self.axes, self.box,
+            self.base, self.cap, self.backend, self.seed, version,
+        )  # fmt: skip
+
+
+def request_fingerprint(
+    problem: str, values, order: int, phase: float, axes, box, base, cap: int, backend: str,
+    seed: int, version: str,
+) -> str:  # fmt: skip
+    """The fingerprint of a basin study: the problem and its values, the section, the states'
+    rule, the cap and the integrator (a resumed run must be this very study); known before the
+    catalogue is computed, so that a store is checked before any work."""
+    what = {
+        "kind": "basins",
+        "problem": problem,
+        "values": {k: float(v) for k, v in sorted(dict(values).items())},
+        "order": int(order),
+        "phase": float(phase),
+        "axes": [[n, np.asarray(v, dtype=float).tolist()] for n, v in axes],
+        "box": [list(b) for b in box],
+        "base": np.asarray(base, dtype=float).tolist(),
+        "cap": int(cap),
+        "backend": backend,
+        "seed": int(seed),
+        "version": version,
+    }
+    return hashlib.sha256(json.dumps(what, sort_keys=True).encode()).hexdigest()
 
 
 @functools.lru_cache(maxsize=2)

@@ -12,6 +12,8 @@ for each state still running:
   returns in a row (k = 1 .. :data:`~perturb._defaults.BASIN_RECURRENCE_MAX_PERIOD`, the smallest
   k): a new attractor (kind :attr:`StateKind.FOUND`, named ``period-k-N``) with its k points,
   which then captures other states as the catalogued ones do;
+* **at a saddle**, when that recurrence is at a catalogued unstable state (a state started on
+  its stable manifold: the saddle itself, on a grid through it);
 * **escaped**, when the state grows past :data:`~perturb._defaults.BASIN_ESCAPE_FACTOR` times
   the catalogue's scale or becomes non-finite (a blow-up);
 * **no convergence within the cap**, when ``cap`` periods pass without any of these.
@@ -45,6 +47,7 @@ class Outcome(enum.Enum):
     NO_CONVERGENCE = "no convergence within the cap of periods"
     ESCAPED = "escapes: the motion grows without bound (or blew up)"
     NOT_COMPUTED = "not computed"
+    ON_SADDLE = "stays at an unstable steady state (started on its stable manifold)"
 
     @property
     def code(self) -> int:
@@ -52,7 +55,12 @@ class Outcome(enum.Enum):
         return _CODES[self]
 
 
-_CODES = {Outcome.NO_CONVERGENCE: -1, Outcome.ESCAPED: -2, Outcome.NOT_COMPUTED: -3}
+_CODES = {
+    Outcome.NO_CONVERGENCE: -1,
+    Outcome.ESCAPED: -2,
+    Outcome.NOT_COMPUTED: -3,
+    Outcome.ON_SADDLE: -4,
+}
 
 
 def outcome_meanings() -> dict[int, str]:
@@ -121,6 +129,7 @@ def classify(
     y = np.array(states, dtype=float, ndmin=2)
     total, m = y.shape
     attractors = list(catalogue.attractors)
+    saddles = list(catalogue.saddles)
     known_points = [s.points for s in catalogue.states]
     scale = catalogue.scale
     escape = BASIN_ESCAPE_FACTOR * scale
@@ -177,8 +186,11 @@ def classify(
             for j in np.flatnonzero(looped):
                 k = int(np.argmax(ready[:, j])) + 1
                 points = history[:k, active[j]][::-1].copy()
-                code = _register(found, points, known_points, attractors, recurrence)
-                codes[active[j]] = len(attractors) + code
+                if any(s.distance(points[:1])[0] <= s.radius for s in saddles):
+                    codes[active[j]] = Outcome.ON_SADDLE.code
+                else:
+                    code = _register(found, points, known_points, attractors, recurrence)
+                    codes[active[j]] = len(catalogue.attractors) + code
                 periods[active[j]] = n
                 final[active[j]] = z[j]
                 alive[j] = False

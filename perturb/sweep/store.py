@@ -493,7 +493,7 @@ class MapStore(SweepStore):
         from perturb.sweep.lock import StoreLock
 
         path = Path(path)
-        state = cls._check_map(path, fingerprint, resume)
+        state = cls.check_map(path, fingerprint, resume)
         if state is False:
             try:
                 path.mkdir()
@@ -502,7 +502,7 @@ class MapStore(SweepStore):
                               "choose a new, writable path") from None  # fmt: skip
         lock = StoreLock(path).acquire()
         try:
-            if state is True and cls._check_map(path, fingerprint, resume) is True:
+            if state is True and cls.check_map(path, fingerprint, resume) is True:
                 return cls._open(path, lock, False)
             if state == "replace":
                 _empty_folder(path)
@@ -516,7 +516,11 @@ class MapStore(SweepStore):
             raise
 
     @staticmethod
-    def _check_map(path: Path, fingerprint: str, resume: bool) -> bool | str:
+    def check_map(path, fingerprint: str, resume: bool) -> bool | str:
+        """Raise unless ``path`` can take the map ``fingerprint`` names (as
+        :meth:`SweepStore.check`); False (new), True (to resume) or ``"replace"`` (its creation
+        was cut short)."""
+        path = Path(path)
         if path.exists() or path.is_symlink():
             attrs = _attrs_of(path) if path.is_dir() and not path.is_symlink() else None
             if attrs is None:

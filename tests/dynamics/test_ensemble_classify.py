@@ -127,3 +127,9 @@ def test_bad_ensembles_are_refused(motion):
         ensemble(motion, math.inf)
     with pytest.raises(InvalidParameterError, match="shape"):
         ensemble(motion).returns(np.zeros((3, 3)), 2)
+
+
+def test_a_state_on_the_saddle_is_said_so(motion, chart):
+    saddle = chart.saddles[0]
+    result = classify(ensemble(motion, 0.0), chart, saddle.points[:1], 1000)
+    assert result.codes[0] == Outcome.ON_SADDLE.code and not result.found
