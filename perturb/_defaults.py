@@ -672,8 +672,9 @@ BASIN_CAPTURE_RETURNS = 4
 
 #: Drive periods integrated between two classifications of the points still running: the
 #: integrator's calls (per batch of lanes) are amortised over them, and a point classified runs
-#: at most this many periods too long.
-BASIN_BLOCK_PERIODS = 8
+#: at most this many periods too long (a capture takes ~100). Measured on the forced Duffing
+#: (CPU per initial state, 16 lanes): 0.207 ms at 4, 0.183 at 8, 0.167 at 16.
+BASIN_BLOCK_PERIODS = 16
 
 #: The default cap of drive periods: the forced Duffing at its defaults (contraction e^(-eps
 #: zeta T) = 0.969 a period) comes within a tenth of a basin's size from anywhere in ~200.
@@ -710,9 +711,10 @@ BASIN_SEED = 0
 #: fewer steps than machine precision.
 ENSEMBLE_TOL = 1e-10
 
-#: Lanes of the batch Taylor integrator: 8 doubles fill two AVX2 registers; measured 1.4 us per
-#: point and period on the forced Duffing at 4, 8 and 16 lanes alike (benchmarks/bench_basins.md).
-ENSEMBLE_LANES = 8
+#: Lanes of the batch Taylor integrator (a multiple of the 4 doubles of an AVX2 register):
+#: measured ~1.4 us per point and period on the forced Duffing at 4, 8 and 16 lanes alike, and
+#: 16 halves the calls (0.167 ms per initial state against 0.176 at 8; bench_basins.md).
+ENSEMBLE_LANES = 16
 
 #: Steps of the numpy route's classical Runge-Kutta per drive period: on the forced Duffing its
 #: global error after 20 periods from |x| <= 3 is 6e-5 at 128 steps and 4e-6 at 256 (h^4), so

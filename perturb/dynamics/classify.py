@@ -128,7 +128,6 @@ def classify(
     """
     y = np.array(states, dtype=float, ndmin=2)
     total, m = y.shape
-    attractors = list(catalogue.attractors)
     saddles = list(catalogue.saddles)
     known_points = [s.points for s in catalogue.states]
     scale = catalogue.scale
@@ -144,65 +143,79 @@ def classify(
     current = y.copy()
     streak = np.zeros(total, dtype=np.int64)  # returns in a row inside one attractor's radius
     holder = np.full(total, -1, dtype=np.int64)  # that attractor
-    history = np.full((kmax, total, m), np.nan)  # the last kmax returns, newest first
+    history = np.full((kmax, total, m), np.nan)  # the last kmax returns, oldest first
     recur = np.zeros((kmax, total), dtype=np.int64)  # returns in a row recurring at k = 1..kmax
     done = 0
     while active.size and done < cap:
         count = min(block, cap - done)
         samples = ensemble.returns(current, count)  # (count, A, m)
-        alive = np.ones(active.size, dtype=bool)
+        attractors = [*catalogue.attractors, *found]  # those found so far capture from here
+        size = active.size
+        never = np.full(size, count)
+        # escape: the first return not finite or past the bound (NaN compares false)
+        with np.errstate(invalid="ignore"):
+            fine = np.all(np.abs(samples) <= escape, axis=2)  # (count, A)
+        escaped = np.where(np.any(~fine, axis=0), np.argmax(~fine, axis=0), never)
+        # capture: the return that completes `need` in a row inside one attractor's radius
+        inside = np.full((count, size), -1, dtype=np.int64)
+        flat = samples.reshape(-1, m)
+        for a, state in enumerate(attractors):
+            with np.errstate(invalid="ignore"):
+                hit = (inside < 0) & (state.distance(flat).reshape(count, size) <= state.radius)
+            inside[hit] = a
+        run, held = streak[active], holder[active]
+        caught = never.copy()
         for b in range(count):
-            z = samples[b]
-            n = done + b + 1
-            # escape
-            bad = alive & ~(np.all(np.isfinite(z), axis=1) & (np.max(np.abs(z), axis=1) <= escape))
-            if np.any(bad):
-                codes[active[bad]] = Outcome.ESCAPED.code
-                periods[active[bad]] = n
-                final[active[bad]] = z[bad]
-                alive &= ~bad
-            # capture by an attractor (the radii do not overlap: a tenth of the gaps)
-            inside = np.full(active.size, -1, dtype=np.int64)
-            for a, state in enumerate(attractors):
-                hit = (inside < 0) & (state.distance(z) <= state.radius)
-                inside[hit] = a
-            same = (inside >= 0) & (inside == holder[active])
-            streak[active] = np.where(same, streak[active] + 1, (inside >= 0).astype(np.int64))
-            holder[active] = inside
-            caught = alive & (streak[active] >= need)
-            if np.any(caught):
-                codes[active[caught]] = inside[caught]
-                periods[active[caught]] = n
-                final[active[caught]] = z[caught]
-                alive &= ~caught
-            # recurrence of period k (the smallest), away from every attractor
-            past = history[:, active]
-            close = np.linalg.norm(z[None] - past, axis=-1) <= recurrence  # (kmax, A)
-            recur[:, active] = np.where(close, recur[:, active] + 1, 0)
-            history[1:, active] = past[:-1]
-            history[0, active] = z
-            ready = recur[:, active] >= need
-            looped = alive & np.any(ready, axis=0) & (inside < 0)
-            for j in np.flatnonzero(looped):
-                k = int(np.argmax(ready[:, j])) + 1
-                points = history[:k, active[j]][::-1].copy()
-                if any(s.distance(points[:1])[0] <= s.radius for s in saddles):
-                    codes[active[j]] = Outcome.ON_SADDLE.code
-                else:
-                    code = _register(found, points, known_points, attractors, recurrence)
-                    codes[active[j]] = len(catalogue.attractors) + code
-                periods[active[j]] = n
-                final[active[j]] = z[j]
-                alive[j] = False
-            attractors = [*catalogue.attractors, *found]
-        final[active[alive]] = samples[count - 1][alive]
+            same = (inside[b] >= 0) & (inside[b] == held)
+            run = np.where(same, run + 1, (inside[b] >= 0).astype(np.int64))
+            held = inside[b]
+            caught[(caught == count) & (run >= need)] = b
+        # recurrence of period k (the smallest), away from every attractor
+        sequence = np.concatenate([history[:, active], samples], axis=0)  # oldest first
+        again = recur[:, active]
+        looped, period_of = never.copy(), np.zeros(size, dtype=np.int64)
+        for b in range(count):
+            z = sequence[kmax + b]
+            past = sequence[b : kmax + b][::-1]  # past[k - 1]: k returns before
+            with np.errstate(invalid="ignore"):
+                close = np.linalg.norm(z[None] - past, axis=-1) <= recurrence
+            again = np.where(close, again + 1, 0)
+            ready = again >= need
+            new = (looped == count) & np.any(ready, axis=0) & (inside[b] < 0)
+            period_of[new] = np.argmax(ready[:, new], axis=0) + 1
+            looped[new] = b
+        # the earliest event of each state (escape, then capture, then recurrence at a tie)
+        event = np.minimum(np.minimum(escaped, caught), looped)
+        ended = event < count
+        where = active[ended]
+        at = event[ended]
+        periods[where] = done + at + 1
+        final[where] = samples[at, np.flatnonzero(ended)]
+        kind = np.where(escaped[ended] == at, 0, np.where(caught[ended] == at, 1, 2))
+        codes[where[kind == 0]] = Outcome.ESCAPED.code
+        codes[where[kind == 1]] = inside[at[kind == 1], np.flatnonzero(ended)[kind == 1]]
+        order = np.argsort(at[kind == 2], kind="stable")
+        for j in np.flatnonzero(ended)[kind == 2][order]:
+            k, b = int(period_of[j]), int(event[j])
+            points = sequence[kmax + b - k + 1 : kmax + b + 1, j].copy()
+            if any(s.distance(points[:1])[0] <= s.radius for s in saddles):
+                codes[active[j]] = Outcome.ON_SADDLE.code
+            else:
+                code = _register(found, points, known_points, recurrence)
+                codes[active[j]] = len(catalogue.attractors) + code
+        alive = ~ended
+        keep = active[alive]
+        streak[keep], holder[keep] = run[alive], held[alive]
+        recur[:, keep] = again[:, alive]
+        history[:, keep] = sequence[-kmax:, alive]
+        final[keep] = samples[count - 1][alive]
         done += count
         current = samples[count - 1][alive]
-        active = active[alive]
+        active = keep
     return Classified(codes, periods, final, tuple(found))
 
 
-def _register(found: list, points, known_points, attractors, tol: float) -> int:
+def _register(found: list, points, known_points, tol: float) -> int:
     """The index in ``found`` of the orbit through ``points`` (added when new)."""
     k = points.shape[0]
     candidate = SteadyOrbit(f"period-{k}", StateKind.FOUND, points)

@@ -133,3 +133,26 @@ def test_a_state_on_the_saddle_is_said_so(motion, chart):
     saddle = chart.saddles[0]
     result = classify(ensemble(motion, 0.0), chart, saddle.points[:1], 1000)
     assert result.codes[0] == Outcome.ON_SADDLE.code and not result.found
+
+
+def test_a_state_carried_to_another_phase_goes_to_the_same_attractor(bistable, motion, chart):
+    """The section at drive phase 1: each state carried there by the motion (scipy) reaches the
+    attractor of the same name as from phase 0."""
+    from perturb.dynamics.attractors import catalogue
+
+    moved_chart = catalogue(bistable, 1, 1.0, motion)
+    states = np.random.default_rng(5).uniform(-3, 3, size=(12, 2))
+
+    def f(t, y):
+        x, v = y
+        return [v, -x - 0.05 * x**3 - 0.01 * v + 0.05 * math.cos(1.05 * t)]
+
+    carried = np.array([
+        solve_ivp(f, (0, 1.0 / 1.05), y, method="DOP853", rtol=1e-12, atol=1e-14).y[:, -1]
+        for y in states
+    ])  # fmt: skip
+    at_zero = classify(ensemble(motion, 0.0), chart, states, 1000)
+    at_one = classify(ensemble(motion, 1.0), moved_chart, carried, 1000)
+    names = [chart.attractors[c].name for c in at_zero.codes]
+    assert names == [moved_chart.attractors[c].name for c in at_one.codes]
+    assert set(names) == {"lower", "upper"}
