@@ -37,6 +37,7 @@ __all__ = [
     "StateKind",
     "SteadyOrbit",
     "catalogue",
+    "confirm",
     "decode",
     "decode_state",
     "encode",
@@ -337,3 +338,32 @@ def decode(text: str) -> Catalogue:
         states=[decode_state(s) for s in data["states"]],
         status=CatalogueStatus[data["status"]], notes=data["notes"],
     )  # fmt: skip
+
+
+def confirm(motion, orbit: SteadyOrbit, phase: float) -> SteadyOrbit:
+    """An orbit found by the motion (on the section at ``phase``), shot with its period fixed:
+    the same orbit with the shooting's multipliers and sentence, or its message saying that the
+    shooting did not confirm it (it is kept: the motion recurred there)."""
+    import attrs
+
+    from perturb.oracle import choose, find_forced_orbit
+
+    back = (-phase) % (2 * math.pi) / motion.omega  # from theta = phase on to theta = 0 (mod 2 pi)
+    start = orbit.points[0]
+    if back > 0:
+        solver = choose(None, rtol=DEFAULT_RTOL, symbolic=True)
+        traj = solver.integrate(motion.rhs, (0.0, back), np.append(start, phase))
+        if not traj.success:
+            return attrs.evolve(orbit, message=f"{orbit.message}; not shot ({traj.message})")
+        start = np.asarray(traj.y_final, dtype=float)[: motion.m]
+    shot = find_forced_orbit(
+        motion.rhs, start, orbit.period * motion.drive_period, max_iter=SHOOTING_ITERATIONS
+    )
+    if not shot.success:
+        return attrs.evolve(orbit, message=f"{orbit.message}; the shooting did not confirm it "
+                            f"({shot.message})")  # fmt: skip
+    return attrs.evolve(
+        orbit,
+        multipliers=tuple(complex(z) for z in shot.floquet_multipliers),
+        message=f"{orbit.message}; proved by shooting: {shot.message}",
+    )

@@ -519,7 +519,9 @@ def _run(job, sink, found, local, workers, scheduler, client, timeout, problem) 
     left = sink.pending() if hasattr(sink, "finish") else []
     if hasattr(sink, "finish"):
         sink.finish()
-    chart_now = chart.with_found(tuple(found))
+    from perturb.dynamics.attractors import confirm
+
+    chart_now = chart.with_found(tuple(confirm(job.motion, f, chart.phase) for f in found))
     dataset = _dataset(job, sink, chart_now)
     fractions = _fractions(dataset, chart_now)
     dataset.attrs.update(

@@ -118,6 +118,12 @@ def test_an_orbit_the_series_does_not_know_is_found_not_forced(motion, chart):
     found = result.found[0]
     assert found.period == 1 and found.name == "period-1-1"
     assert np.max(np.abs(found.points[0] - upper.points[0])) <= 1e-4
+    # shot with its period fixed, it is the upper state, with its multipliers
+    from perturb.dynamics.attractors import confirm
+
+    proved = confirm(motion, found, 0.0)
+    assert "proved by shooting" in proved.message
+    assert proved.largest_multiplier == pytest.approx(upper.largest_multiplier, rel=1e-8)
 
 
 def test_bad_ensembles_are_refused(motion):
