@@ -17,7 +17,7 @@ from perturb.report.plots import plot_basins
 from problems import get_problem
 
 duffing = get_problem("forced-duffing").create(Omega=1.05)
-result = basins(duffing, ["x=-3:3:80", "xdot=-3:3:80"])
+result = basins(duffing, ["x=-3:3:60", "xdot=-3:3:60"])
 ds, chart = result.dataset, result.catalogue
 figure = plot_basins(
     ds["x"].values, ds["xdot"].values, ds["code"].values, result.names(),

@@ -97,7 +97,7 @@ class SteadyOrbit:
 
     @property
     def largest_multiplier(self) -> float:
-        """max |μ| (NaN when none)."""
+        """The largest modulus of the multipliers (NaN when none)."""
         return max((abs(z) for z in self.multipliers), default=math.nan)
 
     def distance(self, states: np.ndarray) -> np.ndarray:
@@ -289,7 +289,7 @@ def catalogue(problem, order: int = 1, phase: float = 0.0, motion=None) -> Catal
 
 def encode(catalogue: Catalogue) -> str:
     """The catalogue as JSON (kept beside a basin map, so that a resumed run classifies the same
-    way: :func:`decode`)."""
+    way: :func:`perturb.dynamics.attractors.decode`)."""
     import json
 
     return json.dumps(
@@ -319,7 +319,7 @@ def _encode_state(state: SteadyOrbit) -> dict:
 
 
 def decode_state(data: dict) -> SteadyOrbit:
-    """A state from :func:`encode`'s form."""
+    """A state from :func:`perturb.dynamics.attractors.encode`'s form."""
     return SteadyOrbit(
         data["name"], StateKind[data["kind"]], np.array(data["points"], dtype=float),
         tuple(complex(re, im) for re, im in data.get("multipliers", ())),
@@ -328,7 +328,7 @@ def decode_state(data: dict) -> SteadyOrbit:
 
 
 def decode(text: str) -> Catalogue:
-    """The catalogue :func:`encode` wrote."""
+    """The catalogue :func:`perturb.dynamics.attractors.encode` wrote."""
     import json
 
     data = json.loads(text)

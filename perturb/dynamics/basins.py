@@ -9,7 +9,7 @@ or on Dask (:func:`perturb.sweep.driver.run_calls`: a LocalCluster or a schedule
 each finishes into a resumable Zarr store (:class:`perturb.sweep.store.MapStore`: the sweep's
 rules; the catalogue is stored beside the map, so a resumed run classifies the same way).
 
-The result, :class:`BasinMap`, holds an :class:`xarray.Dataset` (``code``: one code per
+The result, :class:`BasinMap`, holds an ``xarray.Dataset`` (``code``: one code per
 attractor, the outcomes that are not attractors negative, meanings in its attributes), the basin
 fractions with their binomial sampling error, and the first-order slow flow's separatrix (the
 saddle's stable manifold, :meth:`perturb.dynamics.slowflow.SlowFlow.separatrix`) mapped to the

@@ -36,11 +36,11 @@ class RampRun:
     direction : str
         ``"up"`` or ``"down"``.
     rate : float
-        |d(parameter)/dt|.
+        The absolute rate of change of the parameter, per unit of time.
     values : ndarray
         The parameter at the end of each drive period.
     envelope : ndarray
-        max |x| over that drive period.
+        The largest ``|x|`` over that drive period.
     jump : float
         The parameter's value at the jump.
     jump_size : float
@@ -130,7 +130,8 @@ def ramp(
     start, stop : float
         The ramp's ends (up when stop > start).
     rate : float or sequence of float
-        |d(parameter)/dt| (> 0); several give the delay against the rate.
+        The absolute rate of change of the parameter per unit of time (> 0); several give
+        the delay against the rate.
     both_ways : bool
         Also ramp back from ``stop`` to ``start``.
     order : int

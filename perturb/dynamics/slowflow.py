@@ -163,8 +163,8 @@ class SlowFlow:
 
     # ---------------------------------------------------------------------- equilibria
     def equilibria(self) -> tuple[Equilibrium, ...]:
-        """Every equilibrium: the certified first-order roots (:func:`perturb.steady.census.
-        census`), carried to this order by Newton's method on D_N (N > 1), each with its kind."""
+        """Every equilibrium: the certified first-order roots (``perturb.steady.census.census``),
+        carried to this order by Newton's method on D_N (N > 1), each with its kind."""
         from scipy.optimize import fsolve
 
         out = []
