@@ -701,6 +701,18 @@ BASIN_LOCAL_POINTS = 2500
 #: numpy route is ~30 times slower.
 BASIN_POINT_SECONDS = 4e-4
 
+#: A transient samples at most this many drive periods (TRANSIENT_SAMPLES states each: 256 MB
+#: for a two-coordinate state); a longer one is a slip (an extra zero), not a plan.
+TRANSIENT_MAX_PERIODS = 1_000_000
+
+#: Seconds of one core per drive period of a transient or a ramp (heyoka's dense output, tens of
+#: samples a period; measured ~1e-4 s on the forced Duffing), for the cost rule.
+DYNAMICS_PERIOD_SECONDS = 1e-4
+
+#: A ramp's run lasts at most this many drive periods (its envelope is sampled 40 times a period:
+#: ~250 MB of states); a rate that needs more is a slip, or a study for a faster rate first.
+RAMP_MAX_PERIODS = 200_000
+
 #: The seed of the random initial states of a basin-stability estimate (``--samples``): the
 #: same states on every run and every worker.
 BASIN_SEED = 0

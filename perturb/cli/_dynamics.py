@@ -80,6 +80,8 @@ def add_dynamics_commands(sub, add_problem_arguments, add_format) -> None:
     transient.add_argument("--periods", default=None, metavar="P",
                            help="drive periods to follow (a whole number >= 1)")  # fmt: skip
     transient.add_argument("--phase", default="0", help="the drive phase at t = 0 (radians)")
+    transient.add_argument("--yes", action="store_true",
+                           help="confirm a request estimated at more than an hour of work")  # fmt: skip
     transient.add_argument("--plot", default=None, metavar="FILE",
                            help="also save the transient (needs matplotlib)")  # fmt: skip
     add_format(transient, ["table", "csv", "json"])
@@ -99,6 +101,8 @@ def add_dynamics_commands(sub, add_problem_arguments, add_format) -> None:
     ramp.add_argument("--rate", default=None, metavar="R[,R2,...]",
                       help="|d NAME/dt| (> 0), or several rates")  # fmt: skip
     ramp.add_argument("--both-ways", action="store_true", help="also ramp back from STOP")
+    ramp.add_argument("--yes", action="store_true",
+                      help="confirm ramps estimated at more than an hour of work")  # fmt: skip
     ramp.add_argument("--plot", default=None, metavar="FILE",
                       help="also save the envelopes against the parameter (needs matplotlib)")  # fmt: skip
     add_format(ramp, ["table", "csv", "json"])
@@ -235,7 +239,7 @@ def _cmd_transient(args) -> int:
     order = _parse_order(args.order)
     from perturb.dynamics.transient import transient
 
-    result = transient(problem, start, periods, order=order, phase=phase)
+    result = transient(problem, start, periods, order=order, phase=phase, yes=args.yes)
     from perturb.report.dynamics import transient_as_csv, transient_as_dict, transient_as_table
 
     if args.format == "json":
@@ -297,7 +301,8 @@ def _cmd_ramp(args) -> int:
     order = _parse_order(args.order)
     from perturb.dynamics.ramp import ramp
 
-    result = ramp(problem, name, start, stop, rates, both_ways=args.both_ways, order=order)
+    result = ramp(problem, name, start, stop, rates, both_ways=args.both_ways, order=order,
+                  yes=args.yes)  # fmt: skip
     from perturb.report.dynamics import ramp_as_csv, ramp_as_dict, ramp_as_table
 
     if args.format == "json":

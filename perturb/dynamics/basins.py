@@ -33,6 +33,7 @@ from perturb._defaults import (
     BASIN_POINT_SECONDS,
     BASIN_SEED,
     SWEEP_CONNECT_SECONDS,
+    SWEEP_MEMORY_BYTES,
 )
 from perturb.dynamics.classify import Outcome, merge_found, outcome_meanings
 from perturb.errors import InvalidParameterError, PerturbError, bad_value
@@ -302,17 +303,32 @@ def basins(
         box = tuple(_parse_box(t, names, motion.label) for t in items)
         if len({b[0] for b in box}) != len(box):
             raise InvalidParameterError("--grid: a component twice; give each once")
-        axes = [("sample", np.arange(count, dtype=float))]
+        axes = None  # made once the request is known to be affordable
+        size = count
     else:
         box = ()
         horizontal, vertical = _grid_axes(grid, names, motion.label)
         axes = [vertical, horizontal]
-    size = math.prod(len(v) for _, v in axes)
+        size = math.prod(len(v) for _, v in axes)
     if resume and output is None:
         raise InvalidParameterError("`resume` = True needs `output`: the store to continue")
-    from perturb.cost import Cost, check_cost
+    from perturb.cost import Cost, check_cost, response_cost
 
-    check_cost(Cost(f"{size:,} initial states", size, size * BASIN_POINT_SECONDS), yes)
+    # a state the cap stops costs cap periods: a cap past the default scales the estimate
+    stretch = max(1.0, cap / BASIN_DEFAULT_PERIODS)
+    work = Cost(f"{size:,} initial states, a cap of {cap:,} periods", size,
+                size * BASIN_POINT_SECONDS * stretch)  # fmt: skip
+    check_cost(work + response_cost(1, order, 0), yes)  # the catalogue's series at its order
+    if output is None:
+        need = size * (2 * motion.m * 8 + 2 + 4)
+        if need > SWEEP_MEMORY_BYTES:
+            raise InvalidParameterError(
+                f"the {size:,} initial states would take about {need / 2**30:,.3g} GiB in memory "
+                f"(more than {SWEEP_MEMORY_BYTES / 2**30:g} GiB): write them to a store, "
+                "--output STORE (output= in Python), which holds one chunk at a time"
+            )
+    if axes is None:
+        axes = [("sample", np.arange(size, dtype=float))]
     local = workers == 0 or (workers is None and scheduler is None and client is None
                              and size <= BASIN_LOCAL_POINTS)  # fmt: skip
     if output is not None or not local:

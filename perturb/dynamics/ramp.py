@@ -18,7 +18,13 @@ from collections.abc import Sequence
 import numpy as np
 from attrs import field, frozen
 
-from perturb._defaults import RAMP_JUMP_PERIODS, RAMP_JUMP_SHARE
+from perturb._defaults import (
+    DYNAMICS_PERIOD_SECONDS,
+    RAMP_JUMP_PERIODS,
+    RAMP_JUMP_SHARE,
+    RAMP_MAX_PERIODS,
+    SETTLE_PERIODS,
+)
 from perturb.errors import InvalidParameterError, bad_value
 
 __all__ = ["Ramp", "RampRun", "ramp"]
@@ -117,6 +123,7 @@ def ramp(
     both_ways: bool = False,
     order: int = 1,
     coordinate: str | None = None,
+    yes: bool = False,
 ) -> Ramp:
     """Ramp ``parameter`` of the driven ``problem`` from ``start`` to ``stop`` (see the module
     notes).
@@ -138,6 +145,8 @@ def ramp(
         The response curve's order for the folds.
     coordinate : str, optional
         Whose envelope (default: the reference coordinate).
+    yes : bool
+        Confirm ramps past :func:`perturb.cost.check_cost`'s hour of work.
 
     Returns
     -------
@@ -191,6 +200,19 @@ def ramp(
                         f"({', '.join(moved) or 'eps'}); ramp the frequency (e.g. Omega)",
                         InvalidParameterError)  # fmt: skip
     slope = (omegas[1] - omegas[0]) / (stop - start)  # dOmega / d(parameter)
+    mean = 4 * math.pi / (omegas[0] + omegas[1])  # a drive period in the middle of the ramp
+    longest = abs(omegas[1] - omegas[0]) / (abs(slope) * rates[-1]) / mean
+    if longest > RAMP_MAX_PERIODS:
+        raise bad_value("rate", rates[-1], f"the ramp takes {longest:,.0f} drive periods at this "
+                        f"rate, more than {RAMP_MAX_PERIODS:,}: give a faster rate or a shorter "
+                        "ramp", InvalidParameterError)  # fmt: skip
+    from perturb.cost import Cost, check_cost, response_cost
+
+    legs = 2 if both_ways else 1
+    total = legs * sum(abs(omegas[1] - omegas[0]) / (abs(slope) * r) / mean + SETTLE_PERIODS
+                       for r in rates)  # fmt: skip
+    work = Cost(f"{total:,.0f} drive periods of ramps", 0, total * DYNAMICS_PERIOD_SECONDS)
+    check_cost(work + response_cost(FOLD_GRID, order, 0), yes)
     folds = _folds(problem, parameter, min(start, stop), max(start, stop), order)
     names = [c.name for c in system.coordinates]
     coordinate = coordinate or names[system.reference_index]

@@ -19,7 +19,13 @@ from collections.abc import Mapping
 import numpy as np
 from attrs import field, frozen
 
-from perturb._defaults import BASIN_CAPTURE_RETURNS, DEFAULT_RTOL, TRANSIENT_SAMPLES
+from perturb._defaults import (
+    BASIN_CAPTURE_RETURNS,
+    DEFAULT_RTOL,
+    DYNAMICS_PERIOD_SECONDS,
+    TRANSIENT_MAX_PERIODS,
+    TRANSIENT_SAMPLES,
+)
 from perturb.errors import InvalidParameterError, bad_value
 
 __all__ = ["Transient", "transient"]
@@ -91,12 +97,17 @@ def _periods(periods) -> int:
     if isinstance(periods, bool) or not isinstance(periods, int | np.integer) or periods < 1:
         raise bad_value("periods", periods, "give the drive periods to follow, a whole number "
                         ">= 1 (--periods 300)", InvalidParameterError)  # fmt: skip
+    if periods > TRANSIENT_MAX_PERIODS:
+        raise bad_value("periods", periods, f"give at most {TRANSIENT_MAX_PERIODS:,} drive "
+                        "periods (each is sampled; a basin study follows more states for less)",
+                        InvalidParameterError)  # fmt: skip
     return int(periods)
 
 
 def transient(
-    problem, start: Mapping, periods: int, *, order: int = 1, phase: float = 0.0
-) -> Transient:
+    problem, start: Mapping, periods: int, *, order: int = 1, phase: float = 0.0,
+    yes: bool = False,
+) -> Transient:  # fmt: skip
     """The true motion of the driven ``problem`` from ``start`` beside its slow flow.
 
     Parameters
@@ -111,6 +122,8 @@ def transient(
         series' order of the catalogue's seeds.
     phase : float
         The drive phase at t = 0 (radians).
+    yes : bool
+        Confirm a request past :func:`perturb.cost.check_cost`'s hour of work (a high order).
 
     Returns
     -------
@@ -144,6 +157,10 @@ def transient(
     if not (isinstance(phase, int | float) and math.isfinite(phase)):
         raise bad_value("phase", phase, "give a finite drive phase (radians)",
                         InvalidParameterError)  # fmt: skip
+    from perturb.cost import Cost, check_cost, response_cost
+
+    work = Cost(f"{count:,} drive periods", 0, count * DYNAMICS_PERIOD_SECONDS)
+    check_cost(work + response_cost(1, order, 0), yes)
     motion = motion_of(problem)
     y0 = motion.state(start, "--from")
     flow = slow_flow_of(problem, order)

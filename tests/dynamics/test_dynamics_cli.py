@@ -99,3 +99,18 @@ def test_bad_input_is_one_line_and_exit_2(capsys, argv, needle):
     code, _, err = run(capsys, *argv)
     assert code == 2, err
     assert needle in err and len(err.strip().splitlines()) == 1 and "Traceback" not in err
+
+
+@pytest.mark.parametrize(
+    ("argv", "needle"),
+    [
+        (["transient", *BISTABLE, "--from", "x=1", "--periods", "2000000"], "at most"),
+        (["ramp", "forced-duffing", "--sweep", "Omega=0.9:1.1", "--rate", "1e-12"], "faster rate"),
+        (["basins", *BISTABLE, "--grid", "x=-3:3:5", "--grid", "xdot=-3:3:5", "--periods",
+          "100000000000"], "--yes"),
+        (["basins", *BISTABLE, "--samples", "400000000", "--grid", "x=-3:3"], "--yes"),
+    ],
+)  # fmt: skip
+def test_requests_past_the_cost_rule_are_refused_at_once(capsys, argv, needle):
+    code, _, err = run(capsys, *argv)
+    assert code == 2 and needle in err and len(err.strip().splitlines()) == 1
