@@ -18,8 +18,10 @@ from then on.
 
 from __future__ import annotations
 
+import copy
 import functools
 import math
+import threading
 
 import numpy as np
 from attrs import field, frozen
@@ -119,13 +121,28 @@ def ensemble(motion, phase: float = 0.0, backend: str | None = None) -> Ensemble
 
 # ------------------------------------------------------------------------------ heyoka
 @functools.lru_cache(maxsize=8)
-def _batch_integrator(rhs, lanes: int):
-    """One compiled batch integrator per process (per equations), reused by every call."""
+def _compiled(rhs, lanes: int):
+    """The batch integrator of ``rhs``, compiled once per process."""
     import heyoka as hy
 
     from perturb.dynamics.motion import _heyoka_system
 
     return hy.taylor_adaptive_batch(_heyoka_system(rhs), np.zeros((rhs.n, lanes)), tol=ENSEMBLE_TOL)
+
+
+_THREAD = threading.local()
+
+
+def _batch_integrator(rhs, lanes: int):
+    """This thread's copy of the compiled integrator (an integrator holds its state: two threads
+    of one process, e.g. Dask's threaded workers, must not share one)."""
+    cache = getattr(_THREAD, "integrators", None)
+    if cache is None:
+        cache = _THREAD.integrators = {}
+    key = (rhs, lanes)
+    if key not in cache:
+        cache[key] = copy.copy(_compiled(rhs, lanes))
+    return cache[key]
 
 
 def _heyoka_returns(motion, phase: float, y: np.ndarray, count: int) -> np.ndarray:

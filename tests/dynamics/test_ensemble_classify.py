@@ -162,3 +162,22 @@ def test_a_state_carried_to_another_phase_goes_to_the_same_attractor(bistable, m
     names = [chart.attractors[c].name for c in at_zero.codes]
     assert names == [moved_chart.attractors[c].name for c in at_one.codes]
     assert set(names) == {"lower", "upper"}
+
+
+def test_threads_sharing_an_ensemble_get_the_same_returns(motion, states):
+    """Each thread integrates with its own copy of the compiled integrator (Dask's threaded
+    workers share a process): four at once give the returns of one alone."""
+    import threading
+
+    integrator = ensemble(motion, 0.0, "heyoka")
+    alone = integrator.returns(states, 20)
+    out: dict = {}
+    threads = [
+        threading.Thread(target=lambda i=i: out.__setitem__(i, integrator.returns(states, 20)))
+        for i in range(4)
+    ]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert all(np.array_equal(out[i], alone) for i in range(4))
