@@ -6,7 +6,8 @@ values), :mod:`~perturb.dynamics.attractors` (the catalogue of proved steady sta
 :mod:`~perturb.dynamics.ensemble` (many states integrated together, their stroboscopic returns
 only), :mod:`~perturb.dynamics.classify` (where each goes), :mod:`~perturb.dynamics.slowflow`
 (the amplitude equations as ODEs, their separatrix), and the studies
-:mod:`~perturb.dynamics.basins` (with :mod:`~perturb.dynamics.chunks`, on Dask),
+:mod:`~perturb.dynamics.basins` (with :mod:`~perturb.dynamics.chunks`, on Dask, and
+:mod:`~perturb.dynamics.mapping`, the map in memory or in a store),
 :mod:`~perturb.dynamics.transient` and :mod:`~perturb.dynamics.ramp`, each returning a frozen
 value object. Names resolve on first use (nothing is imported with the package).
 """

@@ -41,6 +41,7 @@ __all__ = [
     "decode",
     "decode_state",
     "encode",
+    "encode_state",
 ]
 
 
@@ -302,12 +303,13 @@ def encode(catalogue: Catalogue) -> str:
             "names": list(catalogue.names),
             "status": catalogue.status.name,
             "notes": list(catalogue.notes),
-            "states": [_encode_state(s) for s in catalogue.states],
+            "states": [encode_state(s) for s in catalogue.states],
         }
     )
 
 
-def _encode_state(state: SteadyOrbit) -> dict:
+def encode_state(state: SteadyOrbit) -> dict:
+    """One state as :func:`encode` writes it (JSON-ready)."""
     return {
         "name": state.name,
         "kind": state.kind.name,

@@ -36,6 +36,7 @@ from perturb._defaults import (
     SWEEP_MEMORY_BYTES,
 )
 from perturb.dynamics.classify import Outcome, merge_found, outcome_meanings
+from perturb.dynamics.mapping import assemble, meanings, open_sink, stored_catalogue
 from perturb.errors import InvalidParameterError, PerturbError, bad_value
 
 __all__ = ["BasinMap", "BasinStatus", "Fraction", "basins"]
@@ -279,7 +280,7 @@ def basins(
     ['middle']
     """
     from perturb.dynamics.attractors import catalogue as make_catalogue
-    from perturb.dynamics.attractors import decode, encode
+    from perturb.dynamics.attractors import decode
     from perturb.dynamics.chunks import BasinJob
     from perturb.dynamics.ensemble import ensemble
     from perturb.dynamics.motion import motion_of
@@ -347,7 +348,7 @@ def basins(
         )  # fmt: skip
         if MapStore.check_map(output, fingerprint, resume) is not False:
             StoreLock(output).acquire().release()
-    stored = _stored_catalogue(output) if resume else None
+    stored = stored_catalogue(output) if resume else None
     found_before: list = []
     if stored is not None:
         chart, found_before = stored
@@ -364,7 +365,7 @@ def basins(
 
     chunk = Chunking.of(tuple(len(v) for _, v in axes), chunk_size).chunk
     job = BasinJob(motion, chart, tuple(axes), box, base_state, cap, backend, int(seed), chunk)
-    sink = _sink(job, output, resume, chart, encode)
+    sink = open_sink(job, output, resume, chart)
     try:
         return _run(job, sink, found_before, local, workers, scheduler, client, timeout, problem)
     finally:
@@ -375,110 +376,8 @@ def _axis_names(axes, box) -> tuple:
     return tuple(b[0] for b in box) if box else (axes[1][0], axes[0][0])
 
 
-def _stored_catalogue(output):
-    """The catalogue and found orbits kept in the store at ``output`` (None: no such store)."""
-    from pathlib import Path
-
-    from perturb.sweep.store import open_dataset
-
-    if output is None or not Path(output).is_dir():
-        return None
-    try:
-        attrs = open_dataset(output).attrs
-    except Exception:  # noqa: BLE001 - not a readable store: MapStore refuses it below
-        return None
-    if "catalogue" not in attrs:
-        return None
-    from perturb.dynamics.attractors import decode_state
-
-    found = [decode_state(s) for s in json.loads(attrs.get("found", "[]"))]
-    return attrs["catalogue"], found
-
-
-class _Memory:
-    """The arrays of a study kept in memory (no store)."""
-
-    def __init__(self, job):
-        shape, m = job.shape, job.motion.m
-        self.chunking = job.chunking
-        self.arrays = {
-            "code": np.full(shape, Outcome.NOT_COMPUTED.code, dtype=np.int16),
-            "periods": np.zeros(shape, dtype=np.int32),
-            "final": np.full((*shape, m), np.nan),
-            "initial": np.full((*shape, m), np.nan),
-            "session": np.zeros(shape, dtype=np.int32),
-        }
-        self.extra: dict = {}
-
-    def pending(self) -> list[int]:
-        return list(self.chunking)
-
-    def begin_session(self) -> int:
-        return 1
-
-    def write(self, number: int, result: dict) -> None:
-        region = self.chunking.region(number)
-        block = tuple(s.stop - s.start for s in region)
-        for name, array in self.arrays.items():
-            values = np.asarray(result[name])
-            array[region] = values.reshape(block + values.shape[1:])
-
-    def update(self, attrs: dict) -> None:
-        self.extra.update(attrs)
-
-    def close(self) -> None:
-        return None
-
-
-def _layout(job) -> dict:
-    components = ("component", np.array(job.motion.names, dtype=str))
-    return {
-        "code": ("int16", Outcome.NOT_COMPUTED.code, {"long_name": "where the motion goes"}, None),
-        "periods": ("int32", 0, {"long_name": "drive periods until classified"}, None),
-        "final": (
-            "float64",
-            math.nan,
-            {"long_name": "the last stroboscopic return computed"},
-            components,
-        ),  # fmt: skip
-        "initial": ("float64", math.nan, {"long_name": "the initial state"}, components),
-    }
-
-
-def _attributes(job, chart, encode) -> dict:
-    return {
-        "kind": "basins",
-        "problem": chart.problem,
-        "parameters": json.dumps({k: float(v) for k, v in chart.values.items()}),
-        "order": chart.order,
-        "phase": chart.phase,
-        "omega": chart.omega,
-        "periods_cap": job.cap,
-        "backend": job.backend,
-        "mode": "samples" if job.sampled else "grid",
-        "box": json.dumps([list(b) for b in job.box]),
-        "base": json.dumps(dict(zip(job.motion.names, job.base.tolist(), strict=True))),
-        "seed": job.seed,
-        "catalogue": encode(chart),
-        "found": "[]",
-    }
-
-
-def _sink(job, output, resume, chart, encode):
-    if output is None:
-        return _Memory(job)
-    import perturb
-    from perturb.sweep.store import MapStore
-
-    return MapStore.prepare_map(
-        output, fingerprint=job.fingerprint(perturb.__version__), label=chart.problem,
-        axes=list(job.axes), arrays=_layout(job), chunk=job.chunk,
-        attrs=_attributes(job, chart, encode), resume=resume,
-    )  # fmt: skip
-
-
 def _run(job, sink, found, local, workers, scheduler, client, timeout, problem) -> BasinMap:
-    from perturb.dynamics.attractors import _encode_state
+    from perturb.dynamics.attractors import encode_state
     from perturb.dynamics.chunks import basin_chunk
     from perturb.progress import notify
 
@@ -508,7 +407,7 @@ def _run(job, sink, found, local, workers, scheduler, client, timeout, problem) 
             for i, j in mapping.items():
                 codes[local_codes == known + i] = known + j
             if len(found) > before:
-                sink.update({"found": json.dumps([_encode_state(f) for f in found])})
+                sink.update({"found": json.dumps([encode_state(f) for f in found])})
         arrays = {name: result[name] for name in ("periods", "final", "initial")}
         arrays["code"] = codes
         arrays["session"] = np.full(codes.shape, session, dtype=np.int32)
@@ -538,7 +437,7 @@ def _run(job, sink, found, local, workers, scheduler, client, timeout, problem) 
     from perturb.dynamics.attractors import confirm
 
     chart_now = chart.with_found(tuple(confirm(job.motion, f, chart.phase) for f in found))
-    dataset = _dataset(job, sink, chart_now)
+    dataset = assemble(job, sink, chart_now)
     fractions = _fractions(dataset, chart_now)
     dataset.attrs.update(
         seconds=seconds, task_cpu_seconds=cpu[0], points_computed=sum(sizes.values()),
@@ -554,59 +453,13 @@ def _run(job, sink, found, local, workers, scheduler, client, timeout, problem) 
                     BasinStatus.OK.value, axes)  # fmt: skip
 
 
-def _meanings(chart) -> tuple[dict, dict]:
-    names = {k: s.name for k, s in enumerate(chart.attractors)}
-    meanings = {k: f"{s.name}: {s.kind.value}" for k, s in enumerate(chart.attractors)}
-    for code, text in outcome_meanings().items():
-        names[code] = text.split(":")[0]
-        meanings[code] = text
-    return names, meanings
-
-
-def _code_attrs(chart) -> dict:
-    names, meanings = _meanings(chart)
-    codes = sorted(names)
-    return {
-        "long_name": "where the motion goes",
-        "meanings": json.dumps({str(k): meanings[k] for k in codes}),
-        "names": json.dumps({str(k): names[k] for k in codes}),
-        "flag_values": codes,
-        "flag_meanings": " ".join(names[k].replace(" ", "_") for k in codes),
-    }
-
-
-def _dataset(job, sink, chart):
-    from perturb.dynamics.attractors import encode
-    from perturb.sweep.memory import dataset_of
-
-    if isinstance(sink, _Memory):
-        dims = tuple(n for n, _ in job.axes)
-        coords = {n: np.asarray(v) for n, v in job.axes}
-        coords["component"] = np.array(job.motion.names, dtype=str)
-        layout = _layout(job)
-        data = {
-            name: ((*dims, "component") if layout[name][3] is not None else dims,
-                   sink.arrays[name], dict(layout[name][2]))
-            for name in ("code", "periods", "final", "initial")
-        }  # fmt: skip
-        attrs = {**_attributes(job, job.catalogue, encode), **sink.extra}
-        dataset = dataset_of(coords, data, attrs)
-    else:
-        from perturb.sweep.store import open_dataset
-
-        dataset = open_dataset(sink.path)
-    dataset["code"].attrs.update(_code_attrs(chart))
-    dataset.attrs["catalogue"] = encode(chart)
-    return dataset
-
-
 def _fractions(dataset, chart) -> tuple[Fraction, ...]:
     from perturb.sweep.store import code_counts
 
     counts = code_counts(dataset["code"])
     counts.pop(Outcome.NOT_COMPUTED.code, None)
     total = sum(counts.values())
-    names, _ = _meanings(chart)
+    names, _ = meanings(chart)
     out = []
     for code in sorted(counts, key=lambda c: (c < 0, abs(c))):
         f = counts[code] / total if total else math.nan

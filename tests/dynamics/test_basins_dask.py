@@ -7,7 +7,6 @@ from __future__ import annotations
 import signal
 import subprocess
 import sys
-import time
 
 import numpy as np
 import pytest
@@ -18,10 +17,9 @@ zarr = pytest.importorskip("zarr")
 
 from perturb.cli import main  # noqa: E402
 from perturb.dynamics.basins import BasinStatus, basins  # noqa: E402
+from tests.sweep.test_dask import HANG_GUARD, _wait_for, _written  # noqa: E402
 
 GRID = ["x=-3:3:12", "xdot=-3:3:12"]
-#: Seconds after which a wait is a hang, never a speed requirement.
-HANG_GUARD = 600
 
 
 @pytest.fixture(scope="module")
@@ -66,21 +64,6 @@ def test_a_local_cluster_maps_what_this_process_maps(bistable, reference, client
         basins(bistable, GRID, client=client, output=store, resume=True, periods=50)
 
 
-def _written(store) -> int:
-    try:
-        return int(np.count_nonzero(zarr.open_group(str(store), mode="r")["session"][...]))
-    except Exception:  # noqa: BLE001 - not created yet
-        return 0
-
-
-def _wait_for(condition, what: str) -> None:
-    deadline = time.monotonic() + HANG_GUARD
-    while not condition():
-        if time.monotonic() > deadline:
-            pytest.fail(f"timed out waiting for {what}")
-        time.sleep(0.02)
-
-
 @pytest.mark.parametrize("how", [signal.SIGINT, signal.SIGKILL])
 def test_a_stopped_driver_resumes_where_it_stopped(reference, tmp_path, capsys, how):
     store = tmp_path / "stopped.zarr"
@@ -90,7 +73,7 @@ def test_a_stopped_driver_resumes_where_it_stopped(reference, tmp_path, capsys, 
         command += ["--grid", axis]
     argv = [sys.executable, "-m", "perturb", *command]
     driver = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    _wait_for(lambda: _written(store) > 0 or driver.poll() is not None, "a first chunk")
+    _wait_for(lambda: _written(store) > 0 or driver.poll() is not None, HANG_GUARD, "a first chunk")
     driver.send_signal(how)
     _, err = driver.communicate(timeout=HANG_GUARD)
     if how == signal.SIGINT:
