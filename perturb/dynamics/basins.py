@@ -340,7 +340,7 @@ def basins(
         import perturb
         from perturb.dynamics.chunks import request_fingerprint
         from perturb.sweep.lock import StoreLock
-        from perturb.sweep.store import MapStore
+        from perturb.sweep.mapstore import MapStore
 
         fingerprint = request_fingerprint(
             motion.label, problem.parameters_in_force(), order, float(phase), axes, box,

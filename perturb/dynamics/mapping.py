@@ -118,7 +118,7 @@ def open_sink(job, output, resume: bool, chart):
     if output is None:
         return MemoryMap(job)
     import perturb
-    from perturb.sweep.store import MapStore
+    from perturb.sweep.mapstore import MapStore
 
     return MapStore.prepare_map(
         output, fingerprint=job.fingerprint(perturb.__version__), label=chart.problem,
