@@ -42,6 +42,7 @@ __all__ = [
     "decode_state",
     "encode",
     "encode_state",
+    "orbit_points",
 ]
 
 
@@ -171,8 +172,8 @@ class Catalogue:
         return attrs.evolve(self, states=(*self.attractors, *found, *self.saddles))
 
 
-def _orbit_states(motion, y0: np.ndarray, phase: float) -> np.ndarray:
-    """The orbit through ``y0`` (at θ = 0) at θ = φ + 2πj, j = 0..p-1."""
+def orbit_points(motion, y0: np.ndarray, phase: float) -> np.ndarray:
+    """The orbit through ``y0`` (at θ = 0) at θ = φ + 2πj, j = 0..p-1: shape (p, m)."""
     from perturb.oracle import choose
 
     p = motion.response_periods
@@ -265,7 +266,7 @@ def catalogue(problem, order: int = 1, phase: float = 0.0, motion=None) -> Catal
         else:
             notes.append(f"branch {name}: marginal (largest |multiplier| {largest:.9f}), left out")
             continue
-        states.append((name, _orbit_states(motion, start, phase), orbit, kind))
+        states.append((name, orbit_points(motion, start, phase), orbit, kind))
     placed = [(name, pts) for name, pts, _, _ in states]
     out = [
         SteadyOrbit(

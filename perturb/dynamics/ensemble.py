@@ -125,9 +125,11 @@ def _compiled(rhs, lanes: int):
     """The batch integrator of ``rhs``, compiled once per process."""
     import heyoka as hy
 
-    from perturb.dynamics.motion import _heyoka_system
+    from perturb.dynamics.motion import heyoka_equations
 
-    return hy.taylor_adaptive_batch(_heyoka_system(rhs), np.zeros((rhs.n, lanes)), tol=ENSEMBLE_TOL)
+    return hy.taylor_adaptive_batch(
+        heyoka_equations(rhs), np.zeros((rhs.n, lanes)), tol=ENSEMBLE_TOL
+    )
 
 
 _THREAD = threading.local()

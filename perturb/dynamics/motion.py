@@ -20,7 +20,7 @@ from attrs import field, frozen
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.oracle import SymbolicRHS
 
-__all__ = ["DrivenMotion", "motion_of"]
+__all__ = ["DrivenMotion", "heyoka_equations", "motion_of"]
 
 
 @frozen
@@ -93,7 +93,7 @@ class DrivenMotion:
 
     def heyoka_system(self):
         """The equations as heyoka's ``[(variable, expression)]`` and its variables."""
-        return _heyoka_system(self.rhs)
+        return heyoka_equations(self.rhs)
 
 
 def _finite(value, argument: str) -> float:
@@ -123,7 +123,8 @@ def _numpy_field(rhs: SymbolicRHS, m: int):
 
 
 @functools.lru_cache(maxsize=16)
-def _heyoka_system(rhs: SymbolicRHS):
+def heyoka_equations(rhs: SymbolicRHS):
+    """``rhs`` as heyoka's ``[(variable, expression)]`` (compiled once per equations)."""
     import heyoka as hy
 
     from perturb.oracle import to_heyoka

@@ -183,12 +183,13 @@ def ramp(
                         "two different values START:STOP", InvalidParameterError)  # fmt: skip
     system = problem.system()
     system.frame.require_driven("problem", problem.label(), "a ramp drives a driven problem")
-    if parameter not in problem.values:
+    case = problem.case()
+    if parameter not in case.map.user:
         raise bad_value("--sweep", parameter, f"not a parameter of {problem.label()}; give one "
-                        f"of {', '.join(problem.values)}", InvalidParameterError)  # fmt: skip
-    ends = [problem.with_parameters(**{parameter: float(v)}) for v in (start, stop)]
-    symbols = [e.symbol_values() for e in ends]
-    epsilons = [float(e.epsilon()) for e in ends]
+                        f"of {', '.join(case.map.user)}", InvalidParameterError)  # fmt: skip
+    ends = [case.at(**{parameter: float(v)}) for v in (start, stop)]  # checked by its rules
+    symbols = [e.symbol_values for e in ends]
+    epsilons = [float(e.epsilon) for e in ends]
     detuning = system.excitation.detuning
     moved = sorted(k for k in symbols[0] if symbols[0][k] != symbols[1][k])
     omegas = [excitation_frequency(system, s, e) for s, e in zip(symbols, epsilons, strict=True)]

@@ -201,12 +201,12 @@ def _nearest(chart, end: np.ndarray, theta: float, motion) -> str:
     compared at the end's drive phase), with the distance."""
     if not np.all(np.isfinite(end)) or not chart.states:
         return "the slow flow did not stay finite"
-    from perturb.dynamics.attractors import _orbit_states
+    from perturb.dynamics.attractors import orbit_points
 
     best, gap = "", math.inf
     for state in chart.states:
         start = _back_to_zero(state, chart.phase, motion)
-        points = _orbit_states(motion, start, theta)
+        points = orbit_points(motion, start, theta)
         d = float(np.min(np.linalg.norm(points - end[None, :], axis=1)))
         if d < gap:
             best, gap = state.name, d
