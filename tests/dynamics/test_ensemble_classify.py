@@ -181,3 +181,18 @@ def test_threads_sharing_an_ensemble_get_the_same_returns(motion, states):
     for thread in threads:
         thread.join()
     assert all(np.array_equal(out[i], alone) for i in range(4))
+
+
+def test_orbits_found_in_two_chunks_are_one(chart):
+    """The driver merges the orbits each chunk found: the same orbit (its points a little apart,
+    as two runs converge to it) is one code; another period is another."""
+    from perturb.dynamics.attractors import StateKind, SteadyOrbit
+    from perturb.dynamics.classify import merge_found
+
+    one = SteadyOrbit("period-1-1", StateKind.FOUND, [[0.5, 0.5]], radius=0.05)
+    same = SteadyOrbit("period-1-1", StateKind.FOUND, [[0.5 + 1e-6, 0.5]], radius=0.05)
+    two = SteadyOrbit("period-2-1", StateKind.FOUND, [[0.5, 0.5], [-0.5, -0.5]], radius=0.05)
+    known: list = []
+    assert merge_found(known, (one,), chart.scale) == {0: 0}
+    assert merge_found(known, (two, same), chart.scale) == {0: 1, 1: 0}
+    assert [o.name for o in known] == ["period-1-1", "period-2-1"]
