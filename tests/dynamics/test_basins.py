@@ -138,3 +138,17 @@ def test_no_stable_state_is_a_failed_study():
 def test_bad_requests_are_refused_before_any_work(bistable, grid, kwargs, match):
     with pytest.raises(InvalidParameterError, match=match):
         basins(bistable, grid, **kwargs)
+
+
+def test_a_parametric_response_of_two_drive_periods():
+    """The parametric Duffing (response period 2 drive periods): its attractor has two points on
+    the section; the state at rest is the unstable trivial response, and a grid through it says
+    so, never a found attractor."""
+    from perturb.dynamics.classify import Outcome
+
+    result = basins(get_problem("parametric-duffing").create(), ["x=-1:1:5", "xdot=-1:1:5"])
+    (response,) = result.catalogue.attractors
+    assert response.period == 2 and [s.name for s in result.catalogue.saddles] == ["trivial"]
+    codes = result.dataset["code"].values
+    assert codes[2, 2] == Outcome.ON_SADDLE.code
+    assert np.count_nonzero(codes == 0) == 24 and not result.catalogue.attractors[1:]
