@@ -152,3 +152,17 @@ def test_a_parametric_response_of_two_drive_periods():
     codes = result.dataset["code"].values
     assert codes[2, 2] == Outcome.ON_SADDLE.code
     assert np.count_nonzero(codes == 0) == 24 and not result.catalogue.attractors[1:]
+
+
+def test_basin_stability_in_four_dimensions():
+    """Random states over all four coordinates of the 1:2 autoparametric absorber: every one
+    classified, the states drawn inside the box, the same draws on every run (the seed)."""
+    absorber = get_problem("autoparametric-absorber").create()
+    box = ["x=-1:1", "y=-1:1", "xdot=-1:1", "ydot=-1:1"]
+    first = basins(absorber, box, samples=40)
+    again = basins(absorber, box, samples=40)
+    initial = first.dataset["initial"].values
+    assert initial.shape == (40, 4) and np.all(np.abs(initial) <= 1)
+    np.testing.assert_array_equal(initial, again.dataset["initial"].values)
+    assert sum(f.count for f in first.fractions) == 40
+    assert all(f.code >= 0 for f in first.fractions)  # every state reached an attractor
