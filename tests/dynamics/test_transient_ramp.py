@@ -91,3 +91,34 @@ def test_bad_ramps_are_refused():
         ramp(problem, "eps", 0.05, 0.06, 1e-4)  # Omega = 1 + eps*sigma is the user's Omega
     with pytest.raises(InvalidParameterError, match="not a parameter"):
         ramp(problem, "Q", 0.9, 1.1, 1e-4)
+
+
+@pytest.mark.slow
+def test_the_jump_is_where_plain_scipy_puts_it(ramps):
+    """An independent ramp: the equation written by hand, scipy's DOP853, the same protocol
+    (settled 400 periods at the start from rest, then Omega' = r): its envelope jumps where the
+    ramp's does, to within the envelope's own resolution (the parameter moves by r T a period)."""
+    from scipy.integrate import solve_ivp
+
+    from perturb.dynamics.ramp import _jump
+
+    eps, zeta, gamma, force, rate, start, stop = 0.02, 0.1, 1.0, 0.5, 1e-5, 0.99, 1.06
+
+    def f(t, y, slope):
+        x, v, theta, omega = y
+        return [v, -x - eps * (2 * zeta * v + gamma * x**3 - force * math.cos(theta)), omega,
+                slope]  # fmt: skip
+
+    settle = solve_ivp(f, (0, 400 * 2 * math.pi / start), [0, 0, 0, start], args=(0.0,),
+                       method="DOP853", rtol=1e-10, atol=1e-12)  # fmt: skip
+    duration = (stop - start) / rate
+    periods = int(math.ceil(duration / (4 * math.pi / (start + stop))))
+    t = np.linspace(0, duration, periods * 40 + 1)
+    run = solve_ivp(f, (0, duration), settle.y[:, -1], args=(rate,), method="DOP853", rtol=1e-10,
+                    atol=1e-12, t_eval=t)  # fmt: skip
+    x, omega = np.abs(run.y[0]), run.y[3]
+    envelope = x[: periods * 40].reshape(periods, 40).max(axis=1)
+    values = omega[40 : periods * 40 + 1 : 40]
+    jump, _ = _jump(values, envelope)
+    up = next(r for r in ramps.runs if r.direction == "up" and r.rate == rate)
+    assert abs(jump - up.jump) <= 2 * rate * 2 * math.pi
