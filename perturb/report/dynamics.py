@@ -103,22 +103,25 @@ def basins_as_table(result, store=None) -> str:
         f"{attrs.get('backend')}"
     )
     names = ", ".join(chart.names)
+    width = max([14, *(len(s.name) for s in chart.states)])
     lines.append("")
-    lines.append(f"{'code':>4s}  {'state':<14s} {'kind':<44s} point ({names})  max|multiplier|")
+    lines.append(f"{'code':>4s}  {'state':<{width}s} {'kind':<44s} point ({names})  "
+                 "max|multiplier|")  # fmt: skip
     for k, s in enumerate(chart.attractors):
         point = ", ".join(f"{v:.6g}" for v in s.points[0])
         more = f" (+{s.period - 1} points)" if s.period > 1 else ""
-        lines.append(f"{k:>4d}  {s.name:<14s} {s.kind.value:<44s} ({point}){more}  "
+        lines.append(f"{k:>4d}  {s.name:<{width}s} {s.kind.value:<44s} ({point}){more}  "
                      f"{s.largest_multiplier:.6g}")  # fmt: skip
     for s in chart.saddles:
         point = ", ".join(f"{v:.6g}" for v in s.points[0])
-        lines.append(f"{'-':>4s}  {s.name:<14s} {s.kind.value:<44s} ({point})  "
+        lines.append(f"{'-':>4s}  {s.name:<{width}s} {s.kind.value:<44s} ({point})  "
                      f"{s.largest_multiplier:.6g}")  # fmt: skip
     lines.append("")
-    lines.append(f"{'code':>4s}  {'where the motion goes':<40s} {'states':>9s} {'fraction':>9s}"
-                 f"  {'sampling error':>14s}")  # fmt: skip
+    width = max([40, *(len(f.name) for f in result.fractions)])
+    lines.append(f"{'code':>4s}  {'where the motion goes':<{width}s} {'states':>9s} "
+                 f"{'fraction':>9s}  {'sampling error':>14s}")  # fmt: skip
     for f in result.fractions:
-        lines.append(f"{f.code:>4d}  {f.name:<40s} {f.count:>9d} {f.fraction:>9.4f}  "
+        lines.append(f"{f.code:>4d}  {f.name:<{width}s} {f.count:>9d} {f.fraction:>9.4f}  "
                      f"{f.error:>14.2g}")  # fmt: skip
     for note in chart.notes:
         lines.append(f"note: {note}")
