@@ -64,7 +64,9 @@ def test_a_local_cluster_maps_what_this_process_maps(bistable, reference, client
         basins(bistable, GRID, client=client, output=store, resume=True, periods=50)
 
 
-@pytest.mark.parametrize("how", [signal.SIGINT, signal.SIGKILL])
+@pytest.mark.parametrize(
+    "how", [signal.SIGINT, pytest.param(signal.SIGKILL, marks=pytest.mark.slow)]
+)
 def test_a_stopped_driver_resumes_where_it_stopped(reference, tmp_path, capsys, how):
     store = tmp_path / "stopped.zarr"
     command = ["basins", "forced-duffing", "--set", "Omega=1.05", "--workers", "1", "--output",
