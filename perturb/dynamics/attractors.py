@@ -310,7 +310,7 @@ def encode(catalogue: Catalogue) -> str:
 
 
 def encode_state(state: SteadyOrbit) -> dict:
-    """One state as :func:`encode` writes it (JSON-ready)."""
+    """One state as :func:`perturb.dynamics.attractors.encode` writes it (JSON-ready)."""
     return {
         "name": state.name,
         "kind": state.kind.name,

@@ -86,7 +86,7 @@ class BasinJob:
         return out
 
     def fingerprint(self, version: str) -> str:
-        """What the study's store holds (:func:`request_fingerprint` of this job)."""
+        """What the study's store holds (:func:`perturb.dynamics.chunks.request_fingerprint` of this job)."""
         chart = self.catalogue
         return request_fingerprint(
             chart.problem, chart.values, chart.order, chart.phase, self.axes, self.box,

@@ -75,7 +75,7 @@ class Classified:
     Attributes
     ----------
     codes : ndarray of int, shape (M,)
-        Index of the attractor (catalogued, then ``found``), or an :class:`Outcome`'s code.
+        Index of the attractor (catalogued, then ``found``), or an :class:`perturb.dynamics.classify.Outcome`'s code.
     periods : ndarray of int, shape (M,)
         Drive periods until classified (the cap when not converged; where it escaped).
     final : ndarray, shape (M, m)

@@ -111,7 +111,7 @@ def _attributes(job, chart, encode) -> dict:
 
 
 def open_sink(job, output, resume: bool, chart):
-    """Where the study's chunks are written: a :class:`MemoryMap`, or the store ``output``
+    """Where the study's chunks are written: a :class:`perturb.dynamics.mapping.MemoryMap`, or the store ``output``
     created (or opened to resume) for this very study."""
     from perturb.dynamics.attractors import encode
 
