@@ -38,6 +38,9 @@ _LAZY = {
     "find_families": "perturb.method.families",
     "validate": "perturb.validation",
     "phase_diagram": "perturb.sweep.phase",
+    "basins": "perturb.dynamics.basins",
+    "transient": "perturb.dynamics.transient",
+    "ramp": "perturb.dynamics.ramp",
 }
 
 #: Public names that are subpackages called like functions (``perturb.sweep(...)``: the package
@@ -62,11 +65,14 @@ __all__ = [
     "Status",
     "UnknownNameError",
     "amplitude_equations",
+    "basins",
     "find_families",
     "frequency_response",
     "phase_diagram",
+    "ramp",
     "solve",
     "sweep",
+    "transient",
     "validate",
 ]
 

@@ -730,6 +730,108 @@ JUMP_WINDOW = 0.05
 #: Forcing periods the response settles for at the start frequency before the ramp begins.
 SETTLE_PERIODS = 400
 
+# -- perturb.dynamics (where the motion goes: basins, transients, ramps)
+#: A steady state is stable when its largest |Floquet multiplier| is below 1 by more than this,
+#: a saddle when above 1 by more: the shooting's multipliers are good to ~1e-10, and a state
+#: within 1e-6 of the unit circle attracts too slowly to be told from a marginal one in a cap
+#: of periods (it is neither an attractor nor a saddle of the catalogue).
+DYNAMICS_MULTIPLIER_MARGIN = 1e-6
+
+#: The capture radius of an attractor, as a share of the distance from its stroboscopic points to
+#: the nearest other catalogued state (another attractor, a saddle, its own next point): a tenth
+#: keeps the ball inside the immediate basin of a hyperbolic focus (the basin boundary passes
+#: through the saddle, ten radii away), where the map is near its linearisation.
+BASIN_CAPTURE_SHARE = 0.1
+
+#: Consecutive stroboscopic returns inside the capture radius that classify a point: one could
+#: be a passage; four of a focus contracting by 0.97 a period are the approach itself.
+BASIN_CAPTURE_RETURNS = 4
+
+#: Drive periods integrated between two classifications of the points still running: the
+#: integrator's calls (per batch of lanes) are amortised over them, and a point classified runs
+#: at most this many periods too long (a capture takes ~100). Measured on the forced Duffing
+#: (CPU per initial state, 16 lanes): 0.207 ms at 4, 0.183 at 8, 0.167 at 16.
+BASIN_BLOCK_PERIODS = 16
+
+#: The default cap of drive periods: the forced Duffing at its defaults (contraction e^(-eps
+#: zeta T) = 0.969 a period) comes within a tenth of a basin's size from anywhere in ~200.
+BASIN_DEFAULT_PERIODS = 1000
+
+#: The longest period (in drive periods) a recurrence is looked for at.
+BASIN_RECURRENCE_MAX_PERIOD = 8
+
+#: A recurrence of period k: the k-th return within this of the point (relative to the scale
+#: of the states) for BASIN_CAPTURE_RETURNS returns in a row — converged to an orbit, which a
+#: transient contracting by 0.97 a period does not mimic (its returns move by 3 % of its distance).
+BASIN_RECURRENCE_TOL = 1e-7
+
+#: A point whose state grows past this many times the scale of the catalogued states escapes
+#: (an unbounded motion, e.g. over a softening potential's barrier): its integration stops.
+BASIN_ESCAPE_FACTOR = 50.0
+
+#: A basin study of at most this many initial states runs in this process unless workers are
+#: asked for: a LocalCluster takes 2-4 s to start, which 2,500 states (about 1 s) do not repay.
+BASIN_LOCAL_POINTS = 2500
+
+#: Seconds of one core per initial state, for sizing chunks and the cost rule: 0.4 ms measured
+#: on the forced Duffing (heyoka, ~100 periods to capture; benchmarks/bench_basins.md); the
+#: numpy route is ~30 times slower.
+BASIN_POINT_SECONDS = 4e-4
+
+#: A transient samples at most this many drive periods (TRANSIENT_SAMPLES states each: 256 MB
+#: for a two-coordinate state); a longer one is a slip (an extra zero), not a plan.
+TRANSIENT_MAX_PERIODS = 1_000_000
+
+#: Seconds of one core per drive period of a transient or a ramp (heyoka's dense output, tens of
+#: samples a period; measured ~1e-4 s on the forced Duffing), for the cost rule.
+DYNAMICS_PERIOD_SECONDS = 1e-4
+
+#: A ramp's run lasts at most this many drive periods (its envelope is sampled 40 times a period:
+#: ~250 MB of states); a rate that needs more is a slip, or a study for a faster rate first.
+RAMP_MAX_PERIODS = 200_000
+
+#: The seed of the random initial states of a basin-stability estimate (``--samples``): the
+#: same states on every run and every worker.
+BASIN_SEED = 0
+
+#: Tolerance of the batch Taylor integrator of an ensemble: a basin's classification needs the
+#: stroboscopic point to well below the capture radius (~1e-2), and 1e-10 keeps the route within
+#: 1e-8 of scipy's DOP853 at rtol 1e-12 over a cap of periods (tests/dynamics) while taking 20 %
+#: fewer steps than machine precision.
+ENSEMBLE_TOL = 1e-10
+
+#: Lanes of the batch Taylor integrator (a multiple of the 4 doubles of an AVX2 register):
+#: measured ~1.4 us per point and period on the forced Duffing at 4, 8 and 16 lanes alike, and
+#: 16 halves the calls (0.167 ms per initial state against 0.176 at 8; bench_basins.md).
+ENSEMBLE_LANES = 16
+
+#: Steps of the numpy route's classical Runge-Kutta per drive period: on the forced Duffing its
+#: global error after 20 periods from |x| <= 3 is 6e-5 at 128 steps and 4e-6 at 256 (h^4), so
+#: ~2e-4 after a cap of 1000 periods, far below a capture radius (~1e-1).
+ENSEMBLE_RK4_STEPS = 256
+
+#: Samples per drive period of a transient's true motion (its envelope, the plotted curve).
+TRANSIENT_SAMPLES = 32
+
+#: The slow flow's separatrix starts this far from the saddle along the stable eigenvector
+#: (relative to the saddle's amplitude): the linearisation holds there to ~1e-8.
+SEPARATRIX_OFFSET = 1e-4
+
+#: The separatrix is followed backwards in slow time until it leaves the picture's box enlarged
+#: by this factor, or for at most SEPARATRIX_SPAN units of slow time (eps t).
+SEPARATRIX_MARGIN = 1.5
+SEPARATRIX_SPAN = 200.0
+
+#: A ramp's jump is the largest change of its envelope over this many drive periods: a window
+#: of periods, not a share of the ramp, shrinks in the ramped parameter with the rate (the
+#: response needs ~1/(eps zeta) of time to fall to the other branch; ten periods see its start).
+RAMP_JUMP_PERIODS = 10
+
+#: The jump is the first run of windows changing by at least this share of the largest change:
+#: after a jump the response swings about its new branch (an overshoot, beats), by less than the
+#: jump itself but by more than a fifth of it.
+RAMP_JUMP_SHARE = 0.5
+
 # -- perturb.sweep.evaluate
 #: A sampled component whose step from the end of the period back to its start exceeds this many
 #: times its largest step within the period does not return: it is not periodic (no amplitude).

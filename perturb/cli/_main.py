@@ -103,7 +103,7 @@ def _progress(args) -> Iterator[None]:
 
 #: Commands whose ``--output`` is their own (a folder of report files, a sweep's store): not a
 #: redirection of what they print.
-_FOLDER_OUTPUT = ("reproduce", "report", "sweep", "phase-diagram")
+_FOLDER_OUTPUT = ("reproduce", "report", "sweep", "phase-diagram", "basins")
 
 
 @contextlib.contextmanager
@@ -190,6 +190,9 @@ _COMMANDS = {
     "report": _command("_cmd_report", "_report"),
     "sweep": _command("_cmd_sweep", "_sweep"),
     "phase-diagram": _command("_cmd_phase", "_phase"),
+    "basins": _command("_cmd_basins", "_dynamics"),
+    "transient": _command("_cmd_transient", "_dynamics"),
+    "ramp": _command("_cmd_ramp", "_dynamics"),
 }
 
 

@@ -23,6 +23,9 @@ _EPILOG = """examples:
   perturb report examples/scenes/disk-fast-spin.toml --output disk-report
   perturb sweep duffing --grid eps=0.01:0.2:20 --grid amplitude=0.5:2:16 --validate --output duffing.zarr
   perturb phase-diagram coupled-parametrons --grid Omega=1.98:2.02:21 --grid h=0.2:3:15 --plot map.png
+  perturb basins forced-duffing --set Omega=1.05 --grid x=-3:3:200 --grid xdot=-3:3:200 --plot basins.png
+  perturb transient forced-duffing --set Omega=1.05 --from x=0,xdot=0 --periods 300 --plot transient.png
+  perturb ramp forced-duffing --set eps=0.02 --set F=0.5 --sweep Omega=0.99:1.06 --rate 5e-6 --both-ways
 """
 
 
@@ -205,8 +208,11 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     _add_sweep(sub)
     _add_phase(sub)
+    from perturb.cli._dynamics import add_dynamics_commands
+
+    add_dynamics_commands(sub, _add_problem_arguments, _add_format)
     for name, command in sub.choices.items():
-        if name not in ("reproduce", "report", "sweep", "phase-diagram"):  # a folder, or a store
+        if name not in ("reproduce", "report", "sweep", "phase-diagram", "basins"):  # a store
             command.add_argument(
                 "--output",
                 default=None,

@@ -567,11 +567,18 @@ def _call_packed(blob: bytes, key: str, function, args: tuple):
     return function(payload, *args)
 
 
-def run_calls(cluster: Cluster, function, payload, calls: list[tuple], *, label: str) -> list:
+def run_calls(
+    cluster: Cluster, function, payload, calls: list[tuple], *, label: str, on_result=None,
+    done: int = 0, total: int | None = None, sizes: list[int] | None = None,
+) -> list:  # fmt: skip
     """``function(payload, *args)`` for each ``args`` of ``calls`` on the cluster, the payload
     (a problem, a problem from a file travelling by value) sent to every worker once; the results
     in the order of ``calls``. A call whose worker died again and again gives the exception in its
-    place (the others are kept)."""
+    place (the others are kept).
+
+    ``on_result(index, result)``, if given, is called here as each call finishes (a store
+    written chunk by chunk; the result is then not kept: None in its place); the progress counts
+    ``sizes[index]`` for each (default 1: the calls) from ``done`` of ``total``."""
     from distributed import as_completed
 
     client = cluster.client
@@ -582,8 +589,8 @@ def run_calls(cluster: Cluster, function, payload, calls: list[tuple], *, label:
         for i, args in enumerate(calls)
     }
     results: list = [None] * len(calls)
-    done = 0
-    notify(label, done, len(calls))
+    total = len(calls) if total is None else total
+    notify(label, done, total)
     try:
         with watched(client, futures) as fired:
             for future in as_completed(futures, loop=client.loop):
@@ -591,11 +598,16 @@ def run_calls(cluster: Cluster, function, payload, calls: list[tuple], *, label:
                     break
                 index = futures[future]
                 try:
-                    results[index] = future.result()
+                    result = future.result()
                 except Exception as exc:  # noqa: BLE001 - a call that kept killing its workers
                     results[index] = exc
-                done += 1
-                notify(label, done, len(calls))
+                else:
+                    if on_result is None:
+                        results[index] = result
+                    else:
+                        on_result(index, result)
+                done += 1 if sizes is None else sizes[index]
+                notify(label, done, total)
                 future.release()
     except BaseException:
         client.cancel(list(futures))
