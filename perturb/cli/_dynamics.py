@@ -4,11 +4,11 @@ import the engine only when they run."""
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError
+from perturb.cli._output import _emit
 from perturb.cli._values import _check_plot, _parse_order, _parse_positive, _parse_sets, _save_plot
 
 #: Exit code of an interrupted run (128 + SIGINT, as shells report it).
@@ -63,7 +63,7 @@ def add_dynamics_commands(sub, add_problem_arguments, add_format) -> None:
                         help="also save the basin map (needs matplotlib)")  # fmt: skip
     basins.add_argument("--yes", action="store_true",
                         help="confirm a request past the cost rule (points, hours of work)")  # fmt: skip
-    add_format(basins, ["table", "json"])
+    add_format(basins, "basins")
 
     transient = sub.add_parser(
         "transient",
@@ -84,7 +84,7 @@ def add_dynamics_commands(sub, add_problem_arguments, add_format) -> None:
                            help="confirm a request estimated at more than an hour of work")  # fmt: skip
     transient.add_argument("--plot", default=None, metavar="FILE",
                            help="also save the transient (needs matplotlib)")  # fmt: skip
-    add_format(transient, ["table", "csv", "json"])
+    add_format(transient, "transient")
 
     ramp = sub.add_parser(
         "ramp",
@@ -105,7 +105,7 @@ def add_dynamics_commands(sub, add_problem_arguments, add_format) -> None:
                       help="confirm ramps estimated at more than an hour of work")  # fmt: skip
     ramp.add_argument("--plot", default=None, metavar="FILE",
                       help="also save the envelopes against the parameter (needs matplotlib)")  # fmt: skip
-    add_format(ramp, ["table", "csv", "json"])
+    add_format(ramp, "ramp")
 
 
 # ---------------------------------------------------------------------------------- values
@@ -186,12 +186,9 @@ def _cmd_basins(args) -> int:
             args.output) else ""  # fmt: skip
         print(f"\nperturb: interrupted{where}", file=sys.stderr)
         return EXIT_INTERRUPTED
-    from perturb.report.dynamics import basins_as_dict, basins_as_table
+    from perturb.report.dynamics import BasinsOutput
 
-    if args.format == "json":
-        print(json.dumps(basins_as_dict(result, args.output), allow_nan=False))
-    else:
-        print(basins_as_table(result, args.output))
+    _emit("basins", args.format, BasinsOutput(result, args.output))
     if result.dataset is None:
         raise _RunFailed(result.message)
     if plot is not None and not result.sampled:
@@ -240,14 +237,7 @@ def _cmd_transient(args) -> int:
     from perturb.dynamics.transient import transient
 
     result = transient(problem, start, periods, order=order, phase=phase, yes=args.yes)
-    from perturb.report.dynamics import transient_as_csv, transient_as_dict, transient_as_table
-
-    if args.format == "json":
-        print(json.dumps(transient_as_dict(result), allow_nan=False))
-    elif args.format == "csv":
-        print(transient_as_csv(result))
-    else:
-        print(transient_as_table(result))
+    _emit("transient", args.format, result)
     if plot is not None:
         from perturb.report.plots.dynamics import plot_transient
 
@@ -303,14 +293,7 @@ def _cmd_ramp(args) -> int:
 
     result = ramp(problem, name, start, stop, rates, both_ways=args.both_ways, order=order,
                   yes=args.yes)  # fmt: skip
-    from perturb.report.dynamics import ramp_as_csv, ramp_as_dict, ramp_as_table
-
-    if args.format == "json":
-        print(json.dumps(ramp_as_dict(result), allow_nan=False))
-    elif args.format == "csv":
-        print(ramp_as_csv(result))
-    else:
-        print(ramp_as_table(result))
+    _emit("ramp", args.format, result)
     if plot is not None:
         from perturb.report.plots.dynamics import plot_ramp
 

@@ -6,8 +6,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from attrs import frozen
 
 __all__ = [
+    "BasinsOutput",
     "basins_as_dict",
     "basins_as_table",
     "ramp_as_csv",
@@ -17,6 +19,14 @@ __all__ = [
     "transient_as_dict",
     "transient_as_table",
 ]
+
+
+@frozen
+class BasinsOutput:
+    """What ``perturb basins`` prints: the map and the store it was written to."""
+
+    result: object
+    store: str | None = None
 
 
 def _num(value) -> float | None:

@@ -23,6 +23,10 @@ Kinds of result (what a writer is given):
     :class:`perturb.report.formats.base.Reproduced`
 ``sweep``
     :class:`perturb.report.sweep.SweepOutput`
+``basins``
+    :class:`perturb.report.dynamics.BasinsOutput` (``perturb basins``)
+``transient``, ``ramp``
+    :class:`~perturb.dynamics.Transient`, :class:`~perturb.dynamics.Ramp`
 ``failure``
     a dict: what a failed ``perturb solve`` writes (JSON only; other formats write nothing)
 

@@ -29,6 +29,18 @@ def _sweep(output) -> str:
     return sweep_as_csv(output.dataset) + "\n"
 
 
+def _transient(result) -> str:
+    from perturb.report.dynamics import transient_as_csv
+
+    return transient_as_csv(result) + "\n"
+
+
+def _ramp(result) -> str:
+    from perturb.report.dynamics import ramp_as_csv
+
+    return ramp_as_csv(result) + "\n"
+
+
 FORMAT = Format(
     "csv",
     {
@@ -36,6 +48,8 @@ FORMAT = Format(
         "work-precision": _work_precision,
         "response": _response,
         "sweep": _sweep,
+        "transient": _transient,
+        "ramp": _ramp,
     },
     rank=2,
 )

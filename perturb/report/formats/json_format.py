@@ -69,6 +69,24 @@ def _failure(payload: dict) -> str:
     return json_text(payload) + "\n"
 
 
+def _basins(output) -> str:
+    from perturb.report.dynamics import basins_as_dict
+
+    return json_text(basins_as_dict(output.result, output.store)) + "\n"
+
+
+def _transient(result) -> str:
+    from perturb.report.dynamics import transient_as_dict
+
+    return json_text(transient_as_dict(result)) + "\n"
+
+
+def _ramp(result) -> str:
+    from perturb.report.dynamics import ramp_as_dict
+
+    return json_text(ramp_as_dict(result)) + "\n"
+
+
 FORMAT = Format(
     "json",
     {
@@ -81,6 +99,9 @@ FORMAT = Format(
         "phase": _phase,
         "reproduction": _reproduction,
         "sweep": _sweep,
+        "basins": _basins,
+        "transient": _transient,
+        "ramp": _ramp,
         "failure": _failure,
     },
     rank=3,

@@ -59,6 +59,24 @@ def _reproduction(done) -> str:
     return text
 
 
+def _basins(output) -> str:
+    from perturb.report.dynamics import basins_as_table
+
+    return basins_as_table(output.result, output.store) + "\n"
+
+
+def _transient(result) -> str:
+    from perturb.report.dynamics import transient_as_table
+
+    return transient_as_table(result) + "\n"
+
+
+def _ramp(result) -> str:
+    from perturb.report.dynamics import ramp_as_table
+
+    return ramp_as_table(result) + "\n"
+
+
 FORMAT = Format(
     "table",
     {
@@ -70,6 +88,9 @@ FORMAT = Format(
         "families": _families,
         "phase": _phase,
         "reproduction": _reproduction,
+        "basins": _basins,
+        "transient": _transient,
+        "ramp": _ramp,
     },
     rank=0,
 )
