@@ -31,6 +31,8 @@ from problems import get_problem  # noqa: E402
 
 #: A validated Duffing axis: several chunks of a few points each.
 AXIS = ["eps=0.02:0.2:8"]
+# four chunks of two points on any machine (a fast machine's pilot would make one chunk of all)
+CHUNK = 2
 #: Variables compared before and after a repair (the bookkeeping ``session`` differs).
 COMPARED = ("status", "period", "epsilon", "verdict", "orbit_error", "order_slope", "state")
 #: Relative agreement of a recomputed chunk's floats with the first computation's: another worker
@@ -58,7 +60,7 @@ def original(client, tmp_path_factory):
     """A complete validated store and its values."""
     store = tmp_path_factory.mktemp("faults") / "original.zarr"
     problem = get_problem("duffing").create()
-    perturb.sweep(problem, AXIS, validate=True, client=client, output=store)
+    perturb.sweep(problem, AXIS, validate=True, client=client, output=store, chunk_points=CHUNK)
     group = zarr.open_group(str(store), mode="r")
     assert len(group["period"].metadata.chunk_grid.chunk_shape) == 1
     return store, xr.open_zarr(store).load()
@@ -98,7 +100,7 @@ def test_a_damaged_chunk_is_computed_again_with_the_same_numbers(
         chunk.write_bytes(b"")
     ds = perturb.sweep(
         get_problem("duffing").create(), AXIS, validate=True, client=client, output=store,
-        resume=True,
+        chunk_points=CHUNK, resume=True,
     )  # fmt: skip
     session = ds["session"].values
     assert set(session.tolist()) == {1, 2}  # the damaged chunk alone, once
@@ -119,7 +121,7 @@ def test_a_sound_store_is_not_computed_again(client, original, tmp_path):
     store = _copy(original, tmp_path)
     ds = perturb.sweep(
         get_problem("duffing").create(), AXIS, validate=True, client=client, output=store,
-        resume=True,
+        chunk_points=CHUNK, resume=True,
     )  # fmt: skip
     assert np.all(ds["session"].values == 1) and ds.attrs["points_computed"] == 0
 
@@ -142,8 +144,10 @@ def test_a_cut_creation_is_replaced_by_the_same_sweep_only(client, original, tmp
     shutil.rmtree(store / "verdict")
     problem = get_problem("duffing").create()
     with pytest.raises(InvalidParameterError, match="unfinished creation of another sweep"):
-        perturb.sweep(problem, ["eps=0.02:0.2:9"], client=client, output=store)
-    ds = perturb.sweep(problem, AXIS, validate=True, client=client, output=store)
+        perturb.sweep(problem, ["eps=0.02:0.2:9"], client=client, output=store, chunk_points=CHUNK)
+    ds = perturb.sweep(
+        problem, AXIS, validate=True, client=client, output=store, chunk_points=CHUNK
+    )
     assert ds.attrs["complete"] and np.all(ds["session"].values == 1)
     np.testing.assert_array_equal(ds["verdict"].values, original[1]["verdict"].values)
 
@@ -283,7 +287,14 @@ def test_the_count_of_what_is_missing_is_the_stores(client, tmp_path):
     problem = load_problem(f"{tmp_path / 'killer.py'}:Killer").create()
     store = tmp_path / "killed.zarr"
     with pytest.raises(SweepError) as info:
-        perturb.sweep(problem, ["eps=0.05:0.4:8"], validate=True, client=client, output=store)
+        perturb.sweep(
+            problem,
+            ["eps=0.05:0.4:8"],
+            validate=True,
+            client=client,
+            output=store,
+            chunk_points=CHUNK,
+        )
     session = zarr.open_group(str(store), mode="r")["session"][...]
     missing = int(np.count_nonzero(session == 0))
     assert missing >= 4  # every point past eps = 0.2 (and its chunk-mates)
