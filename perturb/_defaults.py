@@ -696,6 +696,17 @@ NUMBER_DIGITS = 30
 #: Pieces one system may be cut into before the cutting stops (each is then solved as it is).
 SPLIT_MAX_PIECES = 256
 
+# -- perturb.cli._progress
+#: A step of a run not on a terminal (stderr a file or a pipe) is printed once it has lasted this
+#: long: a long run says what it is doing within a second, a quick one prints nothing.
+PROGRESS_FIRST_SECONDS = 0.5
+#: ... and again every this many seconds while it lasts (a log of a ten-minute sweep: 60 lines).
+PROGRESS_LINE_SECONDS = 10.0
+#: A terminal's line is redrawn at least this often while a step lasts (its elapsed time ticks).
+PROGRESS_REDRAW_SECONDS = 1.0
+#: The heartbeat's period: how late a due line or redraw may come.
+PROGRESS_TICK_SECONDS = 0.1
+
 # -- perturb.cli._parser
 #: The default order of ``perturb response``: the curve is continued, so order 3 costs about
 #: what order 1 does, and at the forced Duffing's defaults it places the jump-down fold within

@@ -81,15 +81,17 @@ def _duration(seconds: float) -> str:
 
 @contextlib.contextmanager
 def _progress(args) -> Iterator[None]:
-    """Show progress on stderr when it is a terminal and ``--quiet`` was not given."""
-    show = not getattr(args, "quiet", False) and sys.stderr.isatty()
-    bar = _ProgressBar(sys.stderr) if show else None
-    with listening(bar):
+    """Show what a long run is doing on stderr unless ``--quiet`` was given: a bar on a terminal,
+    periodic lines on a file or a pipe (:mod:`perturb.cli._progress`)."""
+    from perturb.cli._progress import reporter_for
+
+    reporter = None if getattr(args, "quiet", False) else reporter_for(sys.stderr, _ProgressBar)
+    with listening(reporter):
         try:
             yield
         finally:
-            if bar is not None:
-                bar.close()
+            if reporter is not None:
+                reporter.close()
 
 
 #: Commands whose ``--output`` is their own (a folder of report files, a sweep's store): not a

@@ -212,7 +212,8 @@ def _build_parser() -> argparse.ArgumentParser:
         command.add_argument(
             "--quiet",
             action="store_true",
-            help="no progress bar on stderr (it is shown only on a terminal anyway)",
+            help="no progress on stderr (a bar on a terminal; otherwise a line when a step "
+            "has lasted half a second, then every 10 s)",
         )
     return parser
 

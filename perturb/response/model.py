@@ -25,6 +25,7 @@ from attrs import field, frozen
 from perturb._defaults import MAX_VALIDATE
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import amplitude_equations
+from perturb.progress import stage
 from perturb.steady.backbone import Backbone, backbone
 from perturb.steady.curve import (
     FrequencyResponse,
@@ -230,10 +231,13 @@ def problem_response(
     for value in grid:  # the problem's own checks at every grid value (one line, exit 2)
         variant = problem.with_parameters(**{parameter: float(value)})
         excitation_frequency(system, variant.symbol_values(), float(variant.epsilon()))
-    equations = amplitude_equations(system, order)
+    told = f"response {problem.name}"
+    with stage(f"{told}: deriving the order-{order} amplitude equations"):
+        equations = amplitude_equations(system, order)
     names = [p.name for p in system.parameters]
     line = line_of_problem(problem, parameter, names, float(grid[0]), float(grid[-1]))
-    result = continued_response(equations, order, line, grid)
+    with stage(f"{told}: following every branch over {len(grid)} values of {parameter}"):
+        result = continued_response(equations, order, line, grid)
     response, branch_names_ = response_of(
         result, system=problem.name, parameter=parameter, order=order,
         epsilon=float(problem.epsilon()),
@@ -242,16 +246,20 @@ def problem_response(
     )  # fmt: skip
     reference = system.coordinates[system.reference_index].name
     top = max((p.amplitude(reference, measure) for p in response.points), default=math.nan)
-    spine = backbone(problem.case(), parameter, top, order, measure) if response.points else None
+    with stage(f"{told}: the backbone"):
+        spine = (
+            backbone(problem.case(), parameter, top, order, measure) if response.points else None
+        )
     true_points = _true_points(result, response, validate, measure, tol) if validate else ()
     curves = None
     if true:
         from perturb.response.true_curve import true_curves
 
-        curves = true_curves(
-            problem, parameter, response, branch_names_, order, budget=true, tol=tol,
-            measure=measure,
-        )  # fmt: skip
+        with stage(f"{told}: continuing the true periodic orbits (--true)"):
+            curves = true_curves(
+                problem, parameter, response, branch_names_, order, budget=true, tol=tol,
+                measure=measure,
+            )  # fmt: skip
     return ProblemResponse(
         problem.name, parameter, response, branch_names_, spine, true_points, curves
     )

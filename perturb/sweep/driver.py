@@ -44,7 +44,7 @@ from perturb._defaults import (
     SWEEP_WORKERS_PER_CORE,
 )
 from perturb.errors import InvalidParameterError
-from perturb.progress import notify
+from perturb.progress import notify, stage
 from perturb.sweep.grid import Chunking
 from perturb.sweep.spec import SweepJob
 from perturb.sweep.task import run_chunk
@@ -220,7 +220,7 @@ class Cluster:
                 f"{SWEEP_WORKERS_PER_CORE * cores}, or run on a cluster with --scheduler"
             )
         private = {PRE_SPAWN: _pre_spawn_environment(), **NO_HTTP_ROUTES}
-        with dask.config.set(private):
+        with dask.config.set(private), stage(f"starting a local Dask cluster of {n} workers"):
             self._cluster = LocalCluster(
                 n_workers=n,
                 threads_per_worker=1,
