@@ -132,17 +132,32 @@ def _numbers(exprs, subs) -> list[float]:
     return out
 
 
-def _not_decreasing(sizes, what: str, eps: float) -> list[str]:
-    """Consecutive non-zero terms that do not decrease (zero terms are skipped, not compared)."""
+def _not_decreasing(sizes, what: str, eps: float, floor: float = 0.0) -> list[str]:
+    """Consecutive non-zero terms that do not decrease (zero terms are skipped, not compared),
+    unless the later one is at most ``floor``: below the series' own truncation error on the
+    solution's scale, where no term can make an answer wrong."""
     reasons = []
     kept = [(k, s) for k, s in enumerate(sizes) if s != 0]
     for (k0, s0), (k1, s1) in zip(kept, kept[1:], strict=False):
-        if not (s1 < s0):
+        if not (s1 < s0) and not s1 <= floor:
             reasons.append(
                 f"the order-{k1} term of the {what} ({s1:.3g}) is not smaller than the order-{k0} "
                 f"term ({s0:.3g}) at eps = {eps:.6g}"
             )
     return reasons
+
+
+def _negligible(sizes, eps: float, order: int) -> float:
+    """The size below which a coordinate's term cannot matter: the first neglected term of a
+    series on the solution's scale (its largest leading term), :math:`|\\varepsilon|^{N+1}
+    \\max_i |x_{i,0}|` — the error the truncation leaves anyway. A coordinate that stays near zero
+    (a mode the drive barely excites: terms of 5e-8 beside an amplitude of 0.6) is then not
+    "outside its domain" because its tiny terms do not decrease. Zero for ``|eps| >= 1``, where
+    no term is small by its order."""
+    scale = next((float(s) for s in sizes if s != 0), 0.0)
+    if not (abs(eps) < 1 and math.isfinite(scale)):
+        return 0.0
+    return scale * abs(eps) ** (order + 1)
 
 
 def series_domain(
@@ -196,8 +211,9 @@ def series_domain(
         reasons.append(f"some terms of the series are not finite at eps = {eps:.6g}")
     else:
         reasons += _not_decreasing(freq_terms, "frequency", eps)
+        floor = _negligible(sizes, eps, solution.order)
         for name, own in per_coordinate.items():
-            reasons += _not_decreasing(own, f"coordinate {name}", eps)
+            reasons += _not_decreasing(own, f"coordinate {name}", eps, floor)
     estimate = max(
         [next_term(freq_terms), *(next_term(own) for own in per_coordinate.values())],
         default=0.0,

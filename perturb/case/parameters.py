@@ -195,6 +195,37 @@ class ParameterMap:
         rows = [*self.symbols, (EPSILON_KEY, self.epsilon)]
         return tuple(n for n, e in rows if e is not None and symbol in e.free_symbols)
 
+    def set_by(self, name: str, verb: str = "set") -> str:
+        """Advice for a user who names the system symbol ``name`` where a user parameter is due
+        (``--sweep sigma=...`` where the map sets σ from Ω): which parameter sets it, through which
+        expression, and what to ``verb`` instead; "" when ``name`` is not a mapped symbol.
+
+        Examples
+        --------
+        >>> import sympy as sp
+        >>> sigma, zeta = sp.symbols("sigma zeta")
+        >>> mapping = ParameterMap.declare(
+        ...     [sigma, zeta], ["eps", "zeta", "Omega"], {"sigma": "(Omega - 1)/eps"}
+        ... )
+        >>> mapping.set_by("sigma", "sweep")
+        'sigma is set by Omega through the map sigma = (Omega - 1)/eps; sweep Omega'
+        >>> mapping.set_by("zeta")
+        ''
+        """
+        expression = dict(self.symbols).get(name)
+        if expression is None or name in self.user or self.is_identity(name):
+            return ""
+        scale = set() if self.epsilon is None else {s.name for s in self.epsilon.free_symbols}
+        names = [n for n in self.user if self.user_symbols[n] in expression.free_symbols]
+        knobs = [n for n in names if n not in scale] or names
+        if not knobs:
+            return f"{name} is fixed by the map {name} = {expression}; it cannot be {verb}"
+        which = " and ".join(knobs)
+        return (
+            f"{name} is set by {which} through the map {name} = {_plain(expression)}; "
+            f"{verb} {which}"
+        )
+
     def is_identity(self, name: str) -> bool:
         """Whether the system symbol ``name`` is the user parameter of the same name."""
         return dict(self.symbols).get(name) == self.user_symbols.get(name)
@@ -358,6 +389,12 @@ class ParameterMap:
 
 
 _TARGET = sp.Symbol("target_value_", real=True)
+
+
+def _plain(expression: sp.Expr) -> str:
+    """``(Omega - 1)/eps`` as a user writes it (sympy prints ``(Omega - 1)/eps`` too, but orders
+    a sum by its own rules: kept when it reads as written)."""
+    return str(sp.together(expression))
 
 
 def _to_float(value) -> float:

@@ -11,9 +11,9 @@ import numpy as np
 
 from perturb._defaults import DEFAULT_SAMPLES
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError
+from perturb.cli._order import order_of
 from perturb.cli._values import (
     _check_plot,
-    _parse_order,
     _parse_output,
     _parse_positive,
     _parse_sets,
@@ -64,9 +64,10 @@ def _cmd_solve(args) -> int:
 
     cls = load_problem(args.problem)
     overrides = _parse_sets(args.sets)
-    order = _parse_order(args.order)
+    problem = cls.create(**overrides)
+    order = order_of(args.order, problem)
     times = _parse_times(args.times)
-    problem = _select_family(cls.create(**overrides), args.family, order)
+    problem = _select_family(problem, args.family, order)
     if args.euler and not has_euler_angles(problem):
         raise _UsageError(
             f"--euler: problem {args.problem!r} has no Euler angles (rigid bodies only)"
@@ -140,11 +141,13 @@ def _cmd_validate(args) -> int:
     from problems import load_problem
 
     cls = load_problem(args.problem)
-    problem = _select_family(cls.create(**_parse_sets(args.sets)), args.family, args.order)
+    problem = cls.create(**_parse_sets(args.sets))
+    order = order_of(args.order, problem)
+    problem = _select_family(problem, args.family, order)
     tol = DEFAULT_TOL if args.tol is None else _parse_positive("--tol", args.tol, float)
     report = validate(
         problem,
-        order=_parse_order(args.order),
+        order=order,
         integrator=args.integrator,
         periods=_parse_positive("--periods", args.periods, float),
         tol=tol,
@@ -213,11 +216,10 @@ def _cmd_reproduce(args) -> int:
     return EXIT_OK
 
 
-def _select_family(problem, name: str | None, order):
+def _select_family(problem, name: str | None, order: int):
     """The problem following family ``name`` (checked now: an unknown name exits 2 with the list)."""
     if name is None:
         return problem
-    order = _parse_order(order) if isinstance(order, str) else order
     families = problem.families(order)
     if name not in families.names and not problem.system().frame.one_solution_for_all_points:
         from perturb.steady.branches import count_name
@@ -234,16 +236,17 @@ def _cmd_families(args) -> int:
 
     cls = load_problem(args.problem)
     problem = cls.create(**_parse_sets(args.sets))
-    families = problem.families(_parse_order(args.order))
+    families = problem.families(order_of(args.order, problem))
     flags = [_family_domain(problem, f) for f in families]
+    values = _values_of(problem)
     if args.format == "json":
-        print(json.dumps(as_dict(families, args.problem, flags)))
+        print(json.dumps(as_dict(families, args.problem, flags, values)))
     elif args.format == "latex":
         from perturb.report.latex import families_latex
 
         print(families_latex(families, args.problem), end="")
     else:
-        print(as_table(families, args.problem, flags))
+        print(as_table(families, args.problem, flags, values))
     if not len(families):
         why = families.why or "the amplitude equations have only the trivial root"
         print(f"perturb: {args.problem}: no family of periodic solutions: {why}", file=sys.stderr)
@@ -257,6 +260,16 @@ def _cmd_families(args) -> int:
         )
         return EXIT_FAILED
     return EXIT_OK
+
+
+def _values_of(problem) -> dict:
+    """The problem's values by symbol name, with ``epsilon`` (the expansion's small parameter:
+    1/mu in the large-parameter regime), to put a family's frequency in numbers."""
+    from perturb.system import Regime
+
+    value = float(problem.parameter_value())
+    large = problem.system().regime is Regime.LARGE
+    return {**problem.symbol_values(), "epsilon": 1.0 / value if large else value}
 
 
 def _family_domain(problem, family) -> tuple[str, str]:

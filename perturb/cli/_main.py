@@ -163,6 +163,11 @@ def _run(argv: Sequence[str] | None) -> int:
     parser = _build_parser()
     try:
         args = parser.parse_args(argv)
+        if args.command is None and args.version:
+            import perturb
+
+            print(f"perturb {perturb.__version__}")
+            return 0
         if args.command is None:
             parser.print_help()
             return EXIT_USAGE

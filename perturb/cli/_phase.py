@@ -8,7 +8,8 @@ import sys
 
 from perturb._install import install_hint
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _UsageError
-from perturb.cli._values import _check_plot, _parse_order, _parse_positive, _parse_sets, _save_plot
+from perturb.cli._order import order_of
+from perturb.cli._values import _check_plot, _parse_positive, _parse_sets, _save_plot
 from perturb.errors import MissingDependencyError
 
 #: Exit code of an interrupted run (128 + SIGINT, as shells report it).
@@ -34,7 +35,7 @@ def _cmd_phase(args) -> int:
         raise _UsageError(f"--workers {args.workers}: with --scheduler drop --workers")
     workers = None if args.workers is None else _parse_positive("--workers", args.workers, int)
     problem = load_problem(args.problem).create(**_parse_sets(args.sets))
-    order = _parse_order(args.order)
+    order = order_of(args.order, problem)
     from perturb.sweep.phase import phase_diagram
 
     try:

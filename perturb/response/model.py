@@ -162,7 +162,8 @@ def check_request(problem, parameter: str):
         from difflib import get_close_matches
 
         close = get_close_matches(parameter, list(problem.values), n=1)
-        hint = f" (did you mean {close[0]!r}?)" if close else ""
+        told = problem.map().set_by(parameter, "sweep")
+        hint = f" ({told})" if told else f" (did you mean {close[0]!r}?)" if close else ""
         raise bad_value(
             "sweep", parameter,
             f"it is not a parameter of {problem.name}: choose from {sorted(problem.values)}{hint}",

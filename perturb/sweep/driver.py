@@ -220,7 +220,10 @@ class Cluster:
                 f"{SWEEP_WORKERS_PER_CORE * cores}, or run on a cluster with --scheduler"
             )
         private = {PRE_SPAWN: _pre_spawn_environment(), **NO_HTTP_ROUTES}
-        with dask.config.set(private), stage(f"starting a local Dask cluster of {n} workers"):
+        with (
+            dask.config.set(private),
+            stage(f"starting a local Dask cluster of {n} worker" + ("s" if n != 1 else "")),
+        ):
             self._cluster = LocalCluster(
                 n_workers=n,
                 threads_per_worker=1,

@@ -26,7 +26,7 @@ from perturb.progress import listening, notify, stage, track
 #: A problem whose loading waits inside a step: the CLI's plumbing (pipe, heartbeat, --quiet)
 #: checked without depending on how fast a derivation is on this machine. The wait is several
 #: times the first notice (PROGRESS_FIRST_SECONDS = 0.5 s).
-_WAITING = '''
+_WAITING = """
 import time
 
 import sympy as sp
@@ -54,7 +54,7 @@ class Waiting(Problem):
 
     def method_options(self):
         return {"amplitudes": {"x": A}}
-'''
+"""
 
 
 class Clock:
