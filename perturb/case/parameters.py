@@ -359,7 +359,12 @@ class ParameterMap:
         """How plainly ε follows the user parameter ``name``: 0 for ε ∝ name or 1/name, the
         distance of the power-law exponent from ±1 otherwise (the disk's r0 before its g)."""
         u = self.user_symbols[name]
-        exponent = sp.simplify(u * sp.diff(self.epsilon, u) / self.epsilon)
+        # cancel (a rational function's normal form) settles a power law, and a rational
+        # function it leaves is no number; simplify, which loads sympy.physics.units on its
+        # first call (0.3 s of a warm `perturb validate disk`), only for functions (exp, log...)
+        exponent = sp.cancel(u * sp.diff(self.epsilon, u) / self.epsilon)
+        if not exponent.is_number and exponent.atoms(sp.Function):
+            exponent = sp.simplify(exponent)
         return abs(abs(float(exponent)) - 1) if exponent.is_number else math.inf
 
     def _moves(self) -> list[tuple[str, ...]]:
@@ -438,6 +443,11 @@ def _solve_move_cached(mapping_key, moving) -> tuple | None:
             equations.append(sp.Eq(expr, _target_of(name)))
     if len(equations) != len(unknowns):
         return None
+    if len(unknowns) == 1 and len(equations) == 1:
+        power = _power_law(eps, unknowns[0])
+        if power is not None:  # eps = rest * u**a: u = (target / rest)**(1/a), no sympy solve
+            rest, exponent = power
+            return ((unknowns[0].name, (_target_of(EPSILON_KEY) / rest) ** (1 / exponent)),)
     try:
         found = sp.solve(equations, unknowns, dict=True)
     except (NotImplementedError, TypeError):
@@ -448,6 +458,19 @@ def _solve_move_cached(mapping_key, moving) -> tuple | None:
             return None
         found = positive
     return tuple((u.name, found[0][u]) for u in unknowns if u in found[0])
+
+
+def _power_law(expr: sp.Expr, unknown: sp.Symbol) -> tuple[sp.Expr, sp.Expr] | None:
+    """``(rest, a)`` when ``expr`` is ``rest * unknown**a`` (a a non-zero number, ``rest`` free
+    of ``unknown``), else None: the inverse is then written down, where sympy's ``solve`` costs
+    0.3 s the first time (it loads sympy.physics.units) — the disk's ε = c/r0."""
+    exponent = sp.cancel(unknown * sp.diff(expr, unknown) / expr)
+    if not exponent.is_number or exponent == 0:
+        return None
+    rest = sp.powsimp(expr * unknown ** (-exponent))
+    if unknown in rest.free_symbols:
+        return None
+    return rest, exponent
 
 
 def _solve_move(mapping: ParameterMap, moving: tuple[str, ...]) -> dict[str, sp.Expr] | None:
