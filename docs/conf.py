@@ -95,6 +95,12 @@ nb_execution_timeout = 900  # seconds per cell (the paper's reproduction is the 
 nb_execution_in_temp = True  # files a tutorial writes land in a temporary folder
 nb_execution_show_tb = True
 nb_merge_streams = True
+# The tutorials' kernels talk to the build over IPC sockets (files in Jupyter's private runtime
+# folder), not TCP: over TCP without CurveZMQ keys ipykernel warns, once a notebook, that the
+# traffic is plain text. MyST-NB passes no kernel-manager settings, so the default is set here.
+from jupyter_client.manager import KernelManager  # noqa: E402
+
+KernelManager.class_traits()["transport"].default_value = "ipc"
 
 # -- sphinx-gallery: one file per figure -------------------------------------------------------------
 sphinx_gallery_conf = {

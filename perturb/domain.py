@@ -16,7 +16,7 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
-from perturb._defaults import VALIDITY_ESTIMATE_LIMIT
+from perturb._defaults import NEGLIGIBLE_TERM, VALIDITY_ESTIMATE_LIMIT
 from perturb.solution import PeriodicSolution, SolutionFailed
 from perturb.system import Regime
 
@@ -147,17 +147,15 @@ def _not_decreasing(sizes, what: str, eps: float, floor: float = 0.0) -> list[st
     return reasons
 
 
-def _negligible(sizes, eps: float, order: int) -> float:
-    """The size below which a coordinate's term cannot matter: the first neglected term of a
-    series on the solution's scale (its largest leading term), :math:`|\\varepsilon|^{N+1}
-    \\max_i |x_{i,0}|` — the error the truncation leaves anyway. A coordinate that stays near zero
-    (a mode the drive barely excites: terms of 5e-8 beside an amplitude of 0.6) is then not
-    "outside its domain" because its tiny terms do not decrease. Zero for ``|eps| >= 1``, where
-    no term is small by its order."""
-    scale = next((float(s) for s in sizes if s != 0), 0.0)
-    if not (abs(eps) < 1 and math.isfinite(scale)):
-        return 0.0
-    return scale * abs(eps) ** (order + 1)
+def _negligible(sizes) -> float:
+    """The size below which a coordinate's term does not count in the check that the terms
+    decrease: :data:`~perturb._defaults.NEGLIGIBLE_TERM` of the largest term of the solution
+    (its scale) — the rule the response's points are checked by
+    (:func:`perturb.steady.measures.series_estimate`). A coordinate that stays near zero (a mode
+    the drive barely excites: terms of 5e-8 beside an amplitude of 0.6) is then not "outside its
+    domain" because its tiny terms do not decrease."""
+    finite = [float(s) for s in sizes if math.isfinite(s)]
+    return NEGLIGIBLE_TERM * max(finite, default=0.0)
 
 
 def series_domain(
@@ -211,7 +209,7 @@ def series_domain(
         reasons.append(f"some terms of the series are not finite at eps = {eps:.6g}")
     else:
         reasons += _not_decreasing(freq_terms, "frequency", eps)
-        floor = _negligible(sizes, eps, solution.order)
+        floor = _negligible(sizes)
         for name, own in per_coordinate.items():
             reasons += _not_decreasing(own, f"coordinate {name}", eps, floor)
     estimate = max(

@@ -236,8 +236,9 @@ def _cmd_families(args) -> int:
 
     cls = load_problem(args.problem)
     problem = cls.create(**_parse_sets(args.sets))
-    families = problem.families(order_of(args.order, problem))
-    flags = [_family_domain(problem, f) for f in families]
+    order = order_of(args.order, problem)
+    families = problem.families(order)
+    flags = _driven_marks(problem, order, families, [_family_domain(problem, f) for f in families])
     values = _values_of(problem)
     if args.format == "json":
         print(json.dumps(as_dict(families, args.problem, flags, values)))
@@ -260,6 +261,33 @@ def _cmd_families(args) -> int:
         )
         return EXIT_FAILED
     return EXIT_OK
+
+
+def _driven_marks(problem, order: int, families, flags: list) -> list:
+    """A driven problem's ``(outside, beyond)`` flags with the response's marks of each branch
+    (:func:`perturb.report.marks.point_mark`: outside the domain, beyond the validity, a
+    stability within the series' error of 1), so that ``families`` says of a branch what
+    ``response`` marks and ``validate`` measures."""
+    if not problem.system().frame.frequency_given:
+        return flags
+    from perturb.report.marks import PointMark, point_mark, relative_error
+
+    steady = problem.steady_state(order)
+    points = dict(zip(steady.names, steady.points, strict=True))
+    out = []
+    for family, (outside, beyond) in zip(families, flags, strict=True):
+        point = points.get(family.name)
+        mark = point_mark(point) if point is not None else PointMark.NONE
+        if mark is PointMark.OUTSIDE and not outside:
+            outside = mark.value + (f": {point.note}" if point.note else "")
+        elif mark in (PointMark.BEYOND, PointMark.UNCERTAIN) and not beyond:
+            beyond = (
+                f"{mark.value}: its own estimate of its error is {relative_error(point):.2g} of "
+                "the amplitude, so its amplitudes and stability are not certain; check it with "
+                f"`perturb validate --family {family.name}`"
+            )
+        out.append((outside, beyond))
+    return out
 
 
 def _values_of(problem) -> dict:

@@ -45,14 +45,14 @@ class PointMark(enum.Enum):
 
 
 def relative_error(point) -> float:
-    """The series' own estimate of the point's error, relative to its amplitude (the largest
-    over the coordinates; NaN when there is no estimate)."""
-    ratios = [
-        point.error[c] / size
-        for c, size in point.peak.items()
-        if c in point.error and math.isfinite(point.error[c]) and size > 0
-    ]
-    return max(ratios) if ratios else math.nan
+    """The series' own estimate of the point's error, relative to its amplitude: the largest
+    error of a coordinate over the largest amplitude of the point (the solution's scale, so a
+    coordinate near zero cannot make a right answer look wrong); NaN when there is no estimate."""
+    scale = max((size for size in point.peak.values() if math.isfinite(size)), default=0.0)
+    errors = [e for c, e in point.error.items() if c in point.peak and math.isfinite(e)]
+    if not errors or not scale > 0:
+        return math.nan
+    return max(errors) / scale
 
 
 def point_mark(point) -> PointMark:

@@ -194,3 +194,24 @@ def test_the_forced_pair_is_inside_its_domain_with_the_names_of_order_1():
         assert np.linalg.norm(state(nearest) - state(family)) < 10 * eps * np.linalg.norm(
             state(family)
         )
+
+
+def test_families_say_of_a_branch_what_the_response_marks(capsys):
+    """The forced pair detuned to Omega = 1.25 (sigma = 5): the branches the response marks as
+    not vouched for by the series are the ones ``families`` flags, and ``validate`` finds the
+    unflagged one VALID (the flagged ones are what it measures as not described)."""
+    argv = ["--set", "Omega=1.25", "--format", "json"]
+    code, out, err = run(capsys, "families", "coupled-duffings", *argv)
+    assert code == 0, err
+    flagged = {f["name"] for f in json.loads(out)["families"] if f["outside"] or f["beyond"]}
+    code, out, err = run(capsys, "response", "coupled-duffings", "--sweep", "Omega=1.24:1.26:3",
+                         "--format", "json")  # fmt: skip
+    assert code == 0, err
+    at = [p for p in json.loads(out)["points"] if p["value"] == pytest.approx(1.25)]
+    assert flagged == {p["branch"] for p in at if p["mark"]} != set()
+    for point in at:
+        if not point["mark"]:
+            code, out, err = run(capsys, "validate", "coupled-duffings", "--family",
+                                 point["branch"], *argv)  # fmt: skip
+            assert code == 0, err
+            assert json.loads(out)["outcome"] == "valid"
