@@ -18,7 +18,7 @@ then ``--resume``-free warm run into a new store), ``scene`` (``examples/scenes/
 with ``--docs`` the site's build (``sphinx -W -n``), with ``--suite`` the default test suite, with
 ``--large`` the 100 x 100 disk map. Run from the repository root::
 
-    python benchmarks/bench_readme_times.py [--docs] [--suite] [--large] [--rev HEAD]
+    python benchmarks/bench_readme_times.py [--docs] [--suite] [--large] [--only WORDS] [--rev HEAD]
 
 The installs (``pip install -e .``) are not measured: they need the network.
 """
@@ -100,6 +100,9 @@ def main() -> None:
     parser.add_argument("--docs", action="store_true", help="also the documentation build")
     parser.add_argument("--suite", action="store_true", help="also the default test suite")
     parser.add_argument("--large", action="store_true", help="also the 100 x 100 disk map")
+    parser.add_argument(
+        "--only", default=None, metavar="WORDS", help="only the rows whose name holds WORDS"
+    )
     options = parser.parse_args()
     with tempfile.TemporaryDirectory(prefix="perturb-readme-") as scratch:
         tree = export(options.rev, tempfile.mkdtemp(dir=scratch))
@@ -110,6 +113,8 @@ def main() -> None:
         }
         print(f"{'row':40s} {'README':>40s} {'CPU s':>8s} {'wall s':>8s} {'load':>11s} exit")
         for name, promise, argv in rows(options):
+            if options.only is not None and options.only not in name:
+                continue
             result = timed(argv, tree, env)
             loads = f"{result['load'][0]:.1f}-{result['load'][1]:.1f}"
             print(f"{name:40s} {promise:>40s} {result['cpu']:8.1f} {result['wall']:8.1f} "
