@@ -17,7 +17,7 @@ ratios, the load average before and after, and the modules of the second list th
 ``sympy.physics.units``, which sympy's ``simplify`` and ``solve`` load on their first call).
 Run from the repository root::
 
-    python benchmarks/bench_startup.py [--pairs 7]
+    python benchmarks/bench_startup.py [--pairs 7] [--rev REV]
 """
 
 from __future__ import annotations
@@ -31,6 +31,8 @@ import subprocess
 import sys
 import tempfile
 from pathlib import Path
+
+from _tree import export
 
 ROOT = Path(__file__).resolve().parent.parent
 #: The README's fast-spin disk, where validation runs the whole way (shooting and order check).
@@ -51,7 +53,7 @@ sys.stderr.write("MODULES " + json.dumps(names) + "\\n")
 
 def _cpu(argv: list[str], env: dict, codes=(0, 1)) -> float:
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    out = subprocess.run(argv, capture_output=True, text=True, env=env, cwd=ROOT)
+    out = subprocess.run(argv, capture_output=True, text=True, env=env, cwd=env["PYTHONPATH"])
     if out.returncode not in codes:
         raise RuntimeError(f"{argv[:4]}: exit {out.returncode}: {out.stderr[-400:]}")
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -62,7 +64,7 @@ def _modules(env: dict) -> list[str]:
     """The modules the command loads, outside perturb and problems."""
     out = subprocess.run(
         [sys.executable, "-c", _LIST_MODULES.format(argv=COMMAND)],
-        capture_output=True, text=True, env=env, cwd=ROOT, check=True,
+        capture_output=True, text=True, env=env, cwd=env["PYTHONPATH"], check=True,
     )  # fmt: skip
     line = next(x for x in out.stderr.splitlines() if x.startswith("MODULES "))
     return json.loads(line.removeprefix("MODULES "))
@@ -93,11 +95,13 @@ for name in json.loads(sys.argv[1]):
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--pairs", type=int, default=PAIRS)
+    parser.add_argument("--rev", default=None, help="measure this git revision's tree instead")
     options = parser.parse_args()
     with tempfile.TemporaryDirectory(prefix="perturb-startup-") as scratch:
+        tree = ROOT if options.rev is None else export(options.rev, tempfile.mkdtemp(dir=scratch))
         env = {
             **os.environ,
-            "PYTHONPATH": str(ROOT),
+            "PYTHONPATH": str(tree),
             "PERTURB_CACHE_DIR": str(Path(scratch) / "cache"),
             "PERTURB_CACHE_KEY_FILE": str(Path(scratch) / "cache.key"),
         }
