@@ -62,6 +62,7 @@ def timed(argv: list[str], tree: Path, env: dict) -> dict:
         "load": (load_before, os.getloadavg()[0]),
         "code": out.returncode,
         "tail": (out.stdout + out.stderr).strip().splitlines()[-1:] or [""],
+        "output": out.stdout + out.stderr,
     }
 
 
@@ -103,6 +104,9 @@ def main() -> None:
     parser.add_argument(
         "--only", default=None, metavar="WORDS", help="only the rows whose name holds WORDS"
     )
+    parser.add_argument(
+        "--log", default=None, metavar="FILE", help="also write every row's whole output to FILE"
+    )
     options = parser.parse_args()
     with tempfile.TemporaryDirectory(prefix="perturb-readme-") as scratch:
         tree = export(options.rev, tempfile.mkdtemp(dir=scratch))
@@ -121,6 +125,9 @@ def main() -> None:
                   f"{loads:>11s} {result['code']}", flush=True)  # fmt: skip
             if result["code"] not in (0,):
                 print(f"    {result['tail'][0][:200]}", flush=True)
+            if options.log is not None:
+                with open(options.log, "a", encoding="utf-8") as log:
+                    log.write(f"===== {name}: {' '.join(argv)}\n{result['output']}\n")
         shutil.rmtree(tree, ignore_errors=True)
     print(f"({os.cpu_count()} cores; load: 1-minute load average before-after each row; "
           "a fresh export of the tree and a fresh cache)")  # fmt: skip
