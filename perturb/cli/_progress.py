@@ -173,9 +173,12 @@ class Reporter:
         else:
             due = now - entry.shown >= PROGRESS_LINE_SECONDS
         if due:
-            self.out.write(entry.line(now) + "\n")
+            # the steps it runs inside, not yet told, first: a log reads outside in
+            told = [e for e in self.entries[: self.entries.index(entry)] if e.shown is None]
+            for step in [*told, entry]:
+                self.out.write(step.line(now) + "\n")
+                step.shown = now
             self.out.flush()
-            entry.shown = now
 
     def _draw(self, entry: _Entry, now: float) -> None:
         if self.drawn is not entry:

@@ -145,6 +145,19 @@ def test_the_innermost_step_is_shown_and_its_parent_again_after_it():
     ]
 
 
+def test_a_log_tells_the_outer_step_before_the_inner_one():
+    clock, out = Clock(), io.StringIO()
+    reporter = Reporter(out, terminal=False, clock=clock)
+    with listening(reporter), stage("response duffing: the true curves"):
+        with stage("branches followed"):
+            clock.now += 0.6
+            reporter.tick()
+    assert [line.split(" ...")[0] for line in _lines(out)[:2]] == [
+        "perturb: response duffing: the true curves",
+        "perturb: branches followed",
+    ]
+
+
 def test_a_step_on_a_terminal_is_drawn_at_once_ticks_and_is_wiped():
     clock, out = Clock(), io.StringIO()
     reporter = Reporter(out, terminal=True, bar=_ProgressBar, clock=clock)
