@@ -201,7 +201,7 @@ class Excitation:
 TIME_NAMES = ("t", "time")
 
 
-def time_forcing(rhs, symbols) -> str:
+def time_forcing(rhs, symbols, declared=()) -> str:
     """How to declare a forcing written in the time, in one sentence ("" when there is none).
 
     A user writes a forcing as ``F*cos(Omega*t)``; perturb solves a driven system in its phase
@@ -209,6 +209,8 @@ def time_forcing(rhs, symbols) -> str:
     that are not state or small parameter and look like the time: undeclared ones, and declared
     parameters named as in :data:`TIME_NAMES`; the sentence names the first one found inside a
     cosine or a sine, the frequency it is multiplied by, and the declaration to write instead.
+    A symbol of ``declared`` (a parameter the system declares) counts only when a frequency
+    multiplies it (``cos(Omega*t)``): ``cos(t)`` of a parameter named t is a constant phase.
 
     Examples
     --------
@@ -226,7 +228,7 @@ def time_forcing(rhs, symbols) -> str:
         argument = call.args[0]
         for time in sorted(argument.free_symbols & set(symbols), key=sp.default_sort_key):
             rate = sp.simplify(sp.diff(argument, time))
-            if rate != 0 and not rate.has(time):
+            if rate != 0 and not rate.has(time) and (time not in declared or rate.free_symbols):
                 found.append((time, rate, call))
     fundamental = [  # every other harmonic of this time a whole multiple of it
         (time, rate, call)

@@ -313,7 +313,7 @@ class QuasilinearSystem:
         timed = {s for s in self.parameters if s.name in TIME_NAMES}
         for i, f in enumerate(self.rhs):
             stray = f.free_symbols - allowed
-            advice = time_forcing(f, stray | timed) if (stray or timed) else ""
+            advice = time_forcing(f, stray | timed, declared=timed) if (stray or timed) else ""
             if advice:  # F*cos(Omega*t): the time, which a driven system's phase stands for
                 raise InvalidSystemError(f"`rhs[{i}]`: {advice}")
             if stray:

@@ -215,3 +215,18 @@ def test_families_say_of_a_branch_what_the_response_marks(capsys):
                                  point["branch"], *argv)  # fmt: skip
             assert code == 0, err
             assert json.loads(out)["outcome"] == "valid"
+
+
+def test_a_parameter_named_t_in_a_constant_phase_is_no_time():
+    """``cos(t)`` with t a declared parameter is a constant phase, accepted; ``cos(Omega*t)``
+    is a forcing in the time, refused with the advice."""
+    import sympy as sp
+
+    from perturb import EPS, QuasilinearSystem
+    from perturb.errors import InvalidSystemError
+
+    x, v, t, omega = sp.symbols("x xdot t Omega")
+    QuasilinearSystem([x], [v], [1], [EPS * (-(x**3) + sp.cos(t))], parameters=[t])
+    with pytest.raises(InvalidSystemError, match="Excitation"):
+        QuasilinearSystem([x], [v], [1], [EPS * (-(x**3) + sp.cos(omega * t))],
+                          parameters=[t, omega])  # fmt: skip
