@@ -95,6 +95,17 @@ nb_execution_timeout = 900  # seconds per cell (the paper's reproduction is the 
 nb_execution_in_temp = True  # files a tutorial writes land in a temporary folder
 nb_execution_show_tb = True
 nb_merge_streams = True
+# The tutorials' kernels talk to the build over TCP encrypted with CurveZMQ keys the kernel
+# manager provisions ("auto": when the kernelspec declares support, as ipykernel's does): without
+# them ipykernel warns, once a notebook, that the traffic is plain text. MyST-NB passes no
+# kernel-manager settings, so the default is set here. (IPC sockets would do too, but their
+# relative path is resolved in the build's folder by the client and in the notebook's
+# temporary folder by the kernel: the kernel is never reached.)
+import zmq  # noqa: E402
+from jupyter_client.manager import KernelManager  # noqa: E402
+
+if zmq.has("curve"):  # libzmq built with libsodium; without it the warning stays
+    KernelManager.class_traits()["transport_encryption"].default_value = "auto"
 
 # -- sphinx-gallery: one file per figure -------------------------------------------------------------
 sphinx_gallery_conf = {

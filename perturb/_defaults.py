@@ -875,11 +875,30 @@ NUMBER_DIGITS = 30
 #: Pieces one system may be cut into before the cutting stops (each is then solved as it is).
 SPLIT_MAX_PIECES = 256
 
-# -- perturb.cli._parser
+# -- perturb.cli._progress
+#: A step of a run not on a terminal (stderr a file or a pipe) is printed once it has lasted this
+#: long: a long run says what it is doing within a second, a quick one prints nothing.
+PROGRESS_FIRST_SECONDS = 0.5
+#: ... and again every this many seconds while it lasts (a log of a ten-minute sweep: 60 lines).
+PROGRESS_LINE_SECONDS = 10.0
+#: A terminal's line is redrawn at least this often while a step lasts (its elapsed time ticks).
+PROGRESS_REDRAW_SECONDS = 1.0
+#: The heartbeat's period: how late a due line or redraw may come.
+PROGRESS_TICK_SECONDS = 0.1
+
+# -- perturb.cli._parser, perturb.cli._order
 #: The default order of ``perturb response``: the curve is continued, so order 3 costs about
 #: what order 1 does, and at the forced Duffing's defaults it places the jump-down fold within
 #: 1.1e-4 of the true one (order 1: 5e-3 beyond it; tests/response/test_special_points.py).
 RESPONSE_ORDER = 3
+#: The default order of every command for a driven problem: the response's, so that
+#: ``validate``, ``families``, ``solve``, ``sweep`` and ``phase-diagram`` use the series
+#: ``response`` draws (the amplitude equations of the shipped driven problems at order 3: 0.2 to
+#: 3 s to derive, against 0.1 to 0.2 s at order 1).
+DRIVEN_ORDER = RESPONSE_ORDER
+#: ... and for a free problem: a rigid body's derivation grows steeply with the order (the disk
+#: at order 3: 13 s symbolic), and a free problem's series is not continued.
+FREE_ORDER = 1
 
 # -- perturb.solution
 #: Points per block in the scalar evaluation: small enough for the block's complex work arrays to

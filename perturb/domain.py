@@ -16,7 +16,7 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
-from perturb._defaults import VALIDITY_ESTIMATE_LIMIT
+from perturb._defaults import NEGLIGIBLE_TERM, VALIDITY_ESTIMATE_LIMIT
 from perturb.solution import PeriodicSolution, SolutionFailed
 from perturb.system import Regime
 
@@ -132,17 +132,30 @@ def _numbers(exprs, subs) -> list[float]:
     return out
 
 
-def _not_decreasing(sizes, what: str, eps: float) -> list[str]:
-    """Consecutive non-zero terms that do not decrease (zero terms are skipped, not compared)."""
+def _not_decreasing(sizes, what: str, eps: float, floor: float = 0.0) -> list[str]:
+    """Consecutive non-zero terms that do not decrease (zero terms are skipped, not compared),
+    unless the later one is at most ``floor``: below the series' own truncation error on the
+    solution's scale, where no term can make an answer wrong."""
     reasons = []
     kept = [(k, s) for k, s in enumerate(sizes) if s != 0]
     for (k0, s0), (k1, s1) in zip(kept, kept[1:], strict=False):
-        if not (s1 < s0):
+        if not (s1 < s0) and not s1 <= floor:
             reasons.append(
                 f"the order-{k1} term of the {what} ({s1:.3g}) is not smaller than the order-{k0} "
                 f"term ({s0:.3g}) at eps = {eps:.6g}"
             )
     return reasons
+
+
+def _negligible(sizes) -> float:
+    """The size below which a coordinate's term does not count in the check that the terms
+    decrease: :data:`~perturb._defaults.NEGLIGIBLE_TERM` of the largest term of the solution
+    (its scale) — the rule the response's points are checked by
+    (:func:`perturb.steady.measures.series_estimate`). A coordinate that stays near zero (a mode
+    the drive barely excites: terms of 5e-8 beside an amplitude of 0.6) is then not "outside its
+    domain" because its tiny terms do not decrease."""
+    finite = [float(s) for s in sizes if math.isfinite(s)]
+    return NEGLIGIBLE_TERM * max(finite, default=0.0)
 
 
 def series_domain(
@@ -196,8 +209,9 @@ def series_domain(
         reasons.append(f"some terms of the series are not finite at eps = {eps:.6g}")
     else:
         reasons += _not_decreasing(freq_terms, "frequency", eps)
+        floor = _negligible(sizes)
         for name, own in per_coordinate.items():
-            reasons += _not_decreasing(own, f"coordinate {name}", eps)
+            reasons += _not_decreasing(own, f"coordinate {name}", eps, floor)
     estimate = max(
         [next_term(freq_terms), *(next_term(own) for own in per_coordinate.values())],
         default=0.0,

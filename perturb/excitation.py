@@ -29,7 +29,7 @@ from attrs import field, frozen
 from perturb._defaults import MAX_RESONANCE_INTEGER
 from perturb.errors import InvalidSystemError, bad_value
 
-__all__ = ["Excitation"]
+__all__ = ["Excitation", "time_forcing"]
 
 
 def _as_phase(value) -> sp.Symbol:
@@ -195,3 +195,54 @@ class Excitation:
                 InvalidSystemError,
             )  # fmt: skip
         return result
+
+
+#: Names a right-hand side's time goes by when a user writes a forcing in it (``F*cos(Omega*t)``).
+TIME_NAMES = ("t", "time")
+
+
+def time_forcing(rhs, symbols, declared=()) -> str:
+    """How to declare a forcing written in the time, in one sentence ("" when there is none).
+
+    A user writes a forcing as ``F*cos(Omega*t)``; perturb solves a driven system in its phase
+    θ = Ωt, declared as an :class:`Excitation`. ``symbols`` are the right-hand side's symbols
+    that are not state or small parameter and look like the time: undeclared ones, and declared
+    parameters named as in :data:`TIME_NAMES`; the sentence names the first one found inside a
+    cosine or a sine, the frequency it is multiplied by, and the declaration to write instead.
+    A symbol of ``declared`` (a parameter the system declares) counts only when a frequency
+    multiplies it (``cos(Omega*t)``): ``cos(t)`` of a parameter named t is a constant phase.
+
+    Examples
+    --------
+    >>> t, Omega, F, x = sp.symbols("t Omega F x")
+    >>> print(time_forcing(F * sp.cos(Omega * t) - x**3, {t}))  # doctest: +NORMALIZE_WHITESPACE
+    the forcing is written in the time t (cos(Omega*t)): perturb solves a driven system in its
+    phase theta = Omega*t declared as an Excitation -- write it with a symbol theta (F*cos(theta);
+    cos(2*Omega*t) is cos(2*theta)), pass excitation=Excitation(theta, ratio=1, detuning=sigma)
+    with sigma among the parameters, and keep Omega as your parameter with parameter_map =
+    {'sigma': '(Omega - 1)/eps'} (docs/forced.md, 'Your own forced oscillator')
+    """
+    expr = sp.sympify(rhs)
+    found = []  # (time, rate, the call): each cosine or sine whose argument moves with a time
+    for call in sorted(expr.atoms(sp.cos, sp.sin), key=sp.default_sort_key):
+        argument = call.args[0]
+        for time in sorted(argument.free_symbols & set(symbols), key=sp.default_sort_key):
+            rate = sp.simplify(sp.diff(argument, time))
+            if rate != 0 and not rate.has(time) and (time not in declared or rate.free_symbols):
+                found.append((time, rate, call))
+    fundamental = [  # every other harmonic of this time a whole multiple of it
+        (time, rate, call)
+        for time, rate, call in found
+        if all(sp.simplify(r / rate).is_integer for t, r, _ in found if t == time)
+    ]
+    for time, rate, call in fundamental[:1] or found[:1]:
+        theta = rate * time
+        return (
+            f"the forcing is written in the time {time} ({call}): perturb solves a driven "
+            f"system in its phase theta = {theta} declared as an Excitation -- write it with "
+            f"a symbol theta (F*cos(theta); cos({2 * theta}) is cos(2*theta)), pass "
+            "excitation=Excitation(theta, ratio=1, detuning=sigma) with sigma among the "
+            f"parameters, and keep {rate} as your parameter with parameter_map = "
+            f"{{'sigma': '({rate} - 1)/eps'}} (docs/forced.md, 'Your own forced oscillator')"
+        )
+    return ""

@@ -12,6 +12,15 @@ Examples
 ...         pass
 >>> seen
 [('work', 0, 2), ('work', 1, 2), ('work', 2, 2)]
+
+A step that is not a loop (a derivation) is a :func:`stage`, told as one item of one:
+
+>>> seen.clear()
+>>> with listening(lambda label, done, total: seen.append((label, done, total))):
+...     with stage("deriving"):
+...         pass
+>>> seen
+[('deriving', 0, 1), ('deriving', 1, 1)]
 """
 
 from __future__ import annotations
@@ -21,7 +30,7 @@ import contextvars
 from collections.abc import Callable, Iterable, Iterator, Sized
 from typing import TypeVar
 
-__all__ = ["Listener", "listening", "notify", "track"]
+__all__ = ["Listener", "listening", "notify", "stage", "track"]
 
 T = TypeVar("T")
 
@@ -73,3 +82,24 @@ def notify(label: str, done: int, total: int | None) -> None:
     listener = _LISTENER.get()
     if listener is not None:
         listener(label, done, total)
+
+
+@contextlib.contextmanager
+def stage(label: str) -> Iterator[None]:
+    """Tell the listener that the step ``label`` runs while the block does (a derivation, a
+    cluster starting: work with no count to report), as one item of one.
+
+    Parameters
+    ----------
+    label : str
+        What is being done (``"deriving the order-2 solution of disk"``).
+    """
+    listener = _LISTENER.get()
+    if listener is None:
+        yield
+        return
+    listener(label, 0, 1)
+    try:
+        yield
+    finally:
+        listener(label, 1, 1)

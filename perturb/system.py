@@ -23,7 +23,7 @@ from perturb._defaults import MAX_ORDER
 from perturb._lambdify import numpy_lambdify
 from perturb.analytic import maclaurin_coefficients, polynomial_coefficients
 from perturb.errors import InvalidSystemError, bad_value
-from perturb.excitation import Excitation
+from perturb.excitation import TIME_NAMES, Excitation, time_forcing
 from perturb.frame import DrivenFrame, Frame, FreeFrame
 
 __all__ = ["QuasilinearSystem", "Regime"]
@@ -310,8 +310,12 @@ class QuasilinearSystem:
         allowed = set(self.state_symbols) | set(self.parameters) | set(self.initial_values)
         allowed.add(self.parameter)
         allowed.update(s for s, _ in self.frame.extra_symbols())
+        timed = {s for s in self.parameters if s.name in TIME_NAMES}
         for i, f in enumerate(self.rhs):
             stray = f.free_symbols - allowed
+            advice = time_forcing(f, stray | timed, declared=timed) if (stray or timed) else ""
+            if advice:  # F*cos(Omega*t): the time, which a driven system's phase stands for
+                raise InvalidSystemError(f"`rhs[{i}]`: {advice}")
             if stray:
                 raise InvalidSystemError(
                     f"`rhs[{i}]` depends on undeclared symbols {sorted(map(str, stray))}: "

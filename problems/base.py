@@ -309,9 +309,12 @@ class Problem(Model, ABC):
         known = {s.name for s in cls.parameter_specs}
         unknown = sorted(set(overrides) - known)
         if unknown:
+            told = cls.map().set_by(unknown[0], "set")  # a system symbol the map sets
             raise UnknownNameError(
-                f"`{unknown[0]}` is not a parameter of {cls.name}: choose from {sorted(known)}"
-            )
+                f"`{unknown[0]}` is not a parameter of {cls.name}: "
+                + (f"{told} (the parameters: {sorted(known)})" if told else
+                   f"choose from {sorted(known)}")
+            )  # fmt: skip
         values = {s.name: overrides.get(s.name, s.default) for s in cls.parameter_specs}
         values = {s.name: s.validate(values[s.name]) for s in cls.parameter_specs}
         return cls(values)

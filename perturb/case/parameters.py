@@ -195,6 +195,37 @@ class ParameterMap:
         rows = [*self.symbols, (EPSILON_KEY, self.epsilon)]
         return tuple(n for n, e in rows if e is not None and symbol in e.free_symbols)
 
+    def set_by(self, name: str, verb: str = "set") -> str:
+        """Advice for a user who names the system symbol ``name`` where a user parameter is due
+        (``--sweep sigma=...`` where the map sets σ from Ω): which parameter sets it, through which
+        expression, and what to ``verb`` instead; "" when ``name`` is not a mapped symbol.
+
+        Examples
+        --------
+        >>> import sympy as sp
+        >>> sigma, zeta = sp.symbols("sigma zeta")
+        >>> mapping = ParameterMap.declare(
+        ...     [sigma, zeta], ["eps", "zeta", "Omega"], {"sigma": "(Omega - 1)/eps"}
+        ... )
+        >>> mapping.set_by("sigma", "sweep")
+        'sigma is set by Omega through the map sigma = (Omega - 1)/eps; sweep Omega'
+        >>> mapping.set_by("zeta")
+        ''
+        """
+        expression = dict(self.symbols).get(name)
+        if expression is None or name in self.user or self.is_identity(name):
+            return ""
+        scale = set() if self.epsilon is None else {s.name for s in self.epsilon.free_symbols}
+        names = [n for n in self.user if self.user_symbols[n] in expression.free_symbols]
+        knobs = [n for n in names if n not in scale] or names
+        if not knobs:
+            return f"{name} is fixed by the map {name} = {expression}; it cannot be {verb}"
+        which = " and ".join(knobs)
+        return (
+            f"{name} is set by {which} through the map {name} = {_plain(expression)}; "
+            f"{verb} {which}"
+        )
+
     def is_identity(self, name: str) -> bool:
         """Whether the system symbol ``name`` is the user parameter of the same name."""
         return dict(self.symbols).get(name) == self.user_symbols.get(name)
@@ -334,7 +365,12 @@ class ParameterMap:
         """How plainly ε follows the user parameter ``name``: 0 for ε ∝ name or 1/name, the
         distance of the power-law exponent from ±1 otherwise (the disk's r0 before its g)."""
         u = self.user_symbols[name]
-        exponent = sp.simplify(u * sp.diff(self.epsilon, u) / self.epsilon)
+        # cancel (a rational function's normal form) settles a power law, and a rational
+        # function it leaves is no number; simplify, which loads sympy.physics.units on its
+        # first call (0.3 s of a warm `perturb validate disk`), only for functions (exp, log...)
+        exponent = sp.cancel(u * sp.diff(self.epsilon, u) / self.epsilon)
+        if not exponent.is_number and exponent.atoms(sp.Function):
+            exponent = sp.simplify(exponent)
         return abs(abs(float(exponent)) - 1) if exponent.is_number else math.inf
 
     def _moves(self) -> list[tuple[str, ...]]:
@@ -364,6 +400,12 @@ class ParameterMap:
 
 
 _TARGET = sp.Symbol("target_value_", real=True)
+
+
+def _plain(expression: sp.Expr) -> str:
+    """``(Omega - 1)/eps`` as a user writes it (sympy prints ``(Omega - 1)/eps`` too, but orders
+    a sum by its own rules: kept when it reads as written)."""
+    return str(sp.together(expression))
 
 
 def _to_float(value) -> float:
@@ -428,11 +470,33 @@ def _solve_move_cached(mapping_key, moving) -> tuple:
             equations.append(sp.Eq(expr, _target_of(name)))
     if len(equations) != len(unknowns):
         return ()
+    if len(unknowns) == 1 and len(equations) == 1:
+        power = _power_law(eps, unknowns[0])
+        if power is not None:  # eps = rest * u**a: u = (target / rest)**(1/a), no sympy solve
+            rest, exponent = power
+            root = (_target_of(EPSILON_KEY) / rest) ** (1 / exponent)
+            name = unknowns[0].name
+            # an even power (u**2, u**(2/3)) has the two real roots ±root: the nearest is taken
+            even = sp.Rational(exponent).p % 2 == 0 if exponent.is_rational else False
+            return (((name, root),), ((name, -root),)) if even else (((name, root),),)
     try:
         found = sp.solve(equations, unknowns, dict=True)
     except (NotImplementedError, TypeError):
         return ()
     return tuple(tuple((u.name, f[u]) for u in unknowns if u in f) for f in found)
+
+
+def _power_law(expr: sp.Expr, unknown: sp.Symbol) -> tuple[sp.Expr, sp.Expr] | None:
+    """``(rest, a)`` when ``expr`` is ``rest * unknown**a`` (a a non-zero number, ``rest`` free
+    of ``unknown``), else None: the inverse is then written down, where sympy's ``solve`` costs
+    0.3 s the first time (it loads sympy.physics.units) — the disk's ε = c/r0."""
+    exponent = sp.cancel(unknown * sp.diff(expr, unknown) / expr)
+    if not exponent.is_number or exponent == 0:
+        return None
+    rest = sp.powsimp(expr * unknown ** (-exponent))
+    if unknown in rest.free_symbols:
+        return None
+    return rest, exponent
 
 
 def _solve_move(mapping: ParameterMap, moving: tuple[str, ...]) -> list[dict[str, sp.Expr]]:

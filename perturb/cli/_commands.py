@@ -10,10 +10,10 @@ import numpy as np
 
 from perturb._defaults import DEFAULT_SAMPLES
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _tell, _UsageError
+from perturb.cli._order import order_of
 from perturb.cli._output import _emit
 from perturb.cli._values import (
     _check_plot,
-    _parse_order,
     _parse_output,
     _parse_positive,
     _parse_sets,
@@ -47,9 +47,10 @@ def _cmd_solve(args) -> int:
 
     cls = load_problem(args.problem)
     overrides = _parse_sets(args.sets)
-    order = _parse_order(args.order)
+    problem = cls.create(**overrides)
+    order = order_of(args.order, problem)
     times = _parse_times(args.times)
-    problem = _select_family(cls.create(**overrides), args.family, order)
+    problem = _select_family(problem, args.family, order)
     if args.euler and not has_euler_angles(problem):
         raise _UsageError(
             f"--euler: problem {args.problem!r} has no Euler angles (rigid bodies only)"
@@ -115,11 +116,13 @@ def _cmd_validate(args) -> int:
     from problems import load_problem
 
     cls = load_problem(args.problem)
-    problem = _select_family(cls.create(**_parse_sets(args.sets)), args.family, args.order)
+    problem = cls.create(**_parse_sets(args.sets))
+    order = order_of(args.order, problem)
+    problem = _select_family(problem, args.family, order)
     tol = DEFAULT_TOL if args.tol is None else _parse_positive("--tol", args.tol, float)
     report = validate(
         problem,
-        order=_parse_order(args.order),
+        order=order,
         integrator=args.integrator,
         periods=_parse_positive("--periods", args.periods, float),
         tol=tol,
@@ -191,11 +194,10 @@ def _cmd_reproduce(args) -> int:
     return EXIT_OK
 
 
-def _select_family(problem, name: str | None, order):
+def _select_family(problem, name: str | None, order: int):
     """The problem following family ``name`` (checked now: an unknown name exits 2 with the list)."""
     if name is None:
         return problem
-    order = _parse_order(order) if isinstance(order, str) else order
     families = problem.families(order)
     if name not in families.names and not problem.system().frame.one_solution_for_all_points:
         from perturb.steady.branches import count_name
@@ -212,9 +214,11 @@ def _cmd_families(args) -> int:
 
     cls = load_problem(args.problem)
     problem = cls.create(**_parse_sets(args.sets))
-    families = problem.families(_parse_order(args.order))
-    flags = [_family_domain(problem, f) for f in families]
-    _emit("families", args.format, FamiliesOutput(families, args.problem, flags))
+    order = order_of(args.order, problem)
+    families = problem.families(order)
+    flags = _driven_marks(problem, order, families, [_family_domain(problem, f) for f in families])
+    values = _values_of(problem)
+    _emit("families", args.format, FamiliesOutput(families, args.problem, flags, values))
     if not len(families):
         why = families.why or "the amplitude equations have only the trivial root"
         print(f"perturb: {args.problem}: no family of periodic solutions: {why}", file=sys.stderr)
@@ -228,6 +232,43 @@ def _cmd_families(args) -> int:
         )
         return EXIT_FAILED
     return EXIT_OK
+
+
+def _driven_marks(problem, order: int, families, flags: list) -> list:
+    """A driven problem's ``(outside, beyond)`` flags with the response's marks of each branch
+    (:func:`perturb.report.marks.point_mark`: outside the domain, beyond the validity, a
+    stability within the series' error of 1), so that ``families`` says of a branch what
+    ``response`` marks and ``validate`` measures."""
+    if not problem.system().frame.frequency_given:
+        return flags
+    from perturb.report.marks import PointMark, point_mark, relative_error
+
+    steady = problem.steady_state(order)
+    points = dict(zip(steady.names, steady.points, strict=True))
+    out = []
+    for family, (outside, beyond) in zip(families, flags, strict=True):
+        point = points.get(family.name)
+        mark = point_mark(point) if point is not None else PointMark.NONE
+        if mark is PointMark.OUTSIDE and not outside:
+            outside = mark.value + (f": {point.note}" if point.note else "")
+        elif mark in (PointMark.BEYOND, PointMark.UNCERTAIN) and not beyond:
+            beyond = (
+                f"{mark.value}: its own estimate of its error is {relative_error(point):.2g} of "
+                "the amplitude, so its amplitudes and stability are not certain; check it with "
+                f"`perturb validate --family {family.name}`"
+            )
+        out.append((outside, beyond))
+    return out
+
+
+def _values_of(problem) -> dict:
+    """The problem's values by symbol name, with ``epsilon`` (the expansion's small parameter:
+    1/mu in the large-parameter regime), to put a family's frequency in numbers."""
+    from perturb.system import Regime
+
+    value = float(problem.parameter_value())
+    large = problem.system().regime is Regime.LARGE
+    return {**problem.symbol_values(), "epsilon": 1.0 / value if large else value}
 
 
 def _family_domain(problem, family) -> tuple[str, str]:

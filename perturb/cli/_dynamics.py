@@ -8,8 +8,9 @@ import math
 import sys
 
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError
+from perturb.cli._order import order_of
 from perturb.cli._output import _emit
-from perturb.cli._values import _check_plot, _parse_order, _parse_positive, _parse_sets, _save_plot
+from perturb.cli._values import _check_plot, _parse_positive, _parse_sets, _save_plot
 
 #: Exit code of an interrupted run (128 + SIGINT, as shells report it).
 EXIT_INTERRUPTED = 130
@@ -172,7 +173,7 @@ def _cmd_basins(args) -> int:
         except MissingDependencyError as exc:
             raise _UsageError(str(exc)) from None
     problem = _problem(args)
-    order = _parse_order(args.order)
+    order = order_of(args.order, problem)
     from perturb.dynamics.basins import basins
 
     try:
@@ -233,7 +234,7 @@ def _cmd_transient(args) -> int:
     periods = _whole("--periods", args.periods, 1)
     phase = _phase(args.phase)
     problem = _problem(args)
-    order = _parse_order(args.order)
+    order = order_of(args.order, problem)
     from perturb.dynamics.transient import transient
 
     result = transient(problem, start, periods, order=order, phase=phase, yes=args.yes)
@@ -288,7 +289,7 @@ def _cmd_ramp(args) -> int:
         raise _UsageError(f"--sweep {args.sweep!r}: {name!r} is also set with --set; ramp it or "
                           "set it, not both")  # fmt: skip
     problem = _problem(args)
-    order = _parse_order(args.order)
+    order = order_of(args.order, problem)
     from perturb.dynamics.ramp import ramp
 
     result = ramp(problem, name, start, stop, rates, both_ways=args.both_ways, order=order,

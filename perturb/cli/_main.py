@@ -90,15 +90,17 @@ def _duration(seconds: float) -> str:
 
 @contextlib.contextmanager
 def _progress(args) -> Iterator[None]:
-    """Show progress on stderr when it is a terminal and ``--quiet`` was not given."""
-    show = not getattr(args, "quiet", False) and sys.stderr.isatty()
-    bar = _ProgressBar(sys.stderr) if show else None
-    with listening(bar):
+    """Show what a long run is doing on stderr unless ``--quiet`` was given: a bar on a terminal,
+    periodic lines on a file or a pipe (:mod:`perturb.cli._progress`)."""
+    from perturb.cli._progress import reporter_for
+
+    reporter = None if getattr(args, "quiet", False) else reporter_for(sys.stderr, _ProgressBar)
+    with listening(reporter):
         try:
             yield
         finally:
-            if bar is not None:
-                bar.close()
+            if reporter is not None:
+                reporter.close()
 
 
 #: Commands whose ``--output`` is their own (a folder of report files, a sweep's store): not a
@@ -256,6 +258,11 @@ def _run(argv: Sequence[str] | None) -> int:
     parser = _build_parser()
     try:
         args = parser.parse_args(_dashed_values(parser, sys.argv[1:] if argv is None else argv))
+        if args.command is None and args.version:
+            import perturb
+
+            print(f"perturb {perturb.__version__}")
+            return 0
         if args.command is None:
             parser.print_help()
             return EXIT_USAGE

@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import argparse
 
-from perturb._defaults import RESPONSE_ORDER
+from perturb._defaults import DRIVEN_ORDER, FREE_ORDER
 from perturb.cli._errors import _UsageError
 from perturb.report.formats import choices as _format_choices
 
 _EPILOG = """examples:
+  perturb --version
   perturb list
   perturb solve duffing --set eps=0.05 --set amplitude=1.2 --order 2
   perturb solve van-der-pol --order 3 --times 0,1,2,3 --format json
@@ -55,11 +56,13 @@ def _add_problem_arguments(parser: argparse.ArgumentParser, *, order: bool = Tru
         metavar="NAME=VALUE",
         help="set a parameter (repeatable); unset parameters take their defaults",
     )
-    if order:
+    if order:  # the default: perturb.cli._order (one rule for every command)
         parser.add_argument(
             "--order",
-            default="1",
-            help="highest power of the small parameter kept (integer >= 1; default 1)",
+            default=None,
+            help=f"highest power of the small parameter kept (integer >= 1; default "
+            f"{DRIVEN_ORDER} for a driven problem, whose response is continued, {FREE_ORDER} for "
+            "a free one)",
         )
 
 
@@ -81,6 +84,9 @@ def _build_parser() -> argparse.ArgumentParser:
         epilog=_EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
+    parser.add_argument(
+        "--version", action="store_true", help="print perturb's version and exit"
+    )  # answered by the entry point (argparse's own version action would exit inside main())
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     listing = sub.add_parser("list", help="list the registered problems and their parameters")
     _add_format(listing, "problems")
@@ -229,7 +235,8 @@ def _build_parser() -> argparse.ArgumentParser:
         command.add_argument(
             "--quiet",
             action="store_true",
-            help="no progress bar on stderr (it is shown only on a terminal anyway)",
+            help="no progress on stderr (a bar on a terminal; otherwise a line when a step "
+            "has lasted half a second, then every 10 s)",
         )
     return parser
 
@@ -249,13 +256,6 @@ def _add_response(sub) -> None:
         "largest amplitude, both sides of each fold and its ends.",
     )
     _add_problem_arguments(response)
-    response.set_defaults(order=str(RESPONSE_ORDER))
-    for action in response._actions:
-        if action.dest == "order":
-            action.help = (
-                f"highest power of the small parameter kept (integer >= 1; default "
-                f"{RESPONSE_ORDER} for a response: its curve costs a Newton step a point)"
-            )
     response.add_argument(
         "--sweep", required=True, metavar="NAME=START:STOP:N",
         help="the parameter swept and its grid (N >= 2 values, START < STOP), e.g. Omega=0.9:1.2:61",
@@ -359,11 +359,12 @@ def _add_phase(sub) -> None:
     )
     phase.add_argument(
         "--map",
-        default="first-order",
-        choices=["first-order", "order-n"],
-        help="the map --plot draws: first-order (default: the certified count at every point, "
-        "slow-flow stability, the exact boundaries) or order-n (the responses continued along x, "
-        "Floquet stability, the special points located on them)",
+        default="order-n",
+        choices=["order-n", "first-order"],
+        help="the map --plot draws: order-n (default: the order-N responses continued along x, "
+        "Floquet stability, the special points located on them: right where the amplitude is "
+        "large) or first-order (the certified first-order count at every point, slow-flow "
+        "stability, the exact first-order boundaries: off by O(eps) at large amplitude)",
     )
     phase.add_argument(
         "--yes",

@@ -7,8 +7,9 @@ import sys
 
 from perturb._install import install_hint
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _UsageError, pressed
+from perturb.cli._order import order_of
 from perturb.cli._output import _emit
-from perturb.cli._values import _check_plot, _parse_order, _parse_positive, _parse_sets, _save_plot
+from perturb.cli._values import _check_plot, _parse_positive, _parse_sets, _save_plot
 from perturb.errors import MissingDependencyError
 
 #: Exit code of an interrupted run (128 + SIGINT, as shells report it).
@@ -41,7 +42,7 @@ def _cmd_phase(args) -> int:
                 f"--grid {text!r}: {name!r} is also set with --set; sweep it or set it, not both"
             )
     problem = load_problem(args.problem).create(**overrides)
-    order = _parse_order(args.order)
+    order = order_of(args.order, problem)
     from perturb.sweep.phase import phase_diagram
 
     try:

@@ -6,8 +6,9 @@ import math
 import sys
 
 from perturb.cli._errors import EXIT_OK, _RunFailed, _tell, _UsageError
+from perturb.cli._order import order_of
 from perturb.cli._output import _emit
-from perturb.cli._values import _check_plot, _parse_order, _parse_sets, _save_plot
+from perturb.cli._values import _check_plot, _parse_sets, _save_plot
 
 
 def _parse_sweep(text: str):
@@ -110,7 +111,7 @@ def _cmd_response(args) -> int:
     cls = load_problem(args.problem)
     overrides = _parse_sets(args.sets)
     problem = cls.create(**overrides)
-    order = _parse_order(args.order)
+    order = order_of(args.order, problem)
     values = _count_sweep(args.sweep)
     try:
         count = int(args.validate)

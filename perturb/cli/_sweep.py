@@ -12,7 +12,8 @@ from pathlib import Path
 
 from perturb._install import install_hint
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError, pressed
-from perturb.cli._values import _parse_order, _parse_positive, _parse_sets, _parse_times
+from perturb.cli._order import order_of
+from perturb.cli._values import _parse_positive, _parse_sets, _parse_times
 from perturb.errors import MissingDependencyError, SweepError
 
 #: Exit code of an interrupted run (128 + SIGINT, as shells report it).
@@ -65,9 +66,12 @@ def _cmd_sweep(args) -> int:
     cls = load_problem(args.problem)
     overrides = _parse_sets(args.sets)
     problem = cls.create(**overrides)
-    order = _parse_order(args.order)
+    order = order_of(args.order, problem)
     axes = axes_of(args.grids)
-    check_names(axes, [spec.name for spec in cls.parameter_specs], cls.name, fixed=set(overrides))
+    check_names(
+        axes, [spec.name for spec in cls.parameter_specs], cls.name, fixed=set(overrides),
+        advice=lambda name: cls.map().set_by(name, "sweep"),
+    )  # fmt: skip
     if args.family is not None:  # looked for along the grid; an unknown name exits 2 with the list
         from perturb.sweep.grid import Grid, check_size
         from perturb.sweep.spec import check_family

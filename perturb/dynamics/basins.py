@@ -354,7 +354,10 @@ def basins(
         chart, found_before = stored
         chart = decode(chart)
     else:
-        chart = make_catalogue(problem, order, float(phase), motion)
+        from perturb.progress import stage
+
+        with stage("basins: the steady states, shot"):
+            chart = make_catalogue(problem, order, float(phase), motion)
     if not chart.status.success:
         return BasinMap(None, chart, (), (), BasinStatus.NO_STABLE_STATE, chart.message,
                         _axis_names(axes, box))  # fmt: skip

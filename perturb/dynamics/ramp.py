@@ -224,9 +224,15 @@ def ramp(
         legs.append((stop, start, omegas[1], omegas[0]))
     runs = []
     values = symbols[0]
+    from perturb.progress import notify
+
+    done = 0
+    notify("ramps", done, len(legs) * len(rates))
     for a, b, wa, wb in legs:
         for r in rates:
             run = slow_sweep(system, values, epsilons[0], wa, wb, abs(slope) * r, coordinate)
+            done += 1
+            notify("ramps", done, len(legs) * len(rates))
             along = a + (np.asarray(run.omega) - wa) / slope
             jump, size = _jump(along, np.asarray(run.envelope))
             fold = _passed(folds, jump, b > a)

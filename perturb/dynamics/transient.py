@@ -164,10 +164,14 @@ def transient(
     motion = motion_of(problem)
     y0 = motion.state(start, "--from")
     flow = slow_flow_of(problem, order)
-    chart = make_catalogue(problem, order, float(phase), motion)
+    from perturb.progress import stage
+
+    with stage("transient: the steady states, shot"):
+        chart = make_catalogue(problem, order, float(phase), motion)
     t = motion.drive_period * np.arange(count * TRANSIENT_SAMPLES + 1) / TRANSIENT_SAMPLES
     solver = choose(None, rtol=DEFAULT_RTOL, symbolic=True)
-    traj = solver.integrate(motion.rhs, (0.0, float(t[-1])), np.append(y0, phase), t_eval=t)
+    with stage(f"transient: the true motion over {count:,} drive periods"):
+        traj = solver.integrate(motion.rhs, (0.0, float(t[-1])), np.append(y0, phase), t_eval=t)
     traj.raise_for_status()
     y = np.asarray(traj.y, dtype=float)
     state, theta = y[: motion.m].T, y[motion.m]

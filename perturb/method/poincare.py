@@ -57,6 +57,7 @@ from perturb.method.options import (
     to_amplitudes,
 )
 from perturb.native import NotNative
+from perturb.progress import stage
 from perturb.solution import PeriodicSolution
 from perturb.system import QuasilinearSystem
 from perturb.trig import SympyRing
@@ -157,9 +158,15 @@ class PoincareMethod:
             If ``system`` is not a :class:`QuasilinearSystem` or the options do not fit it.
         """
         check_system(system)
+
+        def construct() -> PeriodicSolution:  # the one step a run may wait on: told (a cache hit
+            # is not)
+            with stage(f"deriving the order-{self.order} solution of {system.name}"):
+                return _construct(self, system)
+
         if not self.cache:
-            return _construct(self, system)
-        return cached("solution", lambda: self._cache_key(system), lambda: _construct(self, system))
+            return construct()
+        return cached("solution", lambda: self._cache_key(system), construct)
 
     def cache_key(self, system: QuasilinearSystem) -> tuple:
         """What a construction of ``system`` with these options is cached under (its options,

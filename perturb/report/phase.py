@@ -101,9 +101,10 @@ def phase_as_table(dataset) -> str:
             f"order {dataset.attrs['order']} against the certified first order: the stable "
             f"counts agree at {agree} of {int(np.sum(both))} points; the steady states at "
             f"{int(np.sum(both)) - fewer - more}"
-            + (f", fewer at {fewer}" if fewer else "") + (f", more at {more}" if more else "")
-            + (" (a branch the continuation did not follow, or a fold within O(eps) of the point)"
-               if fewer or more else "")
+            + (f", fewer at {fewer} (a branch the continuation did not follow, or a fold the "
+               "higher orders move past the point: within O(eps) of it)" if fewer else "")
+            + (f", more at {more} (a fold the higher orders move past the point: the first "
+               "order's is within O(eps) of it)" if more else "")
         )  # fmt: skip
     if "n_states_columns" in dataset:
         columns = np.asarray(dataset["n_states_columns"].values)

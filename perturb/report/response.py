@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from perturb.report.latex import latex_comment
+from perturb.report.marks import PointMark, point_mark, relative_error
 from perturb.report.true_curve import true_curve_as_dict, true_curve_latex, true_curve_lines
 from perturb.steady.measures import MEASURES
 
@@ -33,8 +34,9 @@ def response_as_dict(result) -> dict:
 
     ``{"problem", "parameter", "order", "epsilon", "parameters", "points": [{"value", "branch",
     "amplitudes", "norms", "stable", "eigenvalues", "multipliers", "note", "peak",
-    "first_harmonic", "error_estimate", "series_ok", "liouville", "curve"}], "folds": [{"value",
-    "norms", "amplitudes", "peak", "first_order", "inside", "uncertainty", "true_value"}], "backbone": {"coordinate",
+    "first_harmonic", "error_estimate", "series_ok", "liouville", "curve", "mark"}], "folds":
+    [{"value", "norms", "amplitudes", "peak", "first_order", "inside", "uncertainty",
+    "true_value"}], "backbone": {"coordinate",
     "amplitudes", "values"} | null, "true": [{"value", "branch", "success", "amplitude",
     "amplitude_error", "floquet_max", "stable_true", "stable_analytic", "message",
     "true_amplitude", "measure", "within_tol", "reason", "multipliers_true",
@@ -44,7 +46,9 @@ def response_as_dict(result) -> dict:
     "max_multiplier", "status"}], "true_curve": {...} | null}``; complex numbers are
     ``[re, im]``. ``norms`` is the initial-value norm; ``measure`` names the amplitude the response is drawn by (``amplitude``
     and ``true_amplitude`` of the shot points are in it). ``true_curve`` (``--true``; null
-    without it) is :func:`~perturb.report.true_curve.true_curve_as_dict`.
+    without it) is :func:`~perturb.report.true_curve.true_curve_as_dict`. A point's ``mark``
+    is ``""`` when the series vouches for its labels, else ``outside``, ``beyond`` or
+    ``uncertain`` (:mod:`perturb.report.marks`).
     """
     response = result.response
     points = [
@@ -63,6 +67,7 @@ def response_as_dict(result) -> dict:
             "series_ok": p.series_ok,
             "liouville": _number(p.liouville),
             "curve": p.branch,
+            "mark": point_mark(p).code,
         }
         for p, name in zip(response.points, result.branches, strict=True)
     ]
@@ -155,13 +160,14 @@ def _numbers(mapping) -> dict:
 def response_as_csv(result) -> str:
     """One row per branch point: ``PARAMETER,branch,<coordinate>_amplitude...,stable`` (the
     amplitude the initial-value norm, as always), then ``<coordinate>_peak...,
-    <coordinate>_first_harmonic..., max_multiplier, series_ok``."""
+    <coordinate>_first_harmonic..., max_multiplier, series_ok, mark`` (``mark`` empty when the
+    series vouches for the point, else ``outside``, ``beyond`` or ``uncertain``)."""
     response = result.response
     coords = list(response.coordinates)
     header = [
         result.parameter, "branch", *(f"{c}_amplitude" for c in coords), "stable",
         *(f"{c}_peak" for c in coords), *(f"{c}_first_harmonic" for c in coords),
-        "max_multiplier", "series_ok",
+        "max_multiplier", "series_ok", "mark",
     ]  # fmt: skip
     rows = [",".join(header)]
     for p, name in zip(response.points, result.branches, strict=True):
@@ -170,7 +176,7 @@ def response_as_csv(result) -> str:
         extra = [
             *(f"{p.peak.get(c, math.nan):.12g}" for c in coords),
             *(f"{p.first_harmonic.get(c, math.nan):.12g}" for c in coords),
-            f"{largest:.12g}", str(p.series_ok).lower(),
+            f"{largest:.12g}", str(p.series_ok).lower(), point_mark(p).code,
         ]  # fmt: skip
         rows.append(",".join([*cells, _STABILITY[p.stable], *extra]))
     return "\n".join(rows)
@@ -203,6 +209,7 @@ def response_as_table(result) -> str:
             f"{p.value:12.6g} {name:>9s} "
             + " ".join(f"{size(p, c):12.6g}" for c in coords)
             + f" {_STABILITY[p.stable]:>10s} {largest:12.6f} {product:12.6f}"
+            + (f"  [{point_mark(p).value}]" if point_mark(p) is not PointMark.NONE else "")
             + (f"  ({p.note})" if p.note else "")
         )
     if response.folds:
@@ -306,24 +313,19 @@ def fold_lines(result) -> list[str]:
 
 
 def flag_lines(result) -> list[str]:
-    """Sentences about the points whose series is outside its domain (``series_ok`` false) or
-    beyond its validity: the series' own estimate of its error (``error``, per coordinate) more
-    than :data:`perturb._defaults.VALIDITY_ESTIMATE_LIMIT` of the point's amplitude."""
+    """Sentences about the points whose series is outside its domain (``series_ok`` false),
+    beyond its validity (the series' own estimate of its error, ``error`` per coordinate, more
+    than :data:`perturb._defaults.VALIDITY_ESTIMATE_LIMIT` of the point's amplitude), or whose
+    stability is within the series' error of 1 (:func:`perturb.report.marks.point_mark`)."""
     from perturb._defaults import VALIDITY_ESTIMATE_LIMIT
 
     points = result.response.points
-    outside = [p for p in points if not p.series_ok]
-    beyond = []
-    for p in points:
-        if not p.series_ok:
-            continue
-        ratios = [
-            p.error[c] / size
-            for c, size in p.peak.items()
-            if c in p.error and math.isfinite(p.error[c]) and size > 0
-        ]
-        if ratios and max(ratios) > VALIDITY_ESTIMATE_LIMIT:
-            beyond.append((p, max(ratios)))
+    marks = [point_mark(p) for p in points]
+    outside = [p for p, m in zip(points, marks, strict=True) if m is PointMark.OUTSIDE]
+    beyond = [
+        (p, relative_error(p)) for p, m in zip(points, marks, strict=True) if m is PointMark.BEYOND
+    ]
+    uncertain = [p for p, m in zip(points, marks, strict=True) if m is PointMark.UNCERTAIN]
     lines = []
     if outside:
         lines.append(
@@ -338,5 +340,13 @@ def flag_lines(result) -> list[str]:
             f"estimate of their error is more than {VALIDITY_ESTIMATE_LIMIT:g} of the amplitude "
             f"(up to {ratio:.2g} at {result.parameter} = {point.value:.6g}); check them with "
             "--validate"
+        )
+    if uncertain:
+        lines.append(
+            f"{len(uncertain)} of {len(points)} steady states have a stability within the series' "
+            f"error of 1: their largest Floquet multiplier is not farther from the unit circle "
+            f"than the estimated error of the orbit (e.g. at {result.parameter} = "
+            f"{uncertain[0].value:.6g}), so stable or unstable is not certain there; check them "
+            "with --validate"
         )
     return lines + fold_lines(result)

@@ -156,8 +156,9 @@ def sweep_summary(output: SweepOutput) -> str:
         if code >= 0
     ]
     dims = [(axis["name"], len(axis["values"])) for axis in json.loads(ds.attrs["grid"])]
+    order = f" order {ds.attrs['order']}" if "order" in ds.attrs else ""
     lines = [
-        f"sweep {output.label}: {size} points ({' x '.join(f'{n} {d}' for d, n in dims)}), "
+        f"sweep {output.label}{order}: {size} points ({' x '.join(f'{n} {d}' for d, n in dims)}), "
         f"{ds.attrs.get('seconds', 0.0):.1f} s; points: {', '.join(parts)}"
     ]
     if "verdict" in ds:

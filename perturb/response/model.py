@@ -25,6 +25,7 @@ from attrs import field, frozen
 from perturb._defaults import MAX_VALIDATE
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.method.driven import amplitude_equations
+from perturb.progress import stage
 from perturb.steady.backbone import Backbone, backbone
 from perturb.steady.curve import (
     FrequencyResponse,
@@ -161,7 +162,8 @@ def check_request(problem, parameter: str):
         from difflib import get_close_matches
 
         close = get_close_matches(parameter, list(problem.values), n=1)
-        hint = f" (did you mean {close[0]!r}?)" if close else ""
+        told = problem.map().set_by(parameter, "sweep")
+        hint = f" ({told})" if told else f" (did you mean {close[0]!r}?)" if close else ""
         raise bad_value(
             "sweep", parameter,
             f"it is not a parameter of {problem.name}: choose from {sorted(problem.values)}{hint}",
@@ -237,10 +239,13 @@ def problem_response(
     for value in grid:  # the problem's own checks at every grid value (one line, exit 2)
         point = case.at(**{parameter: float(value)})
         system.frame.frequency_value(system, point.symbol_values, point.epsilon)
-    equations = amplitude_equations(system, order)
+    told = f"response {problem.name}"
+    with stage(f"{told}: deriving the order-{order} amplitude equations"):
+        equations = amplitude_equations(system, order)
     names = [p.name for p in system.parameters]
     line = line_of_problem(problem, parameter, names, float(grid[0]), float(grid[-1]))
-    result = continued_response(equations, order, line, grid)
+    with stage(f"{told}: following every branch over {len(grid)} values of {parameter}"):
+        result = continued_response(equations, order, line, grid)
     response, branch_names_ = response_of(
         result, system=problem.name, parameter=parameter, order=order,
         epsilon=float(case.epsilon),
@@ -249,16 +254,18 @@ def problem_response(
     )  # fmt: skip
     reference = system.coordinates[system.reference_index].name
     top = max((p.amplitude(reference, measure) for p in response.points), default=math.nan)
-    spine = backbone(case, parameter, top, order, measure) if response.points else None
+    with stage(f"{told}: the backbone"):
+        spine = backbone(case, parameter, top, order, measure) if response.points else None
     true_points = _true_points(result, response, validate, measure, tol) if validate else ()
     curves = None
     if true:
         from perturb.response.true_curve import true_curves
 
-        curves = true_curves(
-            problem, parameter, response, branch_names_, order, budget=true, tol=tol,
-            measure=measure, max_period=max_period,
-        )  # fmt: skip
+        with stage(f"{told}: continuing the true periodic orbits (--true)"):
+            curves = true_curves(
+                problem, parameter, response, branch_names_, order, budget=true, tol=tol,
+                measure=measure, max_period=max_period,
+            )  # fmt: skip
         response = _refined_folds(response, curves)
     return ProblemResponse(
         problem.name, parameter, response, branch_names_, spine, true_points, curves

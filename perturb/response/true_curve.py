@@ -49,6 +49,7 @@ from perturb._defaults import (
     TRUE_CURVE_SAMPLES,
 )
 from perturb.errors import PerturbError, bad_value
+from perturb.progress import track
 from perturb.response.true_branches import follow_births
 from perturb.response.true_family import OutsideDomain, ScaledEquations, TrueFamily, floquet_tests
 from perturb.response.true_partings import partings
@@ -154,7 +155,7 @@ def true_curves(
     scale = max([1.0] + [float(np.max(np.abs(s[2]))) for s in seeds if s[2] is not None])
     equations = ScaledEquations(setup, scale, width)
     curves, failures, covered = [], [], []
-    for name, candidates, _ in seeds:
+    for name, candidates, _ in track(seeds, label="true curves: branches followed"):
         seeded = _follow(setup, equations, name, candidates, curves, covered, budget)
         if isinstance(seeded, str):
             failures.append(seeded)

@@ -100,14 +100,14 @@ class CompiledPolynomials:
             scale = 1.0
             for n, v in fixed.items():
                 if n in self.names:
-                    scale *= float(v) ** int(row[self.names.index(n)])
+                    scale *= _power(v, int(row[self.names.index(n)]))
             if scale == 0.0:
                 continue
             # the polynomial in lam of this monomial's moving factors
             in_lam = np.array([scale])
             for n, (v0, dv) in moving.items():
                 e = int(row[self.names.index(n)])
-                factor = np.array([comb(e, i) * float(v0) ** (e - i) * float(dv) ** i
+                factor = np.array([comb(e, i) * _power(v0, e - i) * _power(dv, i)
                                    for i in range(e + 1)])  # fmt: skip
                 in_lam = np.convolve(in_lam, factor)
             base = tuple(int(row[j]) for j in keep)
@@ -126,6 +126,15 @@ class CompiledPolynomials:
                 f"({', '.join(f'{n} = {float(v):g}' for n, v in fixed.items())})"
             )
         return CompiledPolynomials((*unknown, name), exponents, coefficients)
+
+
+def _power(value, exponent: int) -> float:
+    """``value ** exponent`` in floats, infinite past them (Python's ``**`` raises there: eps =
+    1e308 at order 3), so that the check of the coefficients says so in words."""
+    try:
+        return float(value) ** exponent
+    except OverflowError:
+        return math.copysign(math.inf, float(value)) if exponent % 2 else math.inf
 
 
 def compile_polynomials(rows, variables) -> CompiledPolynomials | None:

@@ -15,6 +15,7 @@ from perturb._defaults import (
 )
 from perturb._install import install_hint
 from perturb.errors import InvalidParameterError, MissingDependencyError, SweepError
+from perturb.progress import stage
 from perturb.sweep.derive import plan
 from perturb.sweep.grid import Axis, Grid, parse_axis
 from perturb.sweep.spec import SweepJob, check_spec
@@ -214,13 +215,16 @@ def sweep(
     try:
         with Cluster(workers, scheduler, client, timeout) as cluster:
             workers_now = cluster.n_workers()
-            derivation, _ = plan(spec.model, spec.grid.axes, spec.order, spec.derive)
+            with stage(f"sweep {spec.label}: deriving the order-{spec.order} solution"):
+                derivation, _ = plan(spec.model, spec.grid.axes, spec.order, spec.derive)
             job = SweepJob(spec, derivation, spec.fingerprint(version))
 
             def size() -> int:
                 if chunk_points is not None:
                     return min(chunk_points, spec.grid.size)
-                return points_per_chunk(pilot_seconds(job), spec.grid.size, workers_now)
+                with stage(f"sweep {spec.label}: timing pilot points here (the chunks' size)"):
+                    seconds = pilot_seconds(job)
+                return points_per_chunk(seconds, spec.grid.size, workers_now)
 
             if output is not None:
                 sink = SweepStore.prepare(

@@ -44,7 +44,7 @@ from perturb._defaults import (
     SWEEP_WORKERS_PER_CORE,
 )
 from perturb.errors import InvalidParameterError
-from perturb.progress import notify
+from perturb.progress import notify, stage
 from perturb.sweep.grid import Chunking
 from perturb.sweep.spec import SweepJob
 from perturb.sweep.task import run_chunk
@@ -243,7 +243,11 @@ class Cluster:
                 f"{SWEEP_WORKERS_PER_CORE * cores}, or run on a cluster with --scheduler"
             )
         private = {PRE_SPAWN: _pre_spawn_environment(), **NO_HTTP_ROUTES}
-        with dask.config.set(private), _environment_kept(SAFE_PATH):
+        with (
+            dask.config.set(private),
+            _environment_kept(SAFE_PATH),
+            stage(f"starting a local Dask cluster of {n} worker" + ("s" if n != 1 else "")),
+        ):
             self._cluster = LocalCluster(
                 n_workers=n,
                 threads_per_worker=1,

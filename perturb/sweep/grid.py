@@ -38,8 +38,14 @@ def _closest(name: str, names: Iterable[str]) -> str:
     return f" (did you mean {close[0]!r}?)" if close else ""
 
 
-def check_names(axes: Sequence[Axis], known: Iterable[str], problem: str, fixed=()) -> None:
+def check_names(
+    axes: Sequence[Axis], known: Iterable[str], problem: str, fixed=(), advice=None
+) -> None:
     """Raise unless every axis names a parameter of ``problem`` once, and none is also fixed.
+
+    ``advice(name)``, if given, says what to sweep instead of a name that is not a parameter
+    (:meth:`perturb.case.ParameterMap.set_by`: a system symbol the parameter map sets), in place
+    of the closest name.
 
     Raises
     ------
@@ -52,9 +58,11 @@ def check_names(axes: Sequence[Axis], known: Iterable[str], problem: str, fixed=
     seen: set[str] = set()
     for axis in axes:
         if axis.name not in known:
+            told = advice(axis.name) if advice is not None else ""
             raise UnknownNameError(
                 f"grid axis {axis.spec or axis.name!r}: {axis.name!r} is not a parameter of "
-                f"{problem}{_closest(axis.name, known)}; the parameters are {', '.join(known)}"
+                + (f"{problem}: {told}" if told else f"{problem}{_closest(axis.name, known)}")
+                + f"; the parameters are {', '.join(known)}"
             )
         if axis.name in seen:
             raise InvalidParameterError(

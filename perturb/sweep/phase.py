@@ -175,7 +175,10 @@ def _axes(problem, grid) -> list[tuple[str, np.ndarray]]:
             f"`grid` = {[a.name for a in axes]}: a phase diagram needs two axes, e.g. "
             "--grid Omega=0.98:1.1:41 --grid F=0.5:2:21"
         )
-    check_names(axes, list(problem.values), problem.name)
+    check_names(
+        axes, list(problem.values), problem.name,
+        advice=lambda name: problem.map().set_by(name, "sweep"),
+    )  # fmt: skip
     out = []
     for axis in axes:
         values = np.asarray(axis.values, dtype=float)

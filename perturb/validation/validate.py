@@ -25,7 +25,7 @@ from perturb._defaults import (
 from perturb.domain import DomainCheck, series_domain
 from perturb.errors import PerturbError, bad_value
 from perturb.oracle import Integrator, Trajectory
-from perturb.progress import track
+from perturb.progress import stage, track
 from perturb.validation.checks import (
     analytic_states,
     component_errors,
@@ -310,7 +310,8 @@ def validate(
     # trajectory information over the horizon
     clock = time.perf_counter()
     t = np.linspace(0.0, periods * period, int(math.ceil(periods * samples_per_period)) + 1)
-    traj: Trajectory = solver.integrate(equations.rhs, (0.0, t[-1]), y0, t_eval=t)
+    with stage(f"validate {model.label()}: integrating the true motion over {periods:g} periods"):
+        traj: Trajectory = solver.integrate(equations.rhs, (0.0, t[-1]), y0, t_eval=t)
     timings["integrate"] = time.perf_counter() - clock
     numeric = np.asarray(traj.y, dtype=float)
     reached = numeric.shape[1]
@@ -341,24 +342,27 @@ def validate(
     # existence and accuracy: the true orbit
     orbit = None
     driven = model.system().frame.frequency_given  # the period is the excitation's
+    shooting = f"validate {model.label()}: shooting the true periodic orbit"
     if measurable and shoot is not False and driven:
         clock = time.perf_counter()
-        orbit = forced_orbit_check(
-            model, solution, equations, y_analytic0, period, integrator, rtol, stiffness.stiff
-        )
+        with stage(shooting):
+            orbit = forced_orbit_check(
+                model, solution, equations, y_analytic0, period, integrator, rtol, stiffness.stiff
+            )
         timings["shooting"] = time.perf_counter() - clock
     elif measurable and shoot is not False:
         clock = time.perf_counter()
         setup = _setup(model, shooting_setup, equations, y_analytic0, len(invariants), samples)
-        orbit = orbit_check(
-            model, solution, equations, y_analytic0, period, setup, integrator, rtol,
-            stiffness.stiff, budget,
-        )  # fmt: skip
-        if orbit.success and not orbit.resolved:
-            orbit = with_model_true_orbit(
-                model, solution, equations, y_analytic0, period, orbit, integrator, rtol,
-                stiffness.stiff,
+        with stage(shooting):
+            orbit = orbit_check(
+                model, solution, equations, y_analytic0, period, setup, integrator, rtol,
+                stiffness.stiff, budget,
             )  # fmt: skip
+            if orbit.success and not orbit.resolved:
+                orbit = with_model_true_orbit(
+                    model, solution, equations, y_analytic0, period, orbit, integrator, rtol,
+                    stiffness.stiff,
+                )  # fmt: skip
         timings["shooting"] = time.perf_counter() - clock
 
     # order: the ε scan

@@ -20,6 +20,8 @@ POINT_KEYS = {
 }
 #: What issue 29 added to a point (the contract is extended, never renamed).
 POINT_EXTENSIONS = {"peak", "first_harmonic", "error_estimate", "series_ok", "liouville", "curve"}
+#: ... and the honest labels: whether the series vouches for the point (perturb.report.marks).
+POINT_EXTENSIONS |= {"mark"}
 
 
 def run(capsys, *argv):

@@ -46,7 +46,7 @@ def _response(result) -> str:
 def _families(output) -> str:
     from perturb.report.families import as_dict
 
-    return json_text(as_dict(output.families, output.problem, output.flags)) + "\n"
+    return json_text(as_dict(output.families, output.problem, output.flags, output.values)) + "\n"
 
 
 def _phase(output) -> str:

@@ -40,7 +40,7 @@ def _response(result) -> str:
 def _families(output) -> str:
     from perturb.report.families import as_table
 
-    return as_table(output.families, output.problem, output.flags) + "\n"
+    return as_table(output.families, output.problem, output.flags, output.values) + "\n"
 
 
 def _phase(output) -> str:

@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from perturb.errors import bad_value
+from perturb.report.marks import PointMark, point_mark
 from perturb.report.plots.style import new_figure, publication_style
 from perturb.report.plots.true_curve import draw_true_curves
 
@@ -36,9 +37,12 @@ def plot_frequency_response(result, *, coordinate: str | None = None, ax=None, t
     -------
     matplotlib.figure.Figure
         Every continued order-N curve, stable stretches solid, unstable dashed, where the series'
-        terms do not decrease dotted grey; folds as open circles, branch points, Neimark-Sacker
-        and period-doubling points by their own markers, each fold's uncertainty band (the
-        series' own estimate) shaded ("?" where it cannot tell); the backbone dotted; the true orbits
+        terms do not decrease dotted grey; the grid points whose labels the series does not
+        vouch for (:func:`perturb.report.marks.point_mark`: outside its domain, beyond its
+        validity, a stability within its error of 1) as hollow grey circles; folds as open
+        circles, branch points, Neimark-Sacker and period-doubling points by their own markers,
+        each fold's uncertainty band (the series' own estimate) shaded ("?" where it cannot
+        tell); the backbone dotted; the true orbits
         (``perturb response --validate K``) as crosses at their true amplitude, the analytic points
         off the truth by more than ``tol`` ringed. The amplitude is the response's ``measure``
         (max ``|x|`` by default), named on the axis.
@@ -88,6 +92,11 @@ def plot_frequency_response(result, *, coordinate: str | None = None, ax=None, t
         ax.plot([], [], "--", color="C3", label="unstable")
         if any(not all(c.series_ok) for c in response.curves):
             ax.plot([], [], ":", color="0.6", label="series terms not decreasing")
+        marked = [p for p in response.points if point_mark(p) is not PointMark.NONE]
+        if marked:
+            ax.plot([p.value for p in marked], [p.amplitude(coordinate, measure) for p in marked],
+                    "o", ms=5, mfc="none", color="0.55",
+                    label="label not vouched for by the series")  # fmt: skip
         folds = [f for f in response.folds if low <= f.value <= high]
         _draw_fold_bands(ax, folds, result.parameter)
         if folds:
