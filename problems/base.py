@@ -34,16 +34,14 @@ nothing else.
 
 from __future__ import annotations
 
+import functools
 import math
-import warnings
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
-from inspect import getattr_static
 from typing import ClassVar
 
 import attrs
 import numpy as np
-import sympy as sp
 from attrs import field, frozen
 
 from perturb import (
@@ -54,7 +52,7 @@ from perturb import (
     Status,
 )
 from perturb._defaults import PARAMETER_MAX_MAGNITUDE
-from perturb.case import EPSILON_KEY, Case, ParameterMap
+from perturb.case import Case, ParameterMap
 from perturb.errors import InvalidParameterError, InvalidSystemError, UnknownNameError
 from perturb.oracle import SymbolicRHS
 from perturb.validation import (
@@ -63,11 +61,11 @@ from perturb.validation import (
     Integrals,
     Model,
     OrbitEstimate,
-    ParameterColumns,
     ShootingSetup,
     quasilinear_state_names,
     state_along,
 )
+from problems._declared import checked_columns, solution_reads, traced_declarations
 
 __all__ = ["ParameterSpec", "Problem"]
 
@@ -75,6 +73,7 @@ _SYSTEM_CACHE: dict[tuple, QuasilinearSystem] = {}
 _SOLUTION_CACHE: dict[tuple, PeriodicSolution] = {}
 _FAMILY_CACHE: dict[tuple, FamilyList] = {}
 _MAP_CACHE: dict[tuple, ParameterMap] = {}
+_READS_CACHE: dict[tuple, frozenset | None] = {}
 
 
 _OPTION_KEYS: dict = {}
@@ -175,58 +174,15 @@ def positive(value: float) -> str | None:
     return None if value > 0 else "give a value > 0"
 
 
-#: The methods through which a subclass may compute its numbers itself (the subclass contract
-#: allows it): the map reads them off the class as expressions (:func:`_traced_declarations`).
-_OWN_NUMBERS = ("epsilon", "symbol_values")
-
-
-@frozen
-class _SymbolicPoint:
-    """The base map's expressions in the place of a case, for :func:`_traced_declarations`: a
-    subclass's ``super().symbol_values()`` or ``super().epsilon()`` reads them."""
-
-    base: ParameterMap | None
-
-    @property
-    def symbol_values(self) -> dict:
-        if self.base is None:
-            raise InvalidSystemError("no declared map to read")
-        return dict(self.base.symbols)
-
-    @property
-    def epsilon(self):
-        if self.base is None or self.base.epsilon is None:
-            raise InvalidSystemError("no declared epsilon to read")
-        return self.base.epsilon
-
-
-def _traced_declarations(cls: type, base: ParameterMap | None) -> dict:
-    """The map declarations a subclass writes as code: its own ``epsilon()`` (ε = amplitude²)
-    or ``symbol_values()``, called once on the parameters as sympy symbols. A method that does
-    not go through with symbols (a comparison, ``math.sqrt``, a raise) declares nothing, and the
-    declared :attr:`Problem.parameter_map` stands alone."""
-    own = [n for n in _OWN_NUMBERS if getattr_static(cls, n) is not getattr_static(Problem, n)]
-    if not own:
-        return {}
-    probe = object.__new__(cls)
-    symbols = {s.name: sp.Symbol(s.name, real=True) for s in cls.parameter_specs}
-    for name, value in (("values", symbols), ("family", None), ("symbolic", None)):
-        object.__setattr__(probe, name, value)
-    object.__setattr__(probe, "_case", _SymbolicPoint(base))
-    out = {}
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        for name in own:
-            try:
-                value = getattr(probe, name)()
-                read = {EPSILON_KEY: value} if name == "epsilon" else dict(value)
-                read = {k: sp.sympify(v) for k, v in read.items()}
-            except Exception:  # noqa: BLE001 - code that needs numbers declares nothing
-                continue
-            if all(isinstance(v, sp.Expr) and v.is_finite is not False for v in read.values()):
-                out.update(read)
-    own = {p.name for p in cls.system().parameters} | {EPSILON_KEY}
-    return {k: v for k, v in out.items() if k in own}  # a name the system lacks declares nothing
+def _solution_reads(cls: type, values: dict) -> frozenset | None:
+    """The parameters the class's solution reads besides its system's symbols, the others at
+    ``values`` (:func:`problems._declared.solution_reads`, kept per class and values)."""
+    key = (cls.__module__, cls.__qualname__, tuple(sorted(values.items())))
+    if key not in _READS_CACHE:
+        if len(_READS_CACHE) >= _OPTION_KEYS_SIZE:
+            _READS_CACHE.clear()
+        _READS_CACHE[key] = solution_reads(cls, Problem, cls.map(), values)
+    return _READS_CACHE[key]
 
 
 @frozen
@@ -365,7 +321,7 @@ class Problem(Model, ABC):
                 base = ParameterMap.declare(parameters, user, declared)
             except InvalidSystemError:
                 base = None
-            traced = _traced_declarations(cls, base)
+            traced = traced_declarations(cls, Problem, base)
             if base is None:  # the declarations alone do not cover the system: raise if still not
                 base = ParameterMap.declare(parameters, user, {**declared, **traced})
             elif traced:
@@ -382,13 +338,17 @@ class Problem(Model, ABC):
         if self._case is None:
             made = Case(
                 self.system(), self.map(), self.values, self.family, check=self._checked,
-                model_of=self._at,
+                model_of=self._at, check_columns=self._checked_columns,
+                solution_reads=functools.partial(_solution_reads, type(self)),
             )  # fmt: skip
             object.__setattr__(self, "_case", made)
         return self._case
 
     def _checked(self, values: dict) -> dict:
         return dict(type(self).create(**values).values)
+
+    def _checked_columns(self, values: dict, grid: dict, size: int):
+        return checked_columns(self, Problem, values, grid, size)
 
     def _at(self, case: Case) -> Problem:
         """This problem at ``case``'s values (checked by :meth:`_checked` already) and family:
@@ -607,14 +567,6 @@ class Problem(Model, ABC):
         ``period`` overridden)."""
         own = type(self).state is Problem.state and type(self).period is Problem.period
         return own and not self._driven()  # a driven state adds the phase
-
-    def parameter_columns(self, columns) -> ParameterColumns | None:
-        """Many points at once (the Model hook of a sweep's fast route): offered when ε is the
-        parameter ``eps``, the symbols' values are the parameters of the same names and the
-        method options do not read the parameters that change (:mod:`problems._columns`)."""
-        from problems._columns import problem_columns
-
-        return problem_columns(self, columns, Problem)
 
     # ------------------------------------------------------------------ older duck-typed hooks
     def original_symbolic(self) -> tuple | None:

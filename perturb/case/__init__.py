@@ -7,5 +7,6 @@ numbers (another point, another ε, many points as columns, a system value back 
 
 from perturb.case.case import Case, CaseColumns
 from perturb.case.parameters import EPSILON_KEY, ParameterMap
+from perturb.case.points import CasePoints
 
-__all__ = ["EPSILON_KEY", "Case", "CaseColumns", "ParameterMap"]
+__all__ = ["EPSILON_KEY", "Case", "CaseColumns", "CasePoints", "ParameterMap"]

@@ -34,10 +34,8 @@ from perturb._defaults import (
     STIFFNESS_SAMPLES,
     STIFFNESS_THRESHOLD,
 )
-from perturb.validation._compat import OriginalSystem, original_system
 from perturb.validation._quasilinear import quasilinear_state_names, state_along
 from perturb.validation.checks import stiffness_indicator
-from perturb.validation.columns import ParameterColumns
 from perturb.validation.model import (
     Equations,
     Integrals,
@@ -93,8 +91,6 @@ __all__ = [
     "state_along",
     "OrbitCheck",
     "OrbitEstimate",
-    "OriginalSystem",
-    "ParameterColumns",
     "ShootingSetup",
     "SlopeFit",
     "Stiffness",
@@ -102,7 +98,6 @@ __all__ = [
     "ValidationReport",
     "Verdict",
     "as_model",
-    "original_system",
     "stiffness_indicator",
     "has_euler_angles",
     "validate",

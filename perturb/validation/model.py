@@ -28,7 +28,6 @@ from perturb.validation._quasilinear import (
     state_along,
     substitutions,
 )
-from perturb.validation.columns import ParameterColumns
 from perturb.validation.report import Condition
 from perturb.validation.values import check_system_values
 
@@ -217,7 +216,8 @@ class Model(ABC):
     5. optionally override :meth:`with_epsilon` — the same model with its own small parameter
        rescaled, for the order check (default: None, the order is then undecided) — and
        :meth:`with_parameters` (other parameter values: a sweep's points) and
-       :meth:`evaluates_solution_directly` (whether many points can be evaluated at once);
+       :meth:`evaluates_solution_directly` (whether many points can be evaluated at once,
+       with the points of :meth:`case`);
     6. optionally override :meth:`validity_estimates` (default: none), :meth:`true_orbit` (a
        model-specific true-orbit finder for near-degenerate cases, default: none),
        :meth:`shooting_setup` (default: derived), :meth:`method_options`, :meth:`label` and
@@ -350,24 +350,6 @@ class Model(ABC):
         ``period_at`` at :meth:`parameter_value` and :meth:`symbol_values` (default: False), so
         that many parameter sets can be evaluated in one vectorised call (a sweep)."""
         return False
-
-    def parameter_columns(self, columns: Mapping[str, np.ndarray]) -> ParameterColumns | None:
-        """:meth:`with_parameters` for many points at once (a sweep's fast route).
-
-        Parameters
-        ----------
-        columns : mapping of str to ndarray of shape (P,)
-            The changed parameters' values at each point, by name.
-
-        Returns
-        -------
-        ParameterColumns or None
-            Each point's ε, parameter value, symbol values and error, and the one model whose
-            solution serves them all — exactly what the points give one by one; None (the
-            default) where the model cannot promise that: the sweep then makes each point's
-            model with :meth:`with_parameters`.
-        """
-        return None
 
     def validity_estimates(self) -> tuple[Condition, ...]:
         """The model's own estimates of where its expansion holds (default: none)."""
@@ -509,30 +491,40 @@ class SystemModel(Model):
 
     def case(self) -> Case:
         """Its values as a :class:`~perturb.case.Case` (each symbol the value of its name)."""
-        return _identity_case(self, self.values)
+        return _identity_case(self, self.values, reads=lambda values: frozenset())
 
     def evaluates_solution_directly(self) -> bool:
         return not self.quasilinear.frame.frequency_given  # a driven state adds the phase
-
-    def parameter_columns(self, columns) -> ParameterColumns | None:
-        """Many points at once: the options do not depend on the values, so one solution serves
-        every point (:func:`perturb.validation.columns.system_columns`)."""
-        from perturb.validation.columns import system_columns
-
-        return system_columns(self, columns)
 
     def with_epsilon(self, eps: float) -> SystemModel:
         value = 1.0 / eps if self.quasilinear.regime is Regime.LARGE else eps
         return evolve(self, values={**self.values, self.quasilinear.parameter.name: value})
 
 
-def _identity_case(model: Model, values: Mapping[str, float]) -> Case:
+def _identity_case(
+    model: Model, values: Mapping[str, float], reads: Callable | None = None
+) -> Case:
     """The case of a model whose parameters are its system's symbols (the adapter at the door:
-    another point's model is the model's own :meth:`Model.with_parameters`)."""
+    another point's model is the model's own :meth:`Model.with_parameters`; ``reads``: the
+    parameters its solution reads, None if unknown)."""
     system = model.system()
+
+    def check(point):
+        return check_system_values(system, point)
+
+    def check_columns(base, grid, size):  # only a number that is not finite is refused
+        finite = np.all([np.isfinite(c) for c in grid.values()], axis=0)
+        errors = [""] * size
+        for i in np.flatnonzero(~finite):  # the point's own message
+            try:
+                check({**base, **{n: c[i] for n, c in grid.items()}})
+            except ValueError as exc:
+                errors[i] = str(exc)
+        return errors, [""] * size
+
     return Case.of(
-        system, values, check=lambda point: check_system_values(system, point),
-        model_of=lambda case: model.with_parameters(**case.values),
+        system, values, check=check, model_of=lambda case: model.with_parameters(**case.values),
+        check_columns=check_columns, solution_reads=reads,
     )  # fmt: skip
 
 

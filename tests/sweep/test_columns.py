@@ -1,4 +1,5 @@
-"""The columns route of a chunk (no model per point) gives the per-point route's very results.
+"""The columns route of a chunk (no model per point, the case's points) gives the per-point
+route's very results.
 
 Every variable, status, reason and warning of ``run_chunk(job, indices)`` is compared with
 ``run_chunk(job, indices, columns=False)``, which makes each point's model with
@@ -54,7 +55,7 @@ def offered(job) -> bool:
     columns = {axis.name: np.asarray(axis.values, dtype=float) for axis in grid.axes}
     size = min(axis.size for axis in grid.axes)
     columns = {name: values[:size] for name, values in columns.items()}
-    return job.spec.model.parameter_columns(columns) is not None
+    return job.spec.model.case().points(columns) is not None
 
 
 class Pinned(Problem):
