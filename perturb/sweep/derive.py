@@ -36,8 +36,8 @@ import numpy as np
 from attrs import frozen
 
 from perturb._defaults import SWEEP_POINTS_PER_DERIVATION
-from perturb.errors import InvalidParameterError, PerturbError
 from perturb.case import CasePoints
+from perturb.errors import InvalidParameterError, PerturbError
 from perturb.validation.model import Model
 
 __all__ = ["DeriveMode", "Derivation", "plan"]
