@@ -12,6 +12,7 @@ solution). The problem's own checks, over many points at once, are here too
 
 from __future__ import annotations
 
+import math
 import warnings
 from inspect import getattr_static
 
@@ -23,8 +24,9 @@ from perturb import PerturbError
 from perturb.case import EPSILON_KEY, ParameterMap
 from perturb.case.points import message_of
 from perturb.errors import InvalidSystemError
+from perturb.validation import Condition, OrbitEstimate
 
-__all__ = ["checked_columns", "solution_reads", "traced_declarations"]
+__all__ = ["checked_columns", "older_hooks", "solution_reads", "traced_declarations"]
 
 #: The methods through which a subclass may compute its numbers itself (the subclass contract
 #: allows it): the map reads them off the class as expressions (:func:`traced_declarations`).
@@ -212,3 +214,57 @@ def checked_columns(problem, root: type, values: dict, grid: dict, size: int):
             if caught:
                 notes[i] = "; ".join(dict.fromkeys(str(w.message) for w in caught))
     return errors, notes
+
+
+#: The duck-typed hooks of earlier versions that a subclass may still define (docs/validation.md);
+#: the typed hook each one stands for, where it is a capability of its own.
+OLDER_HOOKS = {
+    "original_symbolic": None,  # read by Problem.original_equations / integrals_of_motion
+    "first_integrals_function": None,  # read by Problem.integrals_of_motion
+    "validity_conditions": "validity_estimates",
+    "true_periodic_orbit": "true_orbit",
+}
+
+
+def _validity_estimates(self) -> tuple:
+    """The conditions of ``validity_conditions()`` as :class:`~perturb.validation.Condition`."""
+    return tuple(Condition(*item) for item in self.validity_conditions())
+
+
+def _true_orbit(self, solution) -> OrbitEstimate | None:
+    """The orbit of ``true_periodic_orbit(solution)``, read into an
+    :class:`~perturb.validation.OrbitEstimate`."""
+    true = self.true_periodic_orbit(solution)
+    if true is None or isinstance(true, OrbitEstimate):
+        return true
+    n_trivial = getattr(true, "n_trivial", None)
+    return OrbitEstimate(
+        success=bool(getattr(true, "success", False)),
+        period=float(getattr(true, "period", math.nan)),
+        initial_state=getattr(true, "initial_state", ()),
+        message=str(getattr(true, "message", "")),
+        floquet=tuple(getattr(true, "floquet", ())),
+        n_trivial=None if n_trivial is None else int(n_trivial),
+        trivial_multiplier_error=float(getattr(true, "trivial_multiplier_error", math.nan)),
+        resolution=float(getattr(true, "resolution", 0.0)),
+        integrator=str(getattr(true, "integrator", "")),
+    )
+
+
+_TYPED = {"validity_estimates": _validity_estimates, "true_orbit": _true_orbit}
+
+
+def older_hooks(cls: type, root: type) -> None:
+    """Read the older hooks a new subclass of ``root`` defines, once, when the class is made:
+    their names go into ``cls._older`` and a hook that stands for a capability
+    (:mod:`perturb.validation.capabilities`) declares it, unless the class or a parent below
+    ``root`` defines the typed hook itself."""
+    own = {name for name in OLDER_HOOKS if name in vars(cls)}
+    cls._older = frozenset(cls._older | own)
+    for name in own:
+        typed = OLDER_HOOKS[name]
+        if typed is None:
+            continue
+        defined = [k for k in cls.__mro__[: cls.__mro__.index(root)] if typed in vars(k)]
+        if not defined or all(vars(k)[typed] is _TYPED[typed] for k in defined):
+            setattr(cls, typed, _TYPED[typed])

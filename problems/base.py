@@ -20,9 +20,11 @@ Subclass contract (as scipy's ``OdeSolver`` states its own):
    :meth:`Problem.state` (to map the quasilinear state back to physical variables) and
    :meth:`Problem.original_rhs` (the unreduced equations for validation);
 4. optionally override the validation hooks of :class:`perturb.validation.Model` (typed:
-   ``original_equations``, ``integrals_of_motion``, ``with_epsilon``, ``validity_estimates``,
-   ``true_orbit``, ``shooting_setup``), or the older duck-typed ones that the typed ones read by
-   default (``original_symbolic()``, ``first_integrals_function()``, ``validity_conditions()``,
+   ``original_equations``, ``integrals_of_motion``, ``with_epsilon``), and declare optional
+   physics by defining its method (:mod:`perturb.validation.capabilities`:
+   ``validity_estimates``, ``true_orbit``, ``shooting_setup``, ``euler_angles``,
+   ``report_extras``); the older duck-typed hooks still work, read once when the class is made
+   (``original_symbolic()``, ``first_integrals_function()``, ``validity_conditions()``,
    ``true_periodic_orbit(solution)``);
 5. in the ``problems`` package, decorate the class with :func:`problems.register` (that alone lists
    it); elsewhere, name it as ``path/to/file.py:Class`` or declare it in the entry-point group
@@ -56,16 +58,18 @@ from perturb.case import Case, ParameterMap
 from perturb.errors import InvalidParameterError, InvalidSystemError, UnknownNameError
 from perturb.oracle import SymbolicRHS
 from perturb.validation import (
-    Condition,
     Equations,
     Integrals,
     Model,
-    OrbitEstimate,
-    ShootingSetup,
     quasilinear_state_names,
     state_along,
 )
-from problems._declared import checked_columns, solution_reads, traced_declarations
+from problems._declared import (
+    checked_columns,
+    older_hooks,
+    solution_reads,
+    traced_declarations,
+)
 
 __all__ = ["ParameterSpec", "Problem"]
 
@@ -241,9 +245,10 @@ class Problem(Model, ABC):
     #: parameters}`` and, under ``"epsilon"``, ε's (strings or sympy expressions). A symbol not
     #: declared is the parameter of the same name; ε is the parameter ``eps`` unless declared.
     parameter_map: ClassVar[Mapping[str, object]] = {}
-    #: Whether :meth:`solve` can derive the solution symbolic in the parameters when it would
-    #: otherwise put them in first (the rigid bodies above order 1): a sweep then derives once.
-    offers_symbolic_derivation: ClassVar[bool] = False
+    #: The older duck-typed hooks the class defines (``original_symbolic``,
+    #: ``first_integrals_function``, ...), read once when the class is made
+    #: (:func:`problems._declared.older_hooks`).
+    _older: ClassVar[frozenset] = frozenset()
 
     values: dict = field(converter=dict)
     #: The family of periodic solutions :meth:`solve` follows, by its name in :meth:`families`
@@ -258,6 +263,10 @@ class Problem(Model, ABC):
 
     def __attrs_post_init__(self):
         self.check_values(self.values)
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        older_hooks(cls, Problem)
 
     @classmethod
     def create(cls, **overrides) -> Problem:
@@ -369,18 +378,13 @@ class Problem(Model, ABC):
         """This problem following the family ``name`` (see :meth:`families`); checked when solved."""
         return attrs.evolve(self, family=name)
 
-    def symbolic_derivation(self) -> Problem | None:
-        """This problem with its solution derived symbolic in its parameters (the Model hook a
-        sweep derives once with), or None when the class does not offer it."""
-        return attrs.evolve(self, symbolic=True) if self.offers_symbolic_derivation else None
-
     def _carry(self, problem: Problem) -> Problem:
         """``problem`` (made at other values) on this one's family and derivation."""
         if self.family is None and self.symbolic is None:
             return problem
         return attrs.evolve(problem, family=self.family, symbolic=self.symbolic)
 
-    def family_options(self, order: int) -> tuple[QuasilinearSystem, dict]:
+    def _family_options(self, order: int) -> tuple[QuasilinearSystem, dict]:
         """The system and the options that define the frame of :meth:`families` at ``order``.
 
         The options of :meth:`method_options` without ``branch`` (the families are the branches):
@@ -399,13 +403,13 @@ class Problem(Model, ABC):
 
         if self._driven():
             return self._driven_families(order)
-        system, options = self.family_options(order)
+        system, options = self._family_options(order)
         key = (type(self).__qualname__, order, system, repr(sorted(options.items())))
         if key not in _FAMILY_CACHE:
             _FAMILY_CACHE[key] = find_families(system, order, **options)
         return _FAMILY_CACHE[key]
 
-    def family_solution(self, order: int, name: str) -> PeriodicSolution:
+    def _family_solution(self, order: int, name: str) -> PeriodicSolution:
         """The solution of the family ``name`` at ``order``.
 
         Raises :class:`~perturb.errors.UnknownNameError` (listing the known names) for an unknown
@@ -440,7 +444,7 @@ class Problem(Model, ABC):
         if self._driven():
             return self._driven_solution(order, name)
         if name is not None:
-            return self.family_solution(order, name)
+            return self._family_solution(order, name)
         options = self.method_options()
         key = (type(self).__module__, type(self).__qualname__, order, _options_key(options))
         if key not in _SOLUTION_CACHE:
@@ -493,21 +497,19 @@ class Problem(Model, ABC):
         """The original equations as ``F(t, y)`` on the state of :meth:`state` (default: the system)."""
         return self.system().vector_field(self.parameter_value(), self.symbol_values())
 
-    def resolved_parameters(self) -> dict[str, float]:
-        """Every parameter value in force (defaults included), for reports."""
-        return dict(self.values)
-
     # ------------------------------------------------------------------ validation (Model)
     def label(self) -> str:
         return self.name
 
     def parameters_in_force(self) -> dict[str, float]:
-        return self.resolved_parameters()
+        """Every parameter value in force (defaults included), for reports."""
+        return dict(self.values)
 
     def original_equations(self, y0: np.ndarray | None = None) -> Equations:
-        """The unreduced equations: ``original_symbolic()`` if given, else a user
-        ``original_rhs`` override, else the quasilinear system itself."""
-        symbolic = self.original_symbolic()
+        """The unreduced equations: ``original_symbolic()`` if the class defines it (the older
+        hook) and it gives them, else a user ``original_rhs`` override, else the quasilinear
+        system itself."""
+        symbolic = self.original_symbolic() if "original_symbolic" in self._older else None
         if symbolic is not None:
             return Equations(SymbolicRHS(*symbolic))
         if type(self).original_rhs is not Problem.original_rhs:
@@ -519,35 +521,14 @@ class Problem(Model, ABC):
     def integrals_of_motion(self, y0: np.ndarray | None = None) -> Integrals | None:
         """``first_integrals_function()`` (names from its ``names``, else ``I0, I1, ...``), else
         the system's own (for unreduced problems only)."""
-        function = self.first_integrals_function()
+        older = self._older
+        function = self.first_integrals_function() if "first_integrals_function" in older else None
         if function is not None:
             return Integrals(function, tuple(getattr(function, "names", ())))
-        if self.original_symbolic() is None and type(self).original_rhs is Problem.original_rhs:
+        own = "original_symbolic" in older and self.original_symbolic() is not None
+        if not own and type(self).original_rhs is Problem.original_rhs:
             return super().integrals_of_motion(y0)
         return None
-
-    def validity_estimates(self) -> tuple[Condition, ...]:
-        return tuple(Condition(*item) for item in self.validity_conditions())
-
-    def true_orbit(self, solution: PeriodicSolution) -> OrbitEstimate | None:
-        """The orbit of ``true_periodic_orbit(solution)``, read into an :class:`OrbitEstimate`."""
-        true = self.true_periodic_orbit(solution)
-        if true is None:
-            return None
-        if isinstance(true, OrbitEstimate):
-            return true
-        n_trivial = getattr(true, "n_trivial", None)
-        return OrbitEstimate(
-            success=bool(getattr(true, "success", False)),
-            period=float(getattr(true, "period", math.nan)),
-            initial_state=getattr(true, "initial_state", ()),
-            message=str(getattr(true, "message", "")),
-            floquet=tuple(getattr(true, "floquet", ())),
-            n_trivial=None if n_trivial is None else int(n_trivial),
-            trivial_multiplier_error=float(getattr(true, "trivial_multiplier_error", math.nan)),
-            resolution=float(getattr(true, "resolution", 0.0)),
-            integrator=str(getattr(true, "integrator", "")),
-        )
 
     def with_epsilon(self, eps: float) -> Problem | None:
         """The problem at expansion parameter ``eps`` with every system symbol kept, solved from
@@ -567,24 +548,3 @@ class Problem(Model, ABC):
         ``period`` overridden)."""
         own = type(self).state is Problem.state and type(self).period is Problem.period
         return own and not self._driven()  # a driven state adds the phase
-
-    # ------------------------------------------------------------------ older duck-typed hooks
-    def original_symbolic(self) -> tuple | None:
-        """``(state symbols, sympy rhs)`` of the original system, or None (default)."""
-        return None
-
-    def first_integrals_function(self):
-        """``y -> array`` of first-integral values, or None (default)."""
-        return None
-
-    def validity_conditions(self) -> list[tuple[str, float, bool, str]]:
-        """``[(name, value, ok, sentence), ...]``: the problem's validity estimates (default none)."""
-        return []
-
-    def true_periodic_orbit(self, solution: PeriodicSolution | None = None):
-        """A problem-specific true periodic orbit, or None (default)."""
-        return None
-
-    def shooting_setup(self) -> ShootingSetup | dict | None:
-        """The shooting set-up (a :class:`ShootingSetup` or its dict form), or None: derived."""
-        return None

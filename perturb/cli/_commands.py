@@ -42,7 +42,7 @@ def _cmd_list(args=None) -> int:
 
 
 def _cmd_solve(args) -> int:
-    from perturb.validation.model import has_euler_angles
+    from perturb.validation.capabilities import has_euler_angles, report_extras
     from problems import load_problem
 
     cls = load_problem(args.problem)
@@ -79,10 +79,10 @@ def _cmd_solve(args) -> int:
         state = problem.state(solution, times)
         extras = {"euler": problem.euler_angles(solution, times)} if args.euler else {}
     notes += [str(w.message) for w in caught if str(w.message) not in notes]
-    report = problem.report_extras()
+    report = report_extras(problem)
     payload = {
         "problem": args.problem,
-        "parameters": problem.resolved_parameters(),
+        "parameters": problem.parameters_in_force(),
         "epsilon": problem.epsilon(),
         **report,
         "order": order,

@@ -35,6 +35,7 @@ from perturb._defaults import (
     STIFFNESS_THRESHOLD,
 )
 from perturb.validation._quasilinear import quasilinear_state_names, state_along
+from perturb.validation.capabilities import has_euler_angles
 from perturb.validation.checks import stiffness_indicator
 from perturb.validation.model import (
     Equations,
@@ -44,7 +45,6 @@ from perturb.validation.model import (
     ShootingSetup,
     SystemModel,
     as_model,
-    has_euler_angles,
 )
 from perturb.validation.report import (
     Check,

@@ -28,7 +28,6 @@ from perturb.validation._quasilinear import (
     state_along,
     substitutions,
 )
-from perturb.validation.report import Condition
 from perturb.validation.values import check_system_values
 
 __all__ = [
@@ -38,7 +37,6 @@ __all__ = [
     "OrbitEstimate",
     "ShootingSetup",
     "SystemModel",
-    "has_euler_angles",
 ]
 
 
@@ -218,12 +216,12 @@ class Model(ABC):
        :meth:`with_parameters` (other parameter values: a sweep's points) and
        :meth:`evaluates_solution_directly` (whether many points can be evaluated at once,
        with the points of :meth:`case`);
-    6. optionally override :meth:`validity_estimates` (default: none), :meth:`true_orbit` (a
-       model-specific true-orbit finder for near-degenerate cases, default: none),
-       :meth:`shooting_setup` (default: derived), :meth:`method_options`, :meth:`label` and
+    6. optionally override :meth:`method_options`, :meth:`label` and
        :meth:`parameters_in_force` (for reports);
-    7. optionally override :meth:`euler_angles` (rigid bodies: the angles along a solution;
-       default: None) and :meth:`report_extras` (what a report adds: default none).
+    7. optionally declare a capability of :mod:`perturb.validation.capabilities` by defining its
+       method: ``validity_estimates()``, ``true_orbit(solution)`` (a model-specific true-orbit
+       finder for near-degenerate cases), ``shooting_setup()``, ``euler_angles(solution, t)``
+       (rigid bodies), ``report_extras()`` (what a report adds); a model without one has none.
 
     Examples
     --------
@@ -351,57 +349,8 @@ class Model(ABC):
         that many parameter sets can be evaluated in one vectorised call (a sweep)."""
         return False
 
-    def validity_estimates(self) -> tuple[Condition, ...]:
-        """The model's own estimates of where its expansion holds (default: none)."""
-        return ()
-
-    def true_orbit(self, solution: PeriodicSolution) -> OrbitEstimate | None:
-        """A model-specific true periodic orbit, asked for only when generic shooting cannot
-        resolve the orbit (default: None, no such method)."""
-        return None
-
-    def shooting_setup(self) -> ShootingSetup | None:
-        """The shooting set-up (default: None, derived by validation)."""
-        return None
-
-    def euler_angles(self, solution: PeriodicSolution, t) -> dict[str, np.ndarray] | None:
-        """The body's Euler angles (z-x-z: ``theta``, ``psi``, ``phi``) along ``solution`` at
-        physical times ``t``, by name (default: None, the model is not a rigid body).
-
-        Rigid-body problems override it; :func:`has_euler_angles` tells whether a model does,
-        without computing anything.
-        """
-        return None
-
-    def report_extras(self) -> dict:
-        """Numbers and sentences the model adds to a report of its solution (``perturb solve``'s
-        JSON and table header; the rigid bodies' ``mu`` and ``regime``; default: none)."""
-        return {}
-
     def _substitutions(self, y0) -> dict | None:
         return substitutions(self.system(), self.symbol_values(), self.parameter_value(), y0)
-
-
-def has_euler_angles(model) -> bool:
-    """Whether ``model`` (a :class:`Model`) gives Euler angles: it overrides
-    :meth:`Model.euler_angles` (the typed hook; no attribute probing).
-
-    Parameters
-    ----------
-    model : Model
-
-    Returns
-    -------
-    bool
-
-    Examples
-    --------
-    >>> from perturb.validation import has_euler_angles
-    >>> from problems import get_problem
-    >>> has_euler_angles(get_problem("disk").create()), has_euler_angles(get_problem("duffing").create())
-    (True, False)
-    """
-    return isinstance(model, Model) and type(model).euler_angles is not Model.euler_angles
 
 
 _SOLUTIONS: dict[tuple, PeriodicSolution] = {}

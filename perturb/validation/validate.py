@@ -26,6 +26,7 @@ from perturb.domain import DomainCheck, series_domain
 from perturb.errors import PerturbError, bad_value
 from perturb.oracle import Integrator, Trajectory
 from perturb.progress import track
+from perturb.validation.capabilities import own_shooting_setup, validity_estimates
 from perturb.validation.checks import (
     analytic_states,
     component_errors,
@@ -244,7 +245,7 @@ def validate(
         )
     timings: dict[str, float] = {}
     clock = time.perf_counter()
-    conditions = tuple(model.validity_estimates())
+    conditions = validity_estimates(model)
     base = dict(
         problem=model.label(),
         parameters=model.parameters_in_force(),
@@ -420,7 +421,7 @@ def validate(
 
 def _setup(model: Model, override, equations, y0, n_integrals, samples) -> ShootingSetup:
     """The shooting set-up: the argument, else the model's, else derived; n_trivial completed."""
-    setup = override if override is not None else model.shooting_setup()
+    setup = override if override is not None else own_shooting_setup(model)
     if setup is None:
         return derived_shooting_setup(model, equations, y0, n_integrals, samples)
     if isinstance(setup, Mapping):

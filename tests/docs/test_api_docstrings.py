@@ -23,6 +23,7 @@ PACKAGES = (
     "perturb.continuation",
     "perturb.oracle",
     "perturb.validation",
+    "perturb.validation.capabilities",
     "perturb.report.plots",
     "perturb.report.formats",
     "perturb.workprecision",
