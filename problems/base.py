@@ -49,7 +49,6 @@ from attrs import field, frozen
 from perturb import (
     FamilyList,
     PeriodicSolution,
-    PoincareMethod,
     QuasilinearSystem,
     Status,
 )
@@ -64,6 +63,7 @@ from perturb.validation import (
     quasilinear_state_names,
     state_along,
 )
+from perturb.validation.frames import steady_states, work_of
 from problems._declared import (
     checked_columns,
     older_hooks,
@@ -399,14 +399,12 @@ class Problem(Model, ABC):
 
         For a driven problem: every branch of the steady-state response at these parameter
         values (``trivial``, ``lower``, ``middle``, ``upper``, …), each with its stability."""
-        from perturb import find_families
-
-        if self._driven():
-            return self._driven_families(order)
         system, options = self._family_options(order)
+        work = work_of(system)  # free: find_families; driven: the branches at these values
         key = (type(self).__qualname__, order, system, repr(sorted(options.items())))
+        key = (*key, *work.point_key(self))
         if key not in _FAMILY_CACHE:
-            _FAMILY_CACHE[key] = find_families(system, order, **options)
+            _FAMILY_CACHE[key] = work.families(self, system, order, options)
         return _FAMILY_CACHE[key]
 
     def _family_solution(self, order: int, name: str) -> PeriodicSolution:
@@ -441,14 +439,16 @@ class Problem(Model, ABC):
         amplitude; :meth:`families` lists them all).
         """
         name = family if family is not None else self.family
-        if self._driven():
-            return self._driven_solution(order, name)
+        work = work_of(self.system())  # free: one solution for all points; driven: a branch here
         if name is not None:
-            return self._family_solution(order, name)
+            return work.solve(
+                self, order, {}, name, named=lambda n: self._family_solution(order, n)
+            )
         options = self.method_options()
         key = (type(self).__module__, type(self).__qualname__, order, _options_key(options))
+        key = (*key, *work.point_key(self))
         if key not in _SOLUTION_CACHE:
-            _SOLUTION_CACHE[key] = PoincareMethod(order=order, **options).solve(self.system())
+            _SOLUTION_CACHE[key] = work.solve(self, order, options)
         return _SOLUTION_CACHE[key]
 
     def state_names(self) -> tuple[str, ...]:
@@ -468,26 +468,8 @@ class Problem(Model, ABC):
     # ------------------------------------------------------------------ driven problems
     def steady_state(self, order: int = 1):
         """Every branch of a driven problem's response at these values
-        (:func:`perturb.response.steady_state`, cached per class, order and values)."""
-        from perturb.response import steady_state
-
-        key = ("driven", type(self).__qualname__, order, tuple(sorted(self.values.items())))
-        if key not in _FAMILY_CACHE:
-            _FAMILY_CACHE[key] = steady_state(
-                self.system(), self.symbol_values(), self.epsilon(), order
-            )
-        return _FAMILY_CACHE[key]
-
-    def _driven(self) -> bool:
-        """Whether the frame gives the frequency: a driven problem solves the steady state at its
-        values and carries the phase in its state (the one question the class asks its frame)."""
-        return self.system().frame.frequency_given
-
-    def _driven_solution(self, order: int, name: str | None) -> PeriodicSolution:
-        return self.steady_state(order).solution(name)
-
-    def _driven_families(self, order: int) -> FamilyList:
-        return self.steady_state(order).families(self.name, order)
+        (:func:`perturb.response.steady_state`, cached per system, order and point)."""
+        return steady_states(self.system(), order, self.symbol_values(), self.epsilon())
 
     def period(self, solution: PeriodicSolution) -> float:
         """The period in physical time."""
@@ -547,4 +529,4 @@ class Problem(Model, ABC):
         """True unless the class maps the solution to its own state or period (``state``,
         ``period`` overridden)."""
         own = type(self).state is Problem.state and type(self).period is Problem.period
-        return own and not self._driven()  # a driven state adds the phase
+        return own and work_of(self.system()).state_is_solution()  # driven: the phase added

@@ -194,12 +194,11 @@ def _select_family(problem, name: str | None, order):
     if name is None:
         return problem
     order = _parse_order(order) if isinstance(order, str) else order
-    families = problem.families(order)
-    if name not in families.names and not problem.system().frame.one_solution_for_all_points:
-        from perturb.steady.branches import count_name
+    from perturb.validation.frames import work_of
 
-        if count_name(name):  # a driven branch that exists elsewhere, not here: the run fails
-            return problem.with_family(name)  # (exit 1, with the branches there are)
+    families = problem.families(order)
+    if name not in families.names and work_of(problem.system()).family_elsewhere(name):
+        return problem.with_family(name)  # a driven branch elsewhere: exit 1, with those here
     families.get(name)
     return problem.with_family(name)
 

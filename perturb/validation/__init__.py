@@ -6,7 +6,9 @@ analytic orbit and period are within ``tol`` of it (accuracy), and the error fal
 along a scan of the problem's own small parameter (order).  Problems take part through the typed
 :class:`Model` protocol; :class:`SystemModel` adapts a bare :class:`perturb.QuasilinearSystem`.
 
-Modules: :mod:`.model` (the protocol), :mod:`.checks` and :mod:`.orbit` (the measurements),
+Modules: :mod:`.model` (the protocol), :mod:`.system_model` (a bare system as a model),
+:mod:`.capabilities` (optional physics a model declares), :mod:`.frames` (what a free and a driven
+case solve, check and print: one table), :mod:`.checks` and :mod:`.orbit` (the measurements),
 :mod:`.verdict` (the rule), :mod:`.report` (the result objects), :mod:`.validate` (orchestration).
 """
 
@@ -43,8 +45,6 @@ from perturb.validation.model import (
     Model,
     OrbitEstimate,
     ShootingSetup,
-    SystemModel,
-    as_model,
 )
 from perturb.validation.report import (
     Check,
@@ -56,6 +56,7 @@ from perturb.validation.report import (
     ValidationReport,
     Verdict,
 )
+from perturb.validation.system_model import SystemModel, as_model
 from perturb.validation.validate import validate
 
 __all__ = [

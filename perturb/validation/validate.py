@@ -35,9 +35,8 @@ from perturb.validation.checks import (
     one_period_error,
     stiffness_indicator,
 )
-from perturb.validation.forced import analytic_stability, forced_orbit_check, stability_check
-from perturb.validation.model import Model, ShootingSetup, as_model
-from perturb.validation.orbit import orbit_check, with_model_true_orbit
+from perturb.validation.frames import work_of
+from perturb.validation.model import Model, ShootingSetup
 from perturb.validation.report import SlopeFit, ValidationReport, Verdict
 from perturb.validation.setup import (
     check_positive,
@@ -45,6 +44,7 @@ from perturb.validation.setup import (
     derived_shooting_setup,
     integrator_for,
 )
+from perturb.validation.system_model import as_model
 from perturb.validation.verdict import accurate_order, decide, measurement_checks
 
 __all__ = ["validate"]
@@ -341,25 +341,17 @@ def validate(
 
     # existence and accuracy: the true orbit
     orbit = None
-    driven = model.system().frame.frequency_given  # the period is the excitation's
-    if measurable and shoot is not False and driven:
+    work = work_of(model.system())  # free: shot on a section; driven: over the given period
+    if measurable and shoot is not False:
         clock = time.perf_counter()
-        orbit = forced_orbit_check(
-            model, solution, equations, y_analytic0, period, integrator, rtol, stiffness.stiff
-        )
-        timings["shooting"] = time.perf_counter() - clock
-    elif measurable and shoot is not False:
-        clock = time.perf_counter()
-        setup = _setup(model, shooting_setup, equations, y_analytic0, len(invariants), samples)
-        orbit = orbit_check(
-            model, solution, equations, y_analytic0, period, setup, integrator, rtol,
-            stiffness.stiff, budget,
+
+        def setup():
+            return _setup(model, shooting_setup, equations, y_analytic0, len(invariants), samples)
+
+        orbit = work.measure_orbit(
+            model, solution, equations, y_analytic0, period, integrator, rtol, stiffness.stiff,
+            setup, budget,
         )  # fmt: skip
-        if orbit.success and not orbit.resolved:
-            orbit = with_model_true_orbit(
-                model, solution, equations, y_analytic0, period, orbit, integrator, rtol,
-                stiffness.stiff,
-            )  # fmt: skip
         timings["shooting"] = time.perf_counter() - clock
 
     # order: the ε scan
@@ -373,10 +365,7 @@ def validate(
     if shoot is not False:
         why_no_orbit = "the true motion was not measurable, so no orbit was searched for"
     checks = measurement_checks(orbit, fit, tol, why_no_fit, why_no_orbit)
-    if driven:  # the period is the forcing's: stability is the fourth measurement
-        existence, accuracy, _, order_check = checks
-        stable = analytic_stability(model, solution) if orbit is not None else None
-        checks = (existence, accuracy, stability_check(orbit, stable, why_no_orbit), order_check)
+    checks = work.checks(checks, model, solution, orbit, why_no_orbit)  # the fourth: the frame's
 
     completed, message = traj.success, traj.message
     failure = None

@@ -12,6 +12,7 @@ import warnings
 
 import hypothesis.strategies as st
 import numpy as np
+import pytest
 import sympy as sp
 from hypothesis import assume, given
 
@@ -97,6 +98,17 @@ class ReadsAmplitude(Pinned):
         return {"amplitudes": {"x": sp.Float(self.values["a"])}}
 
 
+class ComparesMode(Pinned):
+    """Options that compare a parameter with a number (with the parameter a plain sympy symbol,
+    ``mode == 1`` would be a silent False: the case must read it as read)."""
+
+    name = "compares-mode"
+    parameter_specs = (*Pinned.parameter_specs, ParameterSpec("mode", 1.0, "which amplitude"))
+
+    def method_options(self):
+        return {"amplitudes": {"x": a if self.values["mode"] == 1 else 2 * a}}
+
+
 class OwnSymbols(Pinned):
     """The same oscillator whose symbols' values are its own (c doubled)."""
 
@@ -147,6 +159,18 @@ def test_options_that_read_a_changing_parameter_make_the_points_one_by_one():
     fixed_a = job_of(ReadsAmplitude.create(a=0.8), ["c=0.2:1:5"], order=2)
     assert offered(fixed_a)
     assert_same(*both_routes(fixed_a))
+
+
+def test_options_that_compare_a_parameter_with_a_number_read_it():
+    varying = job_of(ComparesMode.create(), ["mode=1,2", "c=0.2:1:3"], order=2)
+    assert not offered(varying)
+    fast, slow = both_routes(varying)
+    assert_same(fast, slow)
+    amplitudes = fast["amplitude"].reshape(2, 3, -1)[:, 0, 0]
+    assert amplitudes[1] == pytest.approx(2 * amplitudes[0], rel=0.05)  # each mode its own
+    fixed = job_of(ComparesMode.create(mode=2.0), ["c=0.2:1:3"], order=2)
+    assert offered(fixed)
+    assert_same(*both_routes(fixed))
 
 
 def test_a_class_with_its_own_symbol_values_is_not_offered():
