@@ -256,7 +256,7 @@ class Problem(Model, ABC):
     family: str | None = field(default=None, kw_only=True)
     #: Whether :meth:`solve` derives the solution symbolic in the parameters (one derivation for
     #: every parameter set) instead of for these values; None: the problem's default. Offered by
-    #: problems that set :attr:`offers_symbolic_derivation`.
+    #: problems that define ``symbolic_derivation`` (the rigid bodies).
     symbolic: bool | None = field(default=None, kw_only=True)
     #: This point's :class:`~perturb.case.Case`, made on first use (the map is evaluated once).
     _case: Case | None = field(default=None, init=False, eq=False, repr=False)

@@ -106,7 +106,7 @@ class FreeWork(FrameWork):
         return PoincareMethod(order=order, **options).solve(model.system())
 
     def families(self, model, system, order, options):
-        from perturb.method import find_families
+        from perturb import find_families
 
         return find_families(system, order, **options)
 
