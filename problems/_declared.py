@@ -39,8 +39,10 @@ OWN_METHODS = (
     "with_parameters",
     "epsilon",
     "symbol_values",
+    "parameter_value",
     "case",
     "solve",
+    "_family_options",
     "__attrs_post_init__",
 )
 

@@ -118,6 +118,15 @@ class OwnSymbols(Pinned):
         return {"a": self.values["a"], "c": 2 * self.values["c"]}
 
 
+class OwnParameterValue(Pinned):
+    """The same oscillator whose solution's own parameter is computed by the class."""
+
+    name = "own-parameter-value"
+
+    def parameter_value(self):
+        return self.values["eps"]
+
+
 class Large(Problem):
     """Van der Pol's oscillator written in the large parameter mu = 1/eps."""
 
@@ -175,6 +184,12 @@ def test_options_that_compare_a_parameter_with_a_number_read_it():
 
 def test_a_class_with_its_own_symbol_values_is_not_offered():
     job = job_of(OwnSymbols.create(), ["c=0.2:0.6:3"], order=1)
+    assert not offered(job)
+    assert_same(*both_routes(job))
+
+
+def test_a_class_with_its_own_parameter_value_is_not_offered():
+    job = job_of(OwnParameterValue.create(), ["c=0.2:0.6:3"], order=1)
     assert not offered(job)
     assert_same(*both_routes(job))
 
