@@ -22,7 +22,7 @@ from attrs import frozen
 
 from perturb import PerturbError
 from perturb.case import EPSILON_KEY, ParameterMap
-from perturb.case.points import message_of
+from perturb.case.points import checked_point, message_of
 from perturb.errors import InvalidSystemError
 from perturb.validation import Condition, OrbitEstimate
 
@@ -205,16 +205,10 @@ def checked_columns(problem, root: type, values: dict, grid: dict, size: int):
             if errors[i]:
                 continue
             point = {n: float(rows[n][i] if n in rows else values[n]) for n in names}
-            with warnings.catch_warnings(record=True) as caught:
-                warnings.simplefilter("always")
-                try:
-                    problem.check_values(point)
-                except (PerturbError, ValueError) as exc:
-                    errors[i] = message_of(exc)
-                except Exception:  # noqa: BLE001 - the per-point route records it as a failure
-                    return None
-            if caught:
-                notes[i] = "; ".join(dict.fromkeys(str(w.message) for w in caught))
+            checked = checked_point(problem.check_values, point)
+            if checked is None:
+                return None
+            errors[i], notes[i] = checked
     return errors, notes
 
 

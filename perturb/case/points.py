@@ -27,7 +27,7 @@ from attrs import field, frozen
 
 from perturb.errors import PerturbError
 
-__all__ = ["CasePoints", "each_checked", "reciprocal"]
+__all__ = ["CasePoints", "checked_point", "each_checked", "reciprocal"]
 
 
 def _float_array(value) -> np.ndarray:
@@ -103,24 +103,32 @@ def message_of(exc: BaseException) -> str:
     return str(exc) or type(exc).__name__
 
 
+def checked_point(check, point: Mapping) -> tuple[str, str] | None:
+    """``(error, note)`` of ``check(point)``: its message where it refuses the point ("" where
+    not) and the warnings it gives ("; "-joined); None where it raised anything but a refusal
+    of bad values (the per-point route records that as a failure)."""
+    error = ""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            check(point)
+        except (PerturbError, ValueError) as exc:
+            error = message_of(exc)
+        except Exception:  # noqa: BLE001 - the per-point route records it as a failure
+            return None
+    return error, "; ".join(dict.fromkeys(str(w.message) for w in caught))
+
+
 def each_checked(check, values: Mapping, grid: Mapping[str, np.ndarray], size: int):
-    """``(errors, notes)``: ``check`` run at each point of ``grid`` (the rest ``values``), its
-    message where it refuses the point and the warnings it gives; None where it raised anything
-    but a refusal of bad values (the per-point route records that as a failure)."""
+    """``(errors, notes)``: :func:`checked_point` at each point of ``grid`` (the rest
+    ``values``); None where a check raised anything but a refusal of bad values."""
     rows = {name: column.tolist() for name, column in grid.items()}
     errors, notes = [""] * size, [""] * size
     for i in range(size):
-        point = {**values, **{name: row[i] for name, row in rows.items()}}
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            try:
-                check(point)
-            except (PerturbError, ValueError) as exc:
-                errors[i] = message_of(exc)
-            except Exception:  # noqa: BLE001 - the per-point route records it as a failure
-                return None
-        if caught:
-            notes[i] = "; ".join(dict.fromkeys(str(w.message) for w in caught))
+        found = checked_point(check, {**values, **{name: row[i] for name, row in rows.items()}})
+        if found is None:
+            return None
+        errors[i], notes[i] = found
     return errors, notes
 
 
