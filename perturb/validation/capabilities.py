@@ -118,7 +118,8 @@ class ReportExtras(Protocol):
 
 
 def has_euler_angles(model) -> bool:
-    """Whether ``model`` gives Euler angles (it declares :class:`EulerAngles`).
+    """Whether ``model`` gives Euler angles (it declares
+    :class:`~perturb.validation.capabilities.EulerAngles`).
 
     Parameters
     ----------

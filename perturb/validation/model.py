@@ -154,7 +154,8 @@ class ShootingSetup:
 
 @frozen
 class OrbitEstimate:
-    """A true periodic orbit found by a model's own method (:meth:`Model.true_orbit`).
+    """A true periodic orbit found by a model's own method (its ``true_orbit(solution)``: the
+    capability :class:`~perturb.validation.capabilities.OwnTrueOrbit`).
 
     Attributes
     ----------
