@@ -41,6 +41,15 @@ class CaseColumns:
     epsilon : numpy.ndarray
     parameter_value : numpy.ndarray
         ε, or μ = 1/ε for a large-parameter system (the solution's own argument).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from problems import get_problem
+    >>> columns = get_problem("duffing").create(eps=0.1).case().columns(
+    ...     {"amplitude": np.array([0.5, 1.0, 2.0])})
+    >>> columns.symbols["amplitude"].tolist(), columns.epsilon.tolist()
+    ([0.5, 1.0, 2.0], [0.1, 0.1, 0.1])
     """
 
     symbols: dict

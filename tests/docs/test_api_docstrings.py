@@ -20,6 +20,7 @@ import pytest
 REFERENCE = Path(__file__).resolve().parents[2] / "docs" / "reference"
 PACKAGES = (
     "perturb",
+    "perturb.case",
     "perturb.continuation",
     "perturb.oracle",
     "perturb.validation",
