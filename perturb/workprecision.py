@@ -46,7 +46,6 @@ from perturb.validation import (
     MAX_OUTPUT_SAMPLES,
     SAMPLES_PER_PERIOD,
     as_model,
-    original_system,
 )
 
 __all__ = ["WorkPoint", "WorkPrecision", "work_precision"]
@@ -242,7 +241,7 @@ def work_precision(
     horizon = periods * period
     t = np.linspace(0.0, horizon, n_out)
     y0 = np.array([np.asarray(problem.state(base, 0.0)[n], dtype=float) for n in names])
-    original = original_system(problem, y0)
+    original = problem.original_equations(y0)
     symbolic = original.symbolic and heyoka_available()
     reference = (
         Heyoka(high_precision=True) if symbolic else choose(rtol=REFERENCE_RTOL, symbolic=False)

@@ -20,9 +20,11 @@ Subclass contract (as scipy's ``OdeSolver`` states its own):
    :meth:`Problem.state` (to map the quasilinear state back to physical variables) and
    :meth:`Problem.original_rhs` (the unreduced equations for validation);
 4. optionally override the validation hooks of :class:`perturb.validation.Model` (typed:
-   ``original_equations``, ``integrals_of_motion``, ``with_epsilon``, ``validity_estimates``,
-   ``true_orbit``, ``shooting_setup``), or the older duck-typed ones that the typed ones read by
-   default (``original_symbolic()``, ``first_integrals_function()``, ``validity_conditions()``,
+   ``original_equations``, ``integrals_of_motion``, ``with_epsilon``), and declare optional
+   physics by defining its method (:mod:`perturb.validation.capabilities`:
+   ``validity_estimates``, ``true_orbit``, ``shooting_setup``, ``euler_angles``,
+   ``report_extras``); the older duck-typed hooks still work, read once when the class is made
+   (``original_symbolic()``, ``first_integrals_function()``, ``validity_conditions()``,
    ``true_periodic_orbit(solution)``);
 5. in the ``problems`` package, decorate the class with :func:`problems.register` (that alone lists
    it); elsewhere, name it as ``path/to/file.py:Class`` or declare it in the entry-point group
@@ -34,39 +36,39 @@ nothing else.
 
 from __future__ import annotations
 
+import functools
 import math
-import warnings
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
-from inspect import getattr_static
 from typing import ClassVar
 
 import attrs
 import numpy as np
-import sympy as sp
 from attrs import field, frozen
 
 from perturb import (
     FamilyList,
     PeriodicSolution,
-    PoincareMethod,
     QuasilinearSystem,
     Status,
 )
 from perturb._defaults import PARAMETER_MAX_MAGNITUDE
-from perturb.case import EPSILON_KEY, Case, ParameterMap
+from perturb.case import Case, ParameterMap
 from perturb.errors import InvalidParameterError, InvalidSystemError, UnknownNameError
 from perturb.oracle import SymbolicRHS
 from perturb.validation import (
-    Condition,
     Equations,
     Integrals,
     Model,
-    OrbitEstimate,
-    ParameterColumns,
-    ShootingSetup,
     quasilinear_state_names,
     state_along,
+)
+from perturb.validation.frames import steady_states, work_of
+from problems._declared import (
+    checked_columns,
+    older_hooks,
+    solution_reads,
+    traced_declarations,
 )
 
 __all__ = ["ParameterSpec", "Problem"]
@@ -75,6 +77,7 @@ _SYSTEM_CACHE: dict[tuple, QuasilinearSystem] = {}
 _SOLUTION_CACHE: dict[tuple, PeriodicSolution] = {}
 _FAMILY_CACHE: dict[tuple, FamilyList] = {}
 _MAP_CACHE: dict[tuple, ParameterMap] = {}
+_READS_CACHE: dict[tuple, frozenset | None] = {}
 
 
 _OPTION_KEYS: dict = {}
@@ -175,58 +178,15 @@ def positive(value: float) -> str | None:
     return None if value > 0 else "give a value > 0"
 
 
-#: The methods through which a subclass may compute its numbers itself (the subclass contract
-#: allows it): the map reads them off the class as expressions (:func:`_traced_declarations`).
-_OWN_NUMBERS = ("epsilon", "symbol_values")
-
-
-@frozen
-class _SymbolicPoint:
-    """The base map's expressions in the place of a case, for :func:`_traced_declarations`: a
-    subclass's ``super().symbol_values()`` or ``super().epsilon()`` reads them."""
-
-    base: ParameterMap | None
-
-    @property
-    def symbol_values(self) -> dict:
-        if self.base is None:
-            raise InvalidSystemError("no declared map to read")
-        return dict(self.base.symbols)
-
-    @property
-    def epsilon(self):
-        if self.base is None or self.base.epsilon is None:
-            raise InvalidSystemError("no declared epsilon to read")
-        return self.base.epsilon
-
-
-def _traced_declarations(cls: type, base: ParameterMap | None) -> dict:
-    """The map declarations a subclass writes as code: its own ``epsilon()`` (ε = amplitude²)
-    or ``symbol_values()``, called once on the parameters as sympy symbols. A method that does
-    not go through with symbols (a comparison, ``math.sqrt``, a raise) declares nothing, and the
-    declared :attr:`Problem.parameter_map` stands alone."""
-    own = [n for n in _OWN_NUMBERS if getattr_static(cls, n) is not getattr_static(Problem, n)]
-    if not own:
-        return {}
-    probe = object.__new__(cls)
-    symbols = {s.name: sp.Symbol(s.name, real=True) for s in cls.parameter_specs}
-    for name, value in (("values", symbols), ("family", None), ("symbolic", None)):
-        object.__setattr__(probe, name, value)
-    object.__setattr__(probe, "_case", _SymbolicPoint(base))
-    out = {}
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        for name in own:
-            try:
-                value = getattr(probe, name)()
-                read = {EPSILON_KEY: value} if name == "epsilon" else dict(value)
-                read = {k: sp.sympify(v) for k, v in read.items()}
-            except Exception:  # noqa: BLE001 - code that needs numbers declares nothing
-                continue
-            if all(isinstance(v, sp.Expr) and v.is_finite is not False for v in read.values()):
-                out.update(read)
-    own = {p.name for p in cls.system().parameters} | {EPSILON_KEY}
-    return {k: v for k, v in out.items() if k in own}  # a name the system lacks declares nothing
+def _solution_reads(cls: type, values: dict) -> frozenset | None:
+    """The parameters the class's solution reads besides its system's symbols, the others at
+    ``values`` (:func:`problems._declared.solution_reads`, kept per class and values)."""
+    key = (cls.__module__, cls.__qualname__, tuple(sorted(values.items())))
+    if key not in _READS_CACHE:
+        if len(_READS_CACHE) >= _OPTION_KEYS_SIZE:
+            _READS_CACHE.clear()
+        _READS_CACHE[key] = solution_reads(cls, Problem, cls.map(), values)
+    return _READS_CACHE[key]
 
 
 @frozen
@@ -285,9 +245,10 @@ class Problem(Model, ABC):
     #: parameters}`` and, under ``"epsilon"``, ε's (strings or sympy expressions). A symbol not
     #: declared is the parameter of the same name; ε is the parameter ``eps`` unless declared.
     parameter_map: ClassVar[Mapping[str, object]] = {}
-    #: Whether :meth:`solve` can derive the solution symbolic in the parameters when it would
-    #: otherwise put them in first (the rigid bodies above order 1): a sweep then derives once.
-    offers_symbolic_derivation: ClassVar[bool] = False
+    #: The older duck-typed hooks the class defines (``original_symbolic``,
+    #: ``first_integrals_function``, ...), read once when the class is made
+    #: (:func:`problems._declared.older_hooks`).
+    _older: ClassVar[frozenset] = frozenset()
 
     values: dict = field(converter=dict)
     #: The family of periodic solutions :meth:`solve` follows, by its name in :meth:`families`
@@ -295,13 +256,17 @@ class Problem(Model, ABC):
     family: str | None = field(default=None, kw_only=True)
     #: Whether :meth:`solve` derives the solution symbolic in the parameters (one derivation for
     #: every parameter set) instead of for these values; None: the problem's default. Offered by
-    #: problems that set :attr:`offers_symbolic_derivation`.
+    #: problems that define ``symbolic_derivation`` (the rigid bodies).
     symbolic: bool | None = field(default=None, kw_only=True)
     #: This point's :class:`~perturb.case.Case`, made on first use (the map is evaluated once).
     _case: Case | None = field(default=None, init=False, eq=False, repr=False)
 
     def __attrs_post_init__(self):
         self.check_values(self.values)
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        older_hooks(cls, Problem)
 
     @classmethod
     def create(cls, **overrides) -> Problem:
@@ -368,7 +333,7 @@ class Problem(Model, ABC):
                 base = ParameterMap.declare(parameters, user, declared)
             except InvalidSystemError:
                 base = None
-            traced = _traced_declarations(cls, base)
+            traced = traced_declarations(cls, Problem, base)
             if base is None:  # the declarations alone do not cover the system: raise if still not
                 base = ParameterMap.declare(parameters, user, {**declared, **traced})
             elif traced:
@@ -385,13 +350,17 @@ class Problem(Model, ABC):
         if self._case is None:
             made = Case(
                 self.system(), self.map(), self.values, self.family, check=self._checked,
-                model_of=self._at,
+                model_of=self._at, check_columns=self._checked_columns,
+                solution_reads=functools.partial(_solution_reads, type(self)),
             )  # fmt: skip
             object.__setattr__(self, "_case", made)
         return self._case
 
     def _checked(self, values: dict) -> dict:
         return dict(type(self).create(**values).values)
+
+    def _checked_columns(self, values: dict, grid: dict, size: int):
+        return checked_columns(self, Problem, values, grid, size)
 
     def _at(self, case: Case) -> Problem:
         """This problem at ``case``'s values (checked by :meth:`_checked` already) and family:
@@ -412,18 +381,13 @@ class Problem(Model, ABC):
         """This problem following the family ``name`` (see :meth:`families`); checked when solved."""
         return attrs.evolve(self, family=name)
 
-    def symbolic_derivation(self) -> Problem | None:
-        """This problem with its solution derived symbolic in its parameters (the Model hook a
-        sweep derives once with), or None when the class does not offer it."""
-        return attrs.evolve(self, symbolic=True) if self.offers_symbolic_derivation else None
-
     def _carry(self, problem: Problem) -> Problem:
         """``problem`` (made at other values) on this one's family and derivation."""
         if self.family is None and self.symbolic is None:
             return problem
         return attrs.evolve(problem, family=self.family, symbolic=self.symbolic)
 
-    def family_options(self, order: int) -> tuple[QuasilinearSystem, dict]:
+    def _family_options(self, order: int) -> tuple[QuasilinearSystem, dict]:
         """The system and the options that define the frame of :meth:`families` at ``order``.
 
         The options of :meth:`method_options` without ``branch`` (the families are the branches):
@@ -438,17 +402,15 @@ class Problem(Model, ABC):
 
         For a driven problem: every branch of the steady-state response at these parameter
         values (``trivial``, ``lower``, ``middle``, ``upper``, …), each with its stability."""
-        from perturb import find_families
-
-        if self._driven():
-            return self._driven_families(order)
-        system, options = self.family_options(order)
+        system, options = self._family_options(order)
+        work = work_of(system)  # free: find_families; driven: the branches at these values
         key = (type(self).__qualname__, order, system, repr(sorted(options.items())))
+        key = (*key, *work.point_key(self))
         if key not in _FAMILY_CACHE:
-            _FAMILY_CACHE[key] = find_families(system, order, **options)
+            _FAMILY_CACHE[key] = work.families(self, system, order, options)
         return _FAMILY_CACHE[key]
 
-    def family_solution(self, order: int, name: str) -> PeriodicSolution:
+    def _family_solution(self, order: int, name: str) -> PeriodicSolution:
         """The solution of the family ``name`` at ``order``.
 
         Raises :class:`~perturb.errors.UnknownNameError` (listing the known names) for an unknown
@@ -480,14 +442,16 @@ class Problem(Model, ABC):
         amplitude; :meth:`families` lists them all).
         """
         name = family if family is not None else self.family
-        if self._driven():
-            return self._driven_solution(order, name)
+        work = work_of(self.system())  # free: one solution for all points; driven: a branch here
         if name is not None:
-            return self.family_solution(order, name)
+            return work.solve(
+                self, order, {}, name, named=lambda n: self._family_solution(order, n)
+            )
         options = self.method_options()
         key = (type(self).__module__, type(self).__qualname__, order, _options_key(options))
+        key = (*key, *work.point_key(self))
         if key not in _SOLUTION_CACHE:
-            _SOLUTION_CACHE[key] = PoincareMethod(order=order, **options).solve(self.system())
+            _SOLUTION_CACHE[key] = work.solve(self, order, options)
         return _SOLUTION_CACHE[key]
 
     def state_names(self) -> tuple[str, ...]:
@@ -507,26 +471,8 @@ class Problem(Model, ABC):
     # ------------------------------------------------------------------ driven problems
     def steady_state(self, order: int = 1):
         """Every branch of a driven problem's response at these values
-        (:func:`perturb.response.steady_state`, cached per class, order and values)."""
-        from perturb.response import steady_state
-
-        key = ("driven", type(self).__qualname__, order, tuple(sorted(self.values.items())))
-        if key not in _FAMILY_CACHE:
-            _FAMILY_CACHE[key] = steady_state(
-                self.system(), self.symbol_values(), self.epsilon(), order
-            )
-        return _FAMILY_CACHE[key]
-
-    def _driven(self) -> bool:
-        """Whether the frame gives the frequency: a driven problem solves the steady state at its
-        values and carries the phase in its state (the one question the class asks its frame)."""
-        return self.system().frame.frequency_given
-
-    def _driven_solution(self, order: int, name: str | None) -> PeriodicSolution:
-        return self.steady_state(order).solution(name)
-
-    def _driven_families(self, order: int) -> FamilyList:
-        return self.steady_state(order).families(self.name, order)
+        (:func:`perturb.response.steady_state`, cached per system, order and point)."""
+        return steady_states(self.system(), order, self.symbol_values(), self.epsilon())
 
     def period(self, solution: PeriodicSolution) -> float:
         """The period in physical time."""
@@ -536,21 +482,19 @@ class Problem(Model, ABC):
         """The original equations as ``F(t, y)`` on the state of :meth:`state` (default: the system)."""
         return self.system().vector_field(self.parameter_value(), self.symbol_values())
 
-    def resolved_parameters(self) -> dict[str, float]:
-        """Every parameter value in force (defaults included), for reports."""
-        return dict(self.values)
-
     # ------------------------------------------------------------------ validation (Model)
     def label(self) -> str:
         return self.name
 
     def parameters_in_force(self) -> dict[str, float]:
-        return self.resolved_parameters()
+        """Every parameter value in force (defaults included), for reports."""
+        return dict(self.values)
 
     def original_equations(self, y0: np.ndarray | None = None) -> Equations:
-        """The unreduced equations: ``original_symbolic()`` if given, else a user
-        ``original_rhs`` override, else the quasilinear system itself."""
-        symbolic = self.original_symbolic()
+        """The unreduced equations: ``original_symbolic()`` if the class defines it (the older
+        hook) and it gives them, else a user ``original_rhs`` override, else the quasilinear
+        system itself."""
+        symbolic = self.original_symbolic() if "original_symbolic" in self._older else None
         if symbolic is not None:
             return Equations(SymbolicRHS(*symbolic))
         if type(self).original_rhs is not Problem.original_rhs:
@@ -562,35 +506,14 @@ class Problem(Model, ABC):
     def integrals_of_motion(self, y0: np.ndarray | None = None) -> Integrals | None:
         """``first_integrals_function()`` (names from its ``names``, else ``I0, I1, ...``), else
         the system's own (for unreduced problems only)."""
-        function = self.first_integrals_function()
+        older = self._older
+        function = self.first_integrals_function() if "first_integrals_function" in older else None
         if function is not None:
             return Integrals(function, tuple(getattr(function, "names", ())))
-        if self.original_symbolic() is None and type(self).original_rhs is Problem.original_rhs:
+        own = "original_symbolic" in older and self.original_symbolic() is not None
+        if not own and type(self).original_rhs is Problem.original_rhs:
             return super().integrals_of_motion(y0)
         return None
-
-    def validity_estimates(self) -> tuple[Condition, ...]:
-        return tuple(Condition(*item) for item in self.validity_conditions())
-
-    def true_orbit(self, solution: PeriodicSolution) -> OrbitEstimate | None:
-        """The orbit of ``true_periodic_orbit(solution)``, read into an :class:`OrbitEstimate`."""
-        true = self.true_periodic_orbit(solution)
-        if true is None:
-            return None
-        if isinstance(true, OrbitEstimate):
-            return true
-        n_trivial = getattr(true, "n_trivial", None)
-        return OrbitEstimate(
-            success=bool(getattr(true, "success", False)),
-            period=float(getattr(true, "period", math.nan)),
-            initial_state=getattr(true, "initial_state", ()),
-            message=str(getattr(true, "message", "")),
-            floquet=tuple(getattr(true, "floquet", ())),
-            n_trivial=None if n_trivial is None else int(n_trivial),
-            trivial_multiplier_error=float(getattr(true, "trivial_multiplier_error", math.nan)),
-            resolution=float(getattr(true, "resolution", 0.0)),
-            integrator=str(getattr(true, "integrator", "")),
-        )
 
     def with_epsilon(self, eps: float) -> Problem | None:
         """The problem at expansion parameter ``eps`` with every system symbol kept, solved from
@@ -609,33 +532,4 @@ class Problem(Model, ABC):
         """True unless the class maps the solution to its own state or period (``state``,
         ``period`` overridden)."""
         own = type(self).state is Problem.state and type(self).period is Problem.period
-        return own and not self._driven()  # a driven state adds the phase
-
-    def parameter_columns(self, columns) -> ParameterColumns | None:
-        """Many points at once (the Model hook of a sweep's fast route): offered when ε is the
-        parameter ``eps``, the symbols' values are the parameters of the same names and the
-        method options do not read the parameters that change (:mod:`problems._columns`)."""
-        from problems._columns import problem_columns
-
-        return problem_columns(self, columns, Problem)
-
-    # ------------------------------------------------------------------ older duck-typed hooks
-    def original_symbolic(self) -> tuple | None:
-        """``(state symbols, sympy rhs)`` of the original system, or None (default)."""
-        return None
-
-    def first_integrals_function(self):
-        """``y -> array`` of first-integral values, or None (default)."""
-        return None
-
-    def validity_conditions(self) -> list[tuple[str, float, bool, str]]:
-        """``[(name, value, ok, sentence), ...]``: the problem's validity estimates (default none)."""
-        return []
-
-    def true_periodic_orbit(self, solution: PeriodicSolution | None = None):
-        """A problem-specific true periodic orbit, or None (default)."""
-        return None
-
-    def shooting_setup(self) -> ShootingSetup | dict | None:
-        """The shooting set-up (a :class:`ShootingSetup` or its dict form), or None: derived."""
-        return None
+        return own and work_of(self.system()).state_is_solution()  # driven: the phase added

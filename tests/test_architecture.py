@@ -392,9 +392,11 @@ def test_only_the_plotting_modules_import_matplotlib():
 
 #: The frame's answers (free or driven) asked outside the frame, counted where they are read.
 FRAME_ANSWERS = ("frequency_given", "one_solution_for_all_points", "energy_may_be_conserved")
-#: How many places ask them today. The target of the seam is 6 (one table keyed by frame type);
-#: this ceiling only keeps the number from growing back while it falls.
-MAX_FRAME_QUESTIONS = 10
+#: How many places ask them: what a free and a driven case solve, check and print is one table
+#: keyed by frame type (perturb/validation/frames.py); the four left are the rooms below it that
+#: need one answer each (the case's columns, projective scaling, the backbone, the energy). The
+#: seam aimed at 6; this ceiling keeps the number from growing back.
+MAX_FRAME_QUESTIONS = 4
 
 
 def test_the_frame_is_asked_in_few_places():
@@ -411,9 +413,11 @@ def test_the_frame_is_asked_in_few_places():
     assert len(found) <= MAX_FRAME_QUESTIONS, "\n".join(found)
 
 
-#: Public members of ``problems.Problem`` (the subclass contract plus what clients call). The seam's
-#: target is 15 (the hooks moved to declared capabilities); this ceiling keeps it from growing.
-MAX_PROBLEM_MEMBERS = 44
+#: Public members of ``problems.Problem`` (the subclass contract plus what clients call). 44
+#: before the optional physics became declared capabilities and the synonyms went; the seam's
+#: target is 15, and what stands between is what the tests and the docs call on every problem
+#: (epsilon, symbol_values, parameter_value, with_parameters, steady_state, original_rhs, ...).
+MAX_PROBLEM_MEMBERS = 30
 
 
 def test_the_problem_surface_does_not_grow():

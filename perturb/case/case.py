@@ -6,7 +6,8 @@ order scan of validation — instead of re-creating problems to learn what a par
 * :attr:`Case.symbol_values`, :attr:`Case.epsilon`, :attr:`Case.parameter_value` — the point;
 * :meth:`Case.at` — another point (checked by the problem's own rules, no class re-created);
 * :meth:`Case.with_epsilon` — the same scaled system at another ε, solved from the map;
-* :meth:`Case.columns` — many points as numpy columns (a sweep's fast route);
+* :meth:`Case.columns` — many points' numbers as numpy columns; :meth:`Case.points` — many
+  points checked, with the one model whose solution serves them all (a sweep's fast route);
 * :meth:`Case.to_user`, :meth:`Case.user_roots` — a value found in a system symbol (a fold's σ)
   back in a user parameter; :meth:`Case.span` — the range a symbol covers along a parameter.
 """
@@ -22,6 +23,7 @@ from attrs import field, frozen
 
 from perturb._defaults import DERIVED_CACHE_SIZE
 from perturb.case.parameters import EPSILON_KEY, ParameterMap
+from perturb.case.points import CasePoints, points_of
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.system import QuasilinearSystem, Regime
 
@@ -39,6 +41,15 @@ class CaseColumns:
     epsilon : numpy.ndarray
     parameter_value : numpy.ndarray
         ε, or μ = 1/ε for a large-parameter system (the solution's own argument).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from problems import get_problem
+    >>> columns = get_problem("duffing").create(eps=0.1).case().columns(
+    ...     {"amplitude": np.array([0.5, 1.0, 2.0])})
+    >>> columns.symbols["amplitude"].tolist(), columns.epsilon.tolist()
+    ([0.5, 1.0, 2.0], [0.1, 0.1, 0.1])
     """
 
     symbols: dict
@@ -78,6 +89,16 @@ class Case:
         problem) at a case's values — the one adapter the front door gives, so that a client
         holding a case reaches the problem's own physics (its state map, its checks) at any
         point without re-creating it by hand; default: none (:attr:`model` is None).
+    check_columns : callable, optional
+        ``check_columns(values, grid, size) -> (errors, notes) | None``: :attr:`check` of many
+        points at once (``grid``: some user parameters as arrays of length ``size``, the rest
+        ``values``), each point's message and warnings exactly as checked alone (None: it cannot
+        say); default: :attr:`check` at each point (:meth:`points`).
+    solution_reads : callable, optional
+        ``solution_reads(values) -> frozenset of str | None``: the user parameters the solution
+        depends on besides the system's symbols (its method options read them), the others at
+        ``values``; None (as the default, or as its answer): unknown, each point may have its
+        own solution and :meth:`points` offers none.
 
     Examples
     --------
@@ -104,6 +125,8 @@ class Case:
     family: str | None = None
     check: Callable[[dict], dict] = field(default=_no_check, eq=False, repr=False)
     model_of: Callable | None = field(default=None, eq=False, repr=False)
+    check_columns: Callable | None = field(default=None, eq=False, repr=False)
+    solution_reads: Callable | None = field(default=None, eq=False, repr=False)
     _point: tuple = field(init=False, eq=False, repr=False)
     _model: list = field(init=False, eq=False, repr=False, factory=list)
 
@@ -125,6 +148,8 @@ class Case:
         family: str | None = None,
         check: Callable[[dict], dict] = _no_check,
         model_of: Callable | None = None,
+        check_columns: Callable | None = None,
+        solution_reads: Callable | None = None,
     ) -> Case:
         """The case of a bare ``system`` at ``values``: each of its symbols the value of its
         name, ε its own parameter (``epsilon``, or ``1/mu`` in the large-parameter regime) —
@@ -142,7 +167,10 @@ class Case:
         ({'k': 2.0}, 0.1, 0.2)
         """
         mapping = _identity_map(system, tuple(values))
-        return cls(system, mapping, values, family, check=check, model_of=model_of)
+        return cls(
+            system, mapping, values, family, check=check, model_of=model_of,
+            check_columns=check_columns, solution_reads=solution_reads,
+        )  # fmt: skip
 
     # ------------------------------------------------------------------ the point
     @property
@@ -216,6 +244,14 @@ class Case:
         with np.errstate(divide="ignore"):
             value = 1.0 / eps if self.system.regime is Regime.LARGE else eps
         return CaseColumns(symbols, eps, value)
+
+    def points(self, grid: Mapping[str, np.ndarray]) -> CasePoints | None:
+        """Many points at once, checked (:mod:`perturb.case.points`): ``grid`` gives some user
+        parameters as arrays of one length; each point's ε, symbols, message and warnings, and
+        the model whose solution serves every valid point — exactly what the points give one by
+        one. None where the case cannot promise that (:attr:`solution_reads` unknown or moved by
+        the grid, a driven system, no ε in the map): the caller then makes each point's model."""
+        return points_of(self, grid)
 
     # ------------------------------------------------------------------ back to the user
     def moves(self, parameter: str) -> tuple[str, ...]:

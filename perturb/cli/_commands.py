@@ -42,7 +42,7 @@ def _cmd_list(args=None) -> int:
 
 
 def _cmd_solve(args) -> int:
-    from perturb.validation.model import has_euler_angles
+    from perturb.validation.capabilities import has_euler_angles, report_extras
     from problems import load_problem
 
     cls = load_problem(args.problem)
@@ -80,10 +80,10 @@ def _cmd_solve(args) -> int:
         state = problem.state(solution, times)
         extras = {"euler": problem.euler_angles(solution, times)} if args.euler else {}
     notes += [str(w.message) for w in caught if str(w.message) not in notes]
-    report = problem.report_extras()
+    report = report_extras(problem)
     payload = {
         "problem": args.problem,
-        "parameters": problem.resolved_parameters(),
+        "parameters": problem.parameters_in_force(),
         "epsilon": problem.epsilon(),
         **report,
         "order": order,
@@ -198,12 +198,11 @@ def _select_family(problem, name: str | None, order: int):
     """The problem following family ``name`` (checked now: an unknown name exits 2 with the list)."""
     if name is None:
         return problem
-    families = problem.families(order)
-    if name not in families.names and not problem.system().frame.one_solution_for_all_points:
-        from perturb.steady.branches import count_name
+    from perturb.validation.frames import work_of
 
-        if count_name(name):  # a driven branch that exists elsewhere, not here: the run fails
-            return problem.with_family(name)  # (exit 1, with the branches there are)
+    families = problem.families(order)
+    if name not in families.names and work_of(problem.system()).family_elsewhere(name):
+        return problem.with_family(name)  # a driven branch elsewhere: exit 1, with those here
     families.get(name)
     return problem.with_family(name)
 
@@ -239,7 +238,9 @@ def _driven_marks(problem, order: int, families, flags: list) -> list:
     (:func:`perturb.report.marks.point_mark`: outside the domain, beyond the validity, a
     stability within the series' error of 1), so that ``families`` says of a branch what
     ``response`` marks and ``validate`` measures."""
-    if not problem.system().frame.frequency_given:
+    from perturb.validation.frames import work_of
+
+    if not work_of(problem.system()).families_are_steady_states:
         return flags
     from perturb.report.marks import PointMark, point_mark, relative_error
 

@@ -10,13 +10,15 @@ counts, and every header prints the order it used.
 
 from __future__ import annotations
 
-from perturb._defaults import DRIVEN_ORDER, FREE_ORDER
 from perturb.cli._values import _parse_order
 
 
 def default_order(problem) -> int:
-    """The order a command uses for ``problem`` when ``--order`` is not given."""
-    return DRIVEN_ORDER if problem.system().frame.frequency_given else FREE_ORDER
+    """The order a command uses for ``problem`` when ``--order`` is not given (the frame's:
+    :attr:`perturb.validation.frames.FrameWork.default_order`)."""
+    from perturb.validation.frames import work_of
+
+    return work_of(problem.system()).default_order
 
 
 def order_of(text: str | None, problem) -> int:

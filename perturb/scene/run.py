@@ -32,7 +32,9 @@ from perturb.domain import series_domain
 from perturb.progress import track
 from perturb.scene.spec import Scene
 from perturb.solution import PeriodicSolution
-from perturb.validation.model import Model, as_model, has_euler_angles
+from perturb.validation.capabilities import has_euler_angles
+from perturb.validation.model import Model
+from perturb.validation.system_model import as_model
 
 __all__ = ["SceneResult", "check_scene", "run_scene"]
 

@@ -36,8 +36,8 @@ import numpy as np
 from attrs import frozen
 
 from perturb._defaults import SWEEP_POINTS_PER_DERIVATION
+from perturb.case import CasePoints
 from perturb.errors import InvalidParameterError, PerturbError
-from perturb.validation.columns import ParameterColumns
 from perturb.validation.model import Model
 
 __all__ = ["DeriveMode", "Derivation", "plan"]
@@ -81,11 +81,11 @@ class Derivation:
             )
         return _symbolic(model) if self.mode is DeriveMode.SYMBOLIC else model
 
-    def columns_at(self, base: Model, columns: Mapping) -> ParameterColumns | None:
+    def columns_at(self, base: Model, columns: Mapping) -> CasePoints | None:
         """The points whose changed values are ``columns`` (name -> array), all at once
-        (:meth:`Model.parameter_columns`; None: the model makes them one by one)."""
+        (:meth:`perturb.case.Case.points`; None: each point's model is made one by one)."""
         model = _symbolic(base) if self.mode is DeriveMode.SYMBOLIC else base
-        return model.parameter_columns(columns)
+        return model.case().points(columns)
 
 
 def _symbolic(model: Model) -> Model:
@@ -104,7 +104,7 @@ def _seen_in_columns(base: Model, axis, reference: tuple) -> int | None:
     of distinct symbol values other than ``reference`` (at least 1 if any differs), 0 if none
     differs, None if the model does not offer columns."""
     try:
-        found = base.parameter_columns({axis.name: axis.array()})
+        found = base.case().points({axis.name: axis.array()})
     except (PerturbError, ValueError):
         return None
     if found is None:

@@ -245,7 +245,7 @@ def _check_domains(points: list[_Point], pending: dict[int, tuple]) -> None:
 
 
 def _columns(job: SweepJob, indices: Sequence[int]):
-    """The chunk's points as :class:`~perturb.validation.ParameterColumns` (None: not offered,
+    """The chunk's points as :class:`~perturb.case.CasePoints` (None: not offered,
     or its making warned: the per-point route says to which point a warning belongs)."""
     columns = job.spec.grid.columns(indices)
     with warnings.catch_warnings(record=True) as caught:
@@ -382,8 +382,8 @@ def run_chunk(
 ) -> ChunkResult:
     """Compute the points numbered ``indices`` (flat, C order) of ``job``'s grid.
 
-    An evaluation-only chunk of a model that offers :meth:`~perturb.validation.Model.
-    parameter_columns` is computed from its columns, without a model per point; ``columns=False``
+    An evaluation-only chunk of a model whose case offers its points as columns
+    (:meth:`perturb.case.Case.points`) is computed from them, without a model per point; ``columns=False``
     makes every point's model (the reference route: the same numbers, statuses and reasons).
 
     Returns

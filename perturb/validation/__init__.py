@@ -6,7 +6,9 @@ analytic orbit and period are within ``tol`` of it (accuracy), and the error fal
 along a scan of the problem's own small parameter (order).  Problems take part through the typed
 :class:`Model` protocol; :class:`SystemModel` adapts a bare :class:`perturb.QuasilinearSystem`.
 
-Modules: :mod:`.model` (the protocol), :mod:`.checks` and :mod:`.orbit` (the measurements),
+Modules: :mod:`.model` (the protocol), :mod:`.system_model` (a bare system as a model),
+:mod:`.capabilities` (optional physics a model declares), :mod:`.frames` (what a free and a driven
+case solve, check and print: one table), :mod:`.checks` and :mod:`.orbit` (the measurements),
 :mod:`.verdict` (the rule), :mod:`.report` (the result objects), :mod:`.validate` (orchestration).
 """
 
@@ -34,19 +36,15 @@ from perturb._defaults import (
     STIFFNESS_SAMPLES,
     STIFFNESS_THRESHOLD,
 )
-from perturb.validation._compat import OriginalSystem, original_system
 from perturb.validation._quasilinear import quasilinear_state_names, state_along
+from perturb.validation.capabilities import has_euler_angles
 from perturb.validation.checks import stiffness_indicator
-from perturb.validation.columns import ParameterColumns
 from perturb.validation.model import (
     Equations,
     Integrals,
     Model,
     OrbitEstimate,
     ShootingSetup,
-    SystemModel,
-    as_model,
-    has_euler_angles,
 )
 from perturb.validation.report import (
     Check,
@@ -58,6 +56,7 @@ from perturb.validation.report import (
     ValidationReport,
     Verdict,
 )
+from perturb.validation.system_model import SystemModel, as_model
 from perturb.validation.validate import validate
 
 __all__ = [
@@ -93,8 +92,6 @@ __all__ = [
     "state_along",
     "OrbitCheck",
     "OrbitEstimate",
-    "OriginalSystem",
-    "ParameterColumns",
     "ShootingSetup",
     "SlopeFit",
     "Stiffness",
@@ -102,7 +99,6 @@ __all__ = [
     "ValidationReport",
     "Verdict",
     "as_model",
-    "original_system",
     "stiffness_indicator",
     "has_euler_angles",
     "validate",

@@ -1,8 +1,9 @@
-"""What validation needs from a problem: the :class:`Model` protocol, and :class:`SystemModel`.
+"""What validation needs from a problem: the :class:`Model` protocol and its value types.
 
 :func:`perturb.validation.validate` talks to problems only through :class:`Model` (no attribute
-probing): ``problems.Problem`` implements it, and :class:`SystemModel` makes a bare
-:class:`perturb.QuasilinearSystem` with parameter values a model.
+probing): ``problems.Problem`` implements it, and :class:`~perturb.validation.SystemModel`
+(:mod:`perturb.validation.system_model`) makes a bare :class:`perturb.QuasilinearSystem` with
+parameter values a model.
 """
 
 from __future__ import annotations
@@ -12,24 +13,19 @@ from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
 
 import numpy as np
-from attrs import evolve, field, frozen
+from attrs import field, frozen
 
 from perturb.case import Case
 from perturb.errors import bad_value
-from perturb.method import PoincareMethod
 from perturb.oracle import Integrator, SymbolicRHS
 from perturb.solution import PeriodicSolution
-from perturb.system import QuasilinearSystem, Regime
+from perturb.system import QuasilinearSystem
 from perturb.validation._quasilinear import (
     conservative_energy,
     first_order_form,
     lambdify_integrals,
-    quasilinear_state_names,
-    state_along,
     substitutions,
 )
-from perturb.validation.columns import ParameterColumns
-from perturb.validation.report import Condition
 from perturb.validation.values import check_system_values
 
 __all__ = [
@@ -38,8 +34,6 @@ __all__ = [
     "Model",
     "OrbitEstimate",
     "ShootingSetup",
-    "SystemModel",
-    "has_euler_angles",
 ]
 
 
@@ -160,7 +154,8 @@ class ShootingSetup:
 
 @frozen
 class OrbitEstimate:
-    """A true periodic orbit found by a model's own method (:meth:`Model.true_orbit`).
+    """A true periodic orbit found by a model's own method (its ``true_orbit(solution)``: the
+    capability :class:`~perturb.validation.capabilities.OwnTrueOrbit`).
 
     Attributes
     ----------
@@ -217,13 +212,14 @@ class Model(ABC):
     5. optionally override :meth:`with_epsilon` — the same model with its own small parameter
        rescaled, for the order check (default: None, the order is then undecided) — and
        :meth:`with_parameters` (other parameter values: a sweep's points) and
-       :meth:`evaluates_solution_directly` (whether many points can be evaluated at once);
-    6. optionally override :meth:`validity_estimates` (default: none), :meth:`true_orbit` (a
-       model-specific true-orbit finder for near-degenerate cases, default: none),
-       :meth:`shooting_setup` (default: derived), :meth:`method_options`, :meth:`label` and
+       :meth:`evaluates_solution_directly` (whether many points can be evaluated at once,
+       with the points of :meth:`case`);
+    6. optionally override :meth:`method_options`, :meth:`label` and
        :meth:`parameters_in_force` (for reports);
-    7. optionally override :meth:`euler_angles` (rigid bodies: the angles along a solution;
-       default: None) and :meth:`report_extras` (what a report adds: default none).
+    7. optionally declare a capability of :mod:`perturb.validation.capabilities` by defining its
+       method: ``validity_estimates()``, ``true_orbit(solution)`` (a model-specific true-orbit
+       finder for near-degenerate cases), ``shooting_setup()``, ``euler_angles(solution, t)``
+       (rigid bodies), ``report_extras()`` (what a report adds); a model without one has none.
 
     Examples
     --------
@@ -329,7 +325,7 @@ class Model(ABC):
         symbol of the same name; the model at another point is :meth:`with_parameters`'s.
         """
         values = {**self.symbol_values(), self.system().parameter.name: self.parameter_value()}
-        return _identity_case(self, values)
+        return identity_case(self, values)
 
     def with_parameters(self, **values: float) -> Model | None:
         """The same model with some parameters (names of :meth:`parameters_in_force`) set to
@@ -351,243 +347,30 @@ class Model(ABC):
         that many parameter sets can be evaluated in one vectorised call (a sweep)."""
         return False
 
-    def parameter_columns(self, columns: Mapping[str, np.ndarray]) -> ParameterColumns | None:
-        """:meth:`with_parameters` for many points at once (a sweep's fast route).
-
-        Parameters
-        ----------
-        columns : mapping of str to ndarray of shape (P,)
-            The changed parameters' values at each point, by name.
-
-        Returns
-        -------
-        ParameterColumns or None
-            Each point's ε, parameter value, symbol values and error, and the one model whose
-            solution serves them all — exactly what the points give one by one; None (the
-            default) where the model cannot promise that: the sweep then makes each point's
-            model with :meth:`with_parameters`.
-        """
-        return None
-
-    def validity_estimates(self) -> tuple[Condition, ...]:
-        """The model's own estimates of where its expansion holds (default: none)."""
-        return ()
-
-    def true_orbit(self, solution: PeriodicSolution) -> OrbitEstimate | None:
-        """A model-specific true periodic orbit, asked for only when generic shooting cannot
-        resolve the orbit (default: None, no such method)."""
-        return None
-
-    def shooting_setup(self) -> ShootingSetup | None:
-        """The shooting set-up (default: None, derived by validation)."""
-        return None
-
-    def euler_angles(self, solution: PeriodicSolution, t) -> dict[str, np.ndarray] | None:
-        """The body's Euler angles (z-x-z: ``theta``, ``psi``, ``phi``) along ``solution`` at
-        physical times ``t``, by name (default: None, the model is not a rigid body).
-
-        Rigid-body problems override it; :func:`has_euler_angles` tells whether a model does,
-        without computing anything.
-        """
-        return None
-
-    def report_extras(self) -> dict:
-        """Numbers and sentences the model adds to a report of its solution (``perturb solve``'s
-        JSON and table header; the rigid bodies' ``mu`` and ``regime``; default: none)."""
-        return {}
-
     def _substitutions(self, y0) -> dict | None:
         return substitutions(self.system(), self.symbol_values(), self.parameter_value(), y0)
 
 
-def has_euler_angles(model) -> bool:
-    """Whether ``model`` (a :class:`Model`) gives Euler angles: it overrides
-    :meth:`Model.euler_angles` (the typed hook; no attribute probing).
-
-    Parameters
-    ----------
-    model : Model
-
-    Returns
-    -------
-    bool
-
-    Examples
-    --------
-    >>> from perturb.validation import has_euler_angles
-    >>> from problems import get_problem
-    >>> has_euler_angles(get_problem("disk").create()), has_euler_angles(get_problem("duffing").create())
-    (True, False)
-    """
-    return isinstance(model, Model) and type(model).euler_angles is not Model.euler_angles
-
-
-_SOLUTIONS: dict[tuple, PeriodicSolution] = {}
-
-
-@frozen
-class SystemModel(Model):
-    """A bare :class:`perturb.QuasilinearSystem` with numbers, as a :class:`Model`.
-
-    Parameters
-    ----------
-    quasilinear : QuasilinearSystem
-    values : mapping
-        A number for every symbol of ``quasilinear.parameters`` and for its own parameter
-        (``quasilinear.parameter``, e.g. ``epsilon``), by name.
-    options : mapping, optional
-        Options of :class:`perturb.PoincareMethod` (``amplitudes``, ``branch``, ...).
-    name : str, optional
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> from perturb import EPS, QuasilinearSystem
-    >>> x, v = sp.symbols("x v")
-    >>> duffing = QuasilinearSystem([x], [v], [1], [-EPS * x**3], parameter=EPS)
-    >>> SystemModel(duffing, {"epsilon": 0.1}, {"amplitudes": {"x": 1}}).epsilon()
-    0.1
-    """
-
-    quasilinear: QuasilinearSystem
-    values: dict = field(converter=dict)
-    options: dict = field(factory=dict, converter=dict)
-    name: str = ""
-
-    def __attrs_post_init__(self):
-        object.__setattr__(self, "values", check_system_values(self.quasilinear, self.values))
-
-    def label(self) -> str:
-        return self.name or self.quasilinear.name
-
-    def parameters_in_force(self) -> dict[str, float]:
-        return dict(self.values)
-
-    def system(self) -> QuasilinearSystem:
-        return self.quasilinear
-
-    def symbol_values(self) -> dict[str, float]:
-        return {p.name: self.values[p.name] for p in self.quasilinear.parameters}
-
-    def parameter_value(self) -> float:
-        return self.values[self.quasilinear.parameter.name]
-
-    def epsilon(self) -> float:
-        value = self.parameter_value()
-        return 1.0 / value if self.quasilinear.regime is Regime.LARGE else value
-
-    def method_options(self) -> dict:
-        return dict(self.options)
-
-    def solve(self, order: int = 1) -> PeriodicSolution:
-        key = (self.quasilinear, order, repr(sorted(self.options.items(), key=str)))
-        per_point = not self.quasilinear.frame.one_solution_for_all_points
-        if per_point:  # a branch at these values
-            key = (*key, repr(sorted(self.symbol_values().items())), self.parameter_value())
-        if key not in _SOLUTIONS:
-            if per_point:
-                from perturb.steady import steady_state
-
-                state = steady_state(self.quasilinear, self.symbol_values(), self.epsilon(), order)
-                _SOLUTIONS[key] = state.solution(self.options.get("family"))
-            else:
-                method = PoincareMethod(order=order, **self.options)
-                _SOLUTIONS[key] = method.solve(self.quasilinear)
-        return _SOLUTIONS[key]
-
-    def state_names(self) -> tuple[str, ...]:
-        return quasilinear_state_names(self.quasilinear)
-
-    def state(self, solution: PeriodicSolution, t) -> dict[str, np.ndarray]:
-        return state_along(solution, t, self.parameter_value(), self.symbol_values())
-
-    def period(self, solution: PeriodicSolution) -> float:
-        return float(solution.period_at(self.parameter_value(), self.symbol_values()))
-
-    def with_parameters(self, **values: float) -> SystemModel:
-        return evolve(self, values={**self.values, **values})
-
-    def case(self) -> Case:
-        """Its values as a :class:`~perturb.case.Case` (each symbol the value of its name)."""
-        return _identity_case(self, self.values)
-
-    def evaluates_solution_directly(self) -> bool:
-        return not self.quasilinear.frame.frequency_given  # a driven state adds the phase
-
-    def parameter_columns(self, columns) -> ParameterColumns | None:
-        """Many points at once: the options do not depend on the values, so one solution serves
-        every point (:func:`perturb.validation.columns.system_columns`)."""
-        from perturb.validation.columns import system_columns
-
-        return system_columns(self, columns)
-
-    def with_epsilon(self, eps: float) -> SystemModel:
-        value = 1.0 / eps if self.quasilinear.regime is Regime.LARGE else eps
-        return evolve(self, values={**self.values, self.quasilinear.parameter.name: value})
-
-
-def _identity_case(model: Model, values: Mapping[str, float]) -> Case:
+def identity_case(model: Model, values: Mapping[str, float], reads: Callable | None = None) -> Case:
     """The case of a model whose parameters are its system's symbols (the adapter at the door:
-    another point's model is the model's own :meth:`Model.with_parameters`)."""
+    another point's model is the model's own :meth:`Model.with_parameters`; ``reads``: the
+    parameters its solution reads, None if unknown)."""
     system = model.system()
+
+    def check(point):
+        return check_system_values(system, point)
+
+    def check_columns(base, grid, size):  # only a number that is not finite is refused
+        finite = np.all([np.isfinite(c) for c in grid.values()], axis=0)
+        errors = [""] * size
+        for i in np.flatnonzero(~finite):  # the point's own message
+            try:
+                check({**base, **{n: c[i] for n, c in grid.items()}})
+            except ValueError as exc:
+                errors[i] = str(exc)
+        return errors, [""] * size
+
     return Case.of(
-        system, values, check=lambda point: check_system_values(system, point),
-        model_of=lambda case: model.with_parameters(**case.values),
+        system, values, check=check, model_of=lambda case: model.with_parameters(**case.values),
+        check_columns=check_columns, solution_reads=reads,
     )  # fmt: skip
-
-
-def as_model(problem, values: Mapping | None = None, options: Mapping | None = None) -> Model:
-    """``problem`` as a :class:`Model` (a bare system is wrapped in :class:`SystemModel`).
-
-    Parameters
-    ----------
-    problem : Model or QuasilinearSystem
-        A problem (returned as it is) or a bare system.
-    values : mapping, optional
-        For a bare system: the value of each parameter and of ``"epsilon"`` (or ``"mu"``).
-    options : mapping, optional
-        For a bare system: options of :class:`perturb.PoincareMethod` (``amplitudes``, ...).
-
-    Returns
-    -------
-    Model
-
-    Raises
-    ------
-    perturb.errors.InvalidParameterError
-        If ``problem`` is neither a model nor a system, or a value is missing.
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> from perturb import EPS, QuasilinearSystem
-    >>> from perturb.validation import as_model
-    >>> x, xdot = sp.symbols("x xdot")
-    >>> model = as_model(QuasilinearSystem([x], [xdot], [1], [-EPS * x**3]), values={"epsilon": 0.1},
-    ...                  options={"amplitudes": {"x": 1}})
-    >>> type(model).__name__, round(model.period(model.solve(1)), 6)  # 2 pi / (1 + 3 eps / 8)
-    ('SystemModel', 6.056082)
-    """
-    if isinstance(problem, QuasilinearSystem):
-        if values is None:
-            raise bad_value(
-                "values",
-                None,
-                "a bare QuasilinearSystem needs numbers: pass values={name: number} for its "
-                f"parameters {[p.name for p in problem.parameters] + [problem.parameter.name]}",
-            )
-        if not isinstance(values, Mapping):
-            raise bad_value("values", values, "pass a mapping {name: number}")
-        return SystemModel(problem, values, options or {})
-    if not isinstance(problem, Model):
-        raise bad_value(
-            "problem",
-            problem,
-            "pass a problems.Problem, a perturb.validation.Model or a QuasilinearSystem with "
-            "values=",
-        )
-    if values is not None or options is not None:
-        raise bad_value(
-            "values", values, "values= and options= go with a bare QuasilinearSystem only"
-        )
-    return problem

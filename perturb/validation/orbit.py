@@ -20,6 +20,7 @@ from perturb._defaults import (
 )
 from perturb.errors import PerturbError
 from perturb.oracle import Scipy, find_periodic_orbit
+from perturb.validation.capabilities import own_true_orbit
 from perturb.validation.checks import analytic_states, component_errors
 from perturb.validation.model import Equations, Model, OrbitEstimate, ShootingSetup
 from perturb.validation.report import OrbitCheck
@@ -159,7 +160,8 @@ def errors_against_orbit(
 def with_model_true_orbit(
     model: Model, solution, equations, y0, period, unresolved: OrbitCheck, integrator, rtol, stiff
 ) -> OrbitCheck:
-    """The model's own :meth:`Model.true_orbit` in place of an unresolved shooting.
+    """The model's own true orbit (:class:`~perturb.validation.capabilities.OwnTrueOrbit`) in
+    place of an unresolved shooting.
 
     Asked for only when the double-precision shooting converged but could not resolve the orbit
     (the model's method, e.g. the disk's conditioned extended-precision shooting, is dearer and
@@ -167,7 +169,7 @@ def with_model_true_orbit(
     unresolved check is kept with the reason appended.
     """
     try:
-        true: OrbitEstimate | None = model.true_orbit(solution)
+        true: OrbitEstimate | None = own_true_orbit(model, solution)
     except PerturbError as exc:
         return _append(unresolved, f"The model's own true-orbit finder failed: {exc}")
     if true is None:

@@ -26,6 +26,7 @@ from perturb.domain import DomainCheck, series_domain
 from perturb.errors import PerturbError, bad_value
 from perturb.oracle import Integrator, Trajectory
 from perturb.progress import stage, track
+from perturb.validation.capabilities import own_shooting_setup, validity_estimates
 from perturb.validation.checks import (
     analytic_states,
     component_errors,
@@ -34,9 +35,8 @@ from perturb.validation.checks import (
     one_period_error,
     stiffness_indicator,
 )
-from perturb.validation.forced import analytic_stability, forced_orbit_check, stability_check
-from perturb.validation.model import Model, ShootingSetup, as_model
-from perturb.validation.orbit import orbit_check, with_model_true_orbit
+from perturb.validation.frames import work_of
+from perturb.validation.model import Model, ShootingSetup
 from perturb.validation.report import SlopeFit, ValidationReport, Verdict
 from perturb.validation.setup import (
     check_positive,
@@ -44,6 +44,7 @@ from perturb.validation.setup import (
     derived_shooting_setup,
     integrator_for,
 )
+from perturb.validation.system_model import as_model
 from perturb.validation.verdict import accurate_order, decide, measurement_checks
 
 __all__ = ["validate"]
@@ -244,7 +245,7 @@ def validate(
         )
     timings: dict[str, float] = {}
     clock = time.perf_counter()
-    conditions = tuple(model.validity_estimates())
+    conditions = validity_estimates(model)
     base = dict(
         problem=model.label(),
         parameters=model.parameters_in_force(),
@@ -341,28 +342,18 @@ def validate(
 
     # existence and accuracy: the true orbit
     orbit = None
-    driven = model.system().frame.frequency_given  # the period is the excitation's
-    shooting = f"validate {model.label()}: shooting the true periodic orbit"
-    if measurable and shoot is not False and driven:
+    work = work_of(model.system())  # free: shot on a section; driven: over the given period
+    if measurable and shoot is not False:
         clock = time.perf_counter()
-        with stage(shooting):
-            orbit = forced_orbit_check(
-                model, solution, equations, y_analytic0, period, integrator, rtol, stiffness.stiff
-            )
-        timings["shooting"] = time.perf_counter() - clock
-    elif measurable and shoot is not False:
-        clock = time.perf_counter()
-        setup = _setup(model, shooting_setup, equations, y_analytic0, len(invariants), samples)
-        with stage(shooting):
-            orbit = orbit_check(
-                model, solution, equations, y_analytic0, period, setup, integrator, rtol,
-                stiffness.stiff, budget,
+
+        def setup():
+            return _setup(model, shooting_setup, equations, y_analytic0, len(invariants), samples)
+
+        with stage(f"validate {model.label()}: shooting the true periodic orbit"):
+            orbit = work.measure_orbit(
+                model, solution, equations, y_analytic0, period, integrator, rtol,
+                stiffness.stiff, setup, budget,
             )  # fmt: skip
-            if orbit.success and not orbit.resolved:
-                orbit = with_model_true_orbit(
-                    model, solution, equations, y_analytic0, period, orbit, integrator, rtol,
-                    stiffness.stiff,
-                )  # fmt: skip
         timings["shooting"] = time.perf_counter() - clock
 
     # order: the ε scan
@@ -376,10 +367,7 @@ def validate(
     if shoot is not False:
         why_no_orbit = "the true motion was not measurable, so no orbit was searched for"
     checks = measurement_checks(orbit, fit, tol, why_no_fit, why_no_orbit)
-    if driven:  # the period is the forcing's: stability is the fourth measurement
-        existence, accuracy, _, order_check = checks
-        stable = analytic_stability(model, solution) if orbit is not None else None
-        checks = (existence, accuracy, stability_check(orbit, stable, why_no_orbit), order_check)
+    checks = work.checks(checks, model, solution, orbit, why_no_orbit)  # the fourth: the frame's
 
     completed, message = traj.success, traj.message
     failure = None
@@ -424,7 +412,7 @@ def validate(
 
 def _setup(model: Model, override, equations, y0, n_integrals, samples) -> ShootingSetup:
     """The shooting set-up: the argument, else the model's, else derived; n_trivial completed."""
-    setup = override if override is not None else model.shooting_setup()
+    setup = override if override is not None else own_shooting_setup(model)
     if setup is None:
         return derived_shooting_setup(model, equations, y0, n_integrals, samples)
     if isinstance(setup, Mapping):

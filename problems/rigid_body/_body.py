@@ -13,6 +13,7 @@ import warnings
 from abc import abstractmethod
 from functools import cache, lru_cache
 
+import attrs
 import numpy as np
 import sympy as sp
 
@@ -199,8 +200,11 @@ class FastSpinBody(Problem):
     #: serves every body, and exports LaTeX); above it the parameters are put in first, as exact
     #: rationals, which keeps the construction to seconds instead of minutes.
     SYMBOLIC_MAX_ORDER: int = 1
-    #: A sweep may derive once, symbolic in the body's parameters (``solve(symbolic=True)``).
-    offers_symbolic_derivation = True
+
+    def symbolic_derivation(self) -> FastSpinBody:
+        """This body with its solution derived symbolic in its parameters
+        (``solve(symbolic=True)``): a sweep derives once with it (the Model hook)."""
+        return attrs.evolve(self, symbolic=True)
 
     def exact_values(self) -> dict[sp.Symbol, sp.Rational]:
         """The body's dimensionless parameters as exact rationals (the decimal values given)."""
@@ -224,7 +228,7 @@ class FastSpinBody(Problem):
         }
         return reduction, reduction.system, options, dict(reduction.values)
 
-    def family_options(self, order: int) -> tuple:
+    def _family_options(self, order: int) -> tuple:
         """The frame of :meth:`families`: the reduced system and options of :meth:`solve`."""
         _, system, options, _ = self._frame(order)
         return system, {k: v for k, v in options.items() if k != "branch"}
@@ -254,7 +258,7 @@ class FastSpinBody(Problem):
                 "parameters), False (for this body's values) or None (the default choice)"
             )
         if self.family is not None:
-            return self.family_solution(order, self.family)
+            return self._family_solution(order, self.family)
         symbolic = self.symbolic if symbolic is None else symbolic
         reduction, system, options, values = self._frame(order, symbolic)
         key = (

@@ -20,9 +20,11 @@ import pytest
 REFERENCE = Path(__file__).resolve().parents[2] / "docs" / "reference"
 PACKAGES = (
     "perturb",
+    "perturb.case",
     "perturb.continuation",
     "perturb.oracle",
     "perturb.validation",
+    "perturb.validation.capabilities",
     "perturb.report.plots",
     "perturb.report.formats",
     "perturb.workprecision",

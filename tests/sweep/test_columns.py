@@ -1,4 +1,5 @@
-"""The columns route of a chunk (no model per point) gives the per-point route's very results.
+"""The columns route of a chunk (no model per point, the case's points) gives the per-point
+route's very results.
 
 Every variable, status, reason and warning of ``run_chunk(job, indices)`` is compared with
 ``run_chunk(job, indices, columns=False)``, which makes each point's model with
@@ -11,6 +12,7 @@ import warnings
 
 import hypothesis.strategies as st
 import numpy as np
+import pytest
 import sympy as sp
 from hypothesis import assume, given
 
@@ -54,7 +56,7 @@ def offered(job) -> bool:
     columns = {axis.name: np.asarray(axis.values, dtype=float) for axis in grid.axes}
     size = min(axis.size for axis in grid.axes)
     columns = {name: values[:size] for name, values in columns.items()}
-    return job.spec.model.parameter_columns(columns) is not None
+    return job.spec.model.case().points(columns) is not None
 
 
 class Pinned(Problem):
@@ -96,6 +98,17 @@ class ReadsAmplitude(Pinned):
         return {"amplitudes": {"x": sp.Float(self.values["a"])}}
 
 
+class ComparesMode(Pinned):
+    """Options that compare a parameter with a number (with the parameter a plain sympy symbol,
+    ``mode == 1`` would be a silent False: the case must read it as read)."""
+
+    name = "compares-mode"
+    parameter_specs = (*Pinned.parameter_specs, ParameterSpec("mode", 1.0, "which amplitude"))
+
+    def method_options(self):
+        return {"amplitudes": {"x": a if self.values["mode"] == 1 else 2 * a}}
+
+
 class OwnSymbols(Pinned):
     """The same oscillator whose symbols' values are its own (c doubled)."""
 
@@ -103,6 +116,15 @@ class OwnSymbols(Pinned):
 
     def symbol_values(self):
         return {"a": self.values["a"], "c": 2 * self.values["c"]}
+
+
+class OwnParameterValue(Pinned):
+    """The same oscillator whose solution's own parameter is computed by the class."""
+
+    name = "own-parameter-value"
+
+    def parameter_value(self):
+        return self.values["eps"]
 
 
 class Large(Problem):
@@ -148,8 +170,26 @@ def test_options_that_read_a_changing_parameter_make_the_points_one_by_one():
     assert_same(*both_routes(fixed_a))
 
 
+def test_options_that_compare_a_parameter_with_a_number_read_it():
+    varying = job_of(ComparesMode.create(), ["mode=1,2", "c=0.2:1:3"], order=2)
+    assert not offered(varying)
+    fast, slow = both_routes(varying)
+    assert_same(fast, slow)
+    amplitudes = fast["amplitude"].reshape(2, 3, -1)[:, 0, 0]
+    assert amplitudes[1] == pytest.approx(2 * amplitudes[0], rel=0.05)  # each mode its own
+    fixed = job_of(ComparesMode.create(mode=2.0), ["c=0.2:1:3"], order=2)
+    assert offered(fixed)
+    assert_same(*both_routes(fixed))
+
+
 def test_a_class_with_its_own_symbol_values_is_not_offered():
     job = job_of(OwnSymbols.create(), ["c=0.2:0.6:3"], order=1)
+    assert not offered(job)
+    assert_same(*both_routes(job))
+
+
+def test_a_class_with_its_own_parameter_value_is_not_offered():
+    job = job_of(OwnParameterValue.create(), ["c=0.2:0.6:3"], order=1)
     assert not offered(job)
     assert_same(*both_routes(job))
 

@@ -1,0 +1,230 @@
+"""Optional physics a model may declare: small protocols, each one capability.
+
+Most problems are an oscillator and nothing more; a few bring physics of their own (a rigid body
+has Euler angles, the disk its own extended-precision orbit finder, the fast-spin bodies their
+estimates of where the series holds). Such a hook is not a member of every model with an empty
+default: a model *has* the capability when it defines the method, and validation, the CLI and
+scenes ask through the functions below (typed protocols, no attribute probing):
+
+==========================  =====================================  ==========================
+capability                  the method a model defines             asked through
+==========================  =====================================  ==========================
+:class:`EulerAngles`        ``euler_angles(solution, t)``          :func:`has_euler_angles`
+:class:`OwnTrueOrbit`       ``true_orbit(solution)``               :func:`own_true_orbit`
+:class:`OwnShootingSetup`   ``shooting_setup()``                   :func:`own_shooting_setup`
+:class:`ValidityEstimates`  ``validity_estimates()``               :func:`validity_estimates`
+:class:`ReportExtras`       ``report_extras()``                    :func:`report_extras`
+==========================  =====================================  ==========================
+"""
+
+from __future__ import annotations
+
+from typing import Protocol, runtime_checkable
+
+__all__ = [
+    "EulerAngles",
+    "OwnShootingSetup",
+    "OwnTrueOrbit",
+    "ReportExtras",
+    "ValidityEstimates",
+    "own_shooting_setup",
+    "own_true_orbit",
+    "report_extras",
+    "validity_estimates",
+]
+
+
+@runtime_checkable
+class EulerAngles(Protocol):
+    """A rigid body: its Euler angles (z-x-z: ``theta``, ``psi``, ``phi``) along a solution at
+    physical times ``t``, by name.
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import EulerAngles
+    >>> from problems import get_problem
+    >>> isinstance(get_problem("disk").create(), EulerAngles)
+    True
+    """
+
+    def euler_angles(self, solution, t) -> dict: ...
+
+
+@runtime_checkable
+class OwnTrueOrbit(Protocol):
+    """A model-specific true periodic orbit (an :class:`~perturb.validation.OrbitEstimate`),
+    asked for only when generic shooting cannot resolve the orbit (it is dearer).
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import OwnTrueOrbit
+    >>> from problems import get_problem
+    >>> [isinstance(get_problem(n).create(), OwnTrueOrbit) for n in ("disk", "duffing")]
+    [True, False]
+    """
+
+    def true_orbit(self, solution): ...
+
+
+@runtime_checkable
+class OwnShootingSetup(Protocol):
+    """The model's own shooting set-up (a :class:`~perturb.validation.ShootingSetup`, its dict
+    form, or None: derived).
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import OwnShootingSetup
+    >>> from perturb.validation import ShootingSetup
+    >>> class Pinned:
+    ...     def shooting_setup(self):
+    ...         return ShootingSetup(section_index=1)
+    >>> isinstance(Pinned(), OwnShootingSetup)
+    True
+    """
+
+    def shooting_setup(self): ...
+
+
+@runtime_checkable
+class ValidityEstimates(Protocol):
+    """The model's own estimates of where its expansion holds
+    (:class:`~perturb.validation.Condition` objects: they warn, the verdict is measured).
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import ValidityEstimates
+    >>> from problems import get_problem
+    >>> isinstance(get_problem("disk").create(), ValidityEstimates)
+    True
+    """
+
+    def validity_estimates(self) -> tuple: ...
+
+
+@runtime_checkable
+class ReportExtras(Protocol):
+    """Numbers and sentences a model adds to a report of its solution (``perturb solve``'s JSON
+    and table header: the rigid bodies' ``mu`` and ``regime``).
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import ReportExtras
+    >>> from problems import get_problem
+    >>> isinstance(get_problem("disk").create(), ReportExtras)
+    True
+    """
+
+    def report_extras(self) -> dict: ...
+
+
+def has_euler_angles(model) -> bool:
+    """Whether ``model`` gives Euler angles (it declares
+    :class:`~perturb.validation.capabilities.EulerAngles`).
+
+    Parameters
+    ----------
+    model : Model
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> from perturb.validation import has_euler_angles
+    >>> from problems import get_problem
+    >>> has_euler_angles(get_problem("disk").create()), has_euler_angles(get_problem("duffing").create())
+    (True, False)
+    """
+    return isinstance(model, EulerAngles)
+
+
+def own_true_orbit(model, solution):
+    """The model's own true orbit along ``solution`` (:class:`OwnTrueOrbit`), or None when it
+    has no finder of its own.
+
+    Parameters
+    ----------
+    model : Model
+    solution : PeriodicSolution
+
+    Returns
+    -------
+    OrbitEstimate or None
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import own_true_orbit
+    >>> from problems import get_problem
+    >>> duffing = get_problem("duffing").create()
+    >>> own_true_orbit(duffing, duffing.solve(1)) is None
+    True
+    """
+    return model.true_orbit(solution) if isinstance(model, OwnTrueOrbit) else None
+
+
+def own_shooting_setup(model):
+    """The model's own shooting set-up (:class:`OwnShootingSetup`), or None: derived.
+
+    Parameters
+    ----------
+    model : Model
+
+    Returns
+    -------
+    ShootingSetup, mapping or None
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import own_shooting_setup
+    >>> from problems import get_problem
+    >>> own_shooting_setup(get_problem("duffing").create()) is None
+    True
+    """
+    return model.shooting_setup() if isinstance(model, OwnShootingSetup) else None
+
+
+def validity_estimates(model) -> tuple:
+    """The model's validity estimates (:class:`ValidityEstimates`); none by default.
+
+    Parameters
+    ----------
+    model : Model
+
+    Returns
+    -------
+    tuple of Condition
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import validity_estimates
+    >>> from problems import get_problem
+    >>> validity_estimates(get_problem("duffing").create())
+    ()
+    >>> validity_estimates(get_problem("disk").create())[0].name
+    'ε = c/r0 small'
+    """
+    return tuple(model.validity_estimates()) if isinstance(model, ValidityEstimates) else ()
+
+
+def report_extras(model) -> dict:
+    """What the model adds to a report (:class:`ReportExtras`); nothing by default.
+
+    Parameters
+    ----------
+    model : Model
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import report_extras
+    >>> from problems import get_problem
+    >>> report_extras(get_problem("duffing").create())
+    {}
+    >>> sorted(report_extras(get_problem("disk").create()))
+    ['mu', 'regime']
+    """
+    return dict(model.report_extras()) if isinstance(model, ReportExtras) else {}
