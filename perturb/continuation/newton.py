@@ -38,11 +38,28 @@ __all__ = [
 
 @frozen
 class Correction:
-    """The outcome of one corrector run.
+    """The outcome of one corrector run (:func:`newton`).
 
-    ``x`` the corrected point (the last iterate when not converged), ``jacobian`` J at ``x``,
-    ``iterations`` the Newton steps taken, ``converged``, ``finite`` (False: a non-finite value
-    was met, which ends the continuation).
+    Attributes
+    ----------
+    x : ndarray
+        The corrected point (the last iterate when not converged).
+    jacobian : ndarray or None
+        J at ``x`` (None where it was not evaluated or not finite).
+    iterations : int
+        The Newton steps taken.
+    converged : bool
+    finite : bool
+        False: a non-finite value was met, which ends the continuation.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from perturb.continuation import CurveEquations, newton
+    >>> line = CurveEquations(lambda x: [x[0] - 2 * x[1]], lambda x: [[1.0, -2.0]])
+    >>> found = newton(line, np.array([0.0, 1.0]), lambda x, g, jac: np.append(-g, 0.0))
+    >>> found.converged, found.x.tolist(), found.iterations
+    (True, [2.0, 1.0], 2)
     """
 
     x: np.ndarray
@@ -151,6 +168,7 @@ def newton(
     --------
     The unit circle u² + λ² = 1 at λ = 0.6, Newton in u alone:
 
+    >>> import numpy as np
     >>> from perturb.continuation import CurveEquations
     >>> circle = CurveEquations(lambda x: [x[0] ** 2 + x[1] ** 2 - 1],
     ...                         lambda x: [[2 * x[0], 2 * x[1]]])
