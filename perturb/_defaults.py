@@ -80,6 +80,10 @@ MAX_TIMES = 1_000_000
 #: file (``@/dev/zero`` has no end) is refused before it is read.
 TIMES_FILE_MAX_BYTES = 32 * MAX_TIMES
 
+#: Largest problem file imported (``perturb solve path/file.py:Class``): a problem's module is a
+#: few kB to a few hundred; a larger file is not one (Python would read it whole into memory).
+PROBLEM_FILE_MAX_BYTES = 16 * 2**20
+
 #: Largest scene file read: a scene is a page of TOML (the shipped ones are under 2 kB).
 SCENE_MAX_BYTES = 1 << 20
 
