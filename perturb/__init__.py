@@ -14,6 +14,7 @@ from perturb.errors import (
     IntegrationError,
     InvalidParameterError,
     InvalidSystemError,
+    ParameterOverflowError,
     PerturbError,
     UnknownNameError,
 )
@@ -60,6 +61,7 @@ __all__ = [
     "Regime",
     "SolutionFailed",
     "Status",
+    "ParameterOverflowError",
     "UnknownNameError",
     "amplitude_equations",
     "find_families",
