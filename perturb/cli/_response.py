@@ -108,10 +108,9 @@ def _cmd_response(args) -> int:
         if not (math.isfinite(tol) and tol > 0):
             raise _UsageError(f"--tol {args.tol}: give a finite number > 0, e.g. --tol 0.01")
     true = _parse_true(args.true_curve)
-    from perturb.cost import check_cost, response_cost
+    from perturb.cost import check_cost, modes_of, response_cost
 
-    modes = len(problem.system().coordinates) if hasattr(problem, "system") else 1
-    cost = response_cost(values, order, count, true, modes)
+    cost = response_cost(values, order, count, true, modes_of(problem))
     check_cost(cost, args.yes)  # counted from the text: no value is made before
     parameter, grid = _parse_sweep(args.sweep)
     if parameter in overrides:

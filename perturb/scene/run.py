@@ -152,7 +152,9 @@ def check_scene(scene: Scene, problem, yes: bool = False) -> None:
     """
     model = as_model(problem)
     outputs = scene.outputs
-    _check_cost(scene, yes, len(problem.system().coordinates) if hasattr(problem, "system") else 1)
+    from perturb.cost import modes_of
+
+    _check_cost(scene, yes, modes_of(problem))
     if scene.response is not None and outputs.needs_response:
         from perturb.errors import InvalidParameterError
         from perturb.response.model import check_request, parse_sweep

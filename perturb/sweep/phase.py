@@ -268,9 +268,9 @@ def phase_diagram(
         check_new_store(output)
     (x_name, xs), (y_name, ys) = _axes(problem, grid)
     check_request(problem, x_name)
-    from perturb.cost import Cost, census_seconds, check_cost, response_cost
+    from perturb.cost import Cost, census_seconds, check_cost, modes_of, response_cost
 
-    modes = len(problem.system().coordinates) if hasattr(problem, "system") else 1
+    modes = modes_of(problem)
     seconds = ys.size * response_cost(xs.size, order, shots=0, modes=modes).seconds
     if columns:
         seconds += xs.size * response_cost(ys.size, order, shots=0, modes=modes).seconds
