@@ -67,7 +67,9 @@ ROOT_MAX_DENOMINATOR = 10_000
 #: Largest magnitude of a problem parameter: the series raise parameters to powers and multiply
 #: them (a cubic term at order 12 holds powers past 30), so 10¹⁰⁰ keeps every product the
 #: construction and an integration form within the floats (10³⁰⁸); beyond it the numbers overflow
-#: and the answer would be ``inf`` or a normal-looking value of nothing (``kappa = 1e308``).
+#: and the answer would be ``inf`` or a normal-looking value of nothing (``kappa = 1e308``). A
+#: parameter that admits ``inf`` (the disk's distance R: "no centre") enters through its inverse
+#: and is not bounded.
 PARAMETER_MAX_MAGNITUDE = 1e100
 
 #: Most output times a command accepts (``--times``, a scene's periods x samples, a sweep's

@@ -156,7 +156,9 @@ class ParameterSpec:
             raise InvalidParameterError(
                 f"`{self.name}` = {value} is not finite: give a finite real value"
             )
-        if math.isfinite(value) and abs(value) > PARAMETER_MAX_MAGNITUDE:
+        # a parameter that admits inf (a distance meaning "absent") enters through its inverse:
+        # any finite value is as good; the others overflow past the bound
+        if not self.allow_inf and math.isfinite(value) and abs(value) > PARAMETER_MAX_MAGNITUDE:
             raise ParameterOverflowError(
                 f"`{self.name}` = {value:g} is past the floats: the series' powers and products "
                 f"of it overflow; give |{self.name}| <= {PARAMETER_MAX_MAGNITUDE:g}"
