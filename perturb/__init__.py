@@ -14,6 +14,7 @@ from perturb.errors import (
     IntegrationError,
     InvalidParameterError,
     InvalidSystemError,
+    ParameterOverflowError,
     PerturbError,
     UnknownNameError,
 )
@@ -63,6 +64,7 @@ __all__ = [
     "Regime",
     "SolutionFailed",
     "Status",
+    "ParameterOverflowError",
     "UnknownNameError",
     "amplitude_equations",
     "basins",

@@ -67,7 +67,9 @@ ROOT_MAX_DENOMINATOR = 10_000
 #: Largest magnitude of a problem parameter: the series raise parameters to powers and multiply
 #: them (a cubic term at order 12 holds powers past 30), so 10¹⁰⁰ keeps every product the
 #: construction and an integration form within the floats (10³⁰⁸); beyond it the numbers overflow
-#: and the answer would be ``inf`` or a normal-looking value of nothing (``kappa = 1e308``).
+#: and the answer would be ``inf`` or a normal-looking value of nothing (``kappa = 1e308``). A
+#: parameter that admits ``inf`` (the disk's distance R: "no centre") enters through its inverse
+#: and is not bounded.
 PARAMETER_MAX_MAGNITUDE = 1e100
 
 #: Most output times a command accepts (``--times``, a scene's periods x samples, a sweep's
@@ -79,6 +81,10 @@ MAX_TIMES = 1_000_000
 #: Largest ``--times @FILE`` read: 10⁶ times (MAX_TIMES) of up to 32 characters each. A larger
 #: file (``@/dev/zero`` has no end) is refused before it is read.
 TIMES_FILE_MAX_BYTES = 32 * MAX_TIMES
+
+#: Largest problem file imported (``perturb solve path/file.py:Class``): a problem's module is a
+#: few kB to a few hundred; a larger file is not one (Python would read it whole into memory).
+PROBLEM_FILE_MAX_BYTES = 16 * 2**20
 
 #: Largest scene file read: a scene is a page of TOML (the shipped ones are under 2 kB).
 SCENE_MAX_BYTES = 1 << 20

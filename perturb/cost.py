@@ -56,6 +56,7 @@ __all__ = [
     "Cost",
     "census_seconds",
     "check_cost",
+    "modes_of",
     "notice",
     "response_cost",
     "sweep_cost",
@@ -91,6 +92,12 @@ def _growth(order: int) -> float:
         return RESPONSE_ORDER_GROWTH ** (max(int(order), 1) - 1)
     except OverflowError:  # an order of thousands: past any estimate, past any confirmation
         return math.inf
+
+
+def modes_of(problem) -> int:
+    """The modes (coordinates) of ``problem``'s system (a problem or a
+    :class:`~perturb.validation.Model`), the size the census grows with."""
+    return len(problem.system().coordinates)
 
 
 def census_seconds(modes: int) -> float:

@@ -16,6 +16,7 @@ __all__ = [
     "InvalidSystemError",
     "MissingDependencyError",
     "OutputError",
+    "ParameterOverflowError",
     "PerturbError",
     "ProblemLoadError",
     "SceneError",
@@ -84,6 +85,21 @@ class InvalidParameterError(PerturbError, ValueError):
     Traceback (most recent call last):
     ...
     perturb.errors.InvalidParameterError: `amplitude` = -1 is invalid: give a value > 0
+    """
+
+
+class ParameterOverflowError(PerturbError, ValueError):
+    """A parameter value past what floating point carries through the series (its powers and
+    products overflow, ``kappa = 1e308``): the run fails with this reason (exit 1 from the
+    command line), never with a normal-looking answer of nothing.
+
+    Examples
+    --------
+    >>> from problems import get_problem
+    >>> get_problem("linear-pair").create(kappa=1e308)
+    Traceback (most recent call last):
+    ...
+    perturb.errors.ParameterOverflowError: `kappa` = 1e+308 is past the floats: the series' powers and products of it overflow; give |kappa| <= 1e+100
     """
 
 

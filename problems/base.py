@@ -54,7 +54,12 @@ from perturb import (
 )
 from perturb._defaults import PARAMETER_MAX_MAGNITUDE
 from perturb.case import Case, ParameterMap
-from perturb.errors import InvalidParameterError, InvalidSystemError, UnknownNameError
+from perturb.errors import (
+    InvalidParameterError,
+    InvalidSystemError,
+    ParameterOverflowError,
+    UnknownNameError,
+)
 from perturb.oracle import SymbolicRHS
 from perturb.validation import (
     Equations,
@@ -160,11 +165,12 @@ class ParameterSpec:
             raise InvalidParameterError(
                 f"`{self.name}` = {value} is not finite: give a finite real value"
             )
-        if math.isfinite(value) and abs(value) > PARAMETER_MAX_MAGNITUDE:
-            raise InvalidParameterError(
-                f"`{self.name}` = {value:g} overflows: the series' powers and products of it are "
-                f"past the floating-point range; give |{self.name}| <= "
-                f"{PARAMETER_MAX_MAGNITUDE:g}"
+        # a parameter that admits inf (a distance meaning "absent") enters through its inverse:
+        # any finite value is as good; the others overflow past the bound
+        if not self.allow_inf and math.isfinite(value) and abs(value) > PARAMETER_MAX_MAGNITUDE:
+            raise ParameterOverflowError(
+                f"`{self.name}` = {value:g} is past the floats: the series' powers and products "
+                f"of it overflow; give |{self.name}| <= {PARAMETER_MAX_MAGNITUDE:g}"
             )
         if self.check is not None:
             fix = self.check(value)

@@ -28,6 +28,7 @@ import traceback
 from pathlib import Path
 from types import ModuleType
 
+from perturb._defaults import PROBLEM_FILE_MAX_BYTES
 from perturb.errors import ProblemLoadError
 from problems._checks import check_usable
 from problems._registry import check_problem_class, did_you_mean, get_problem
@@ -97,12 +98,24 @@ def load_problem(spec: str) -> type[Problem]:
 def _from_file(spec: str, target: str, class_name: str | None) -> type[Problem]:
     path = Path(target).expanduser()
     if not path.is_file():
-        what = "is a folder" if path.is_dir() else "does not exist"
+        what = (
+            "is a folder"
+            if path.is_dir()
+            else "is not a regular file (a FIFO, a device or a socket)"
+            if path.exists()
+            else "does not exist"
+        )
         raise ProblemLoadError(
             f"`problem` = {spec!r}: the file {str(path)!r} {what}: give the path of a Python file "
             "(absolute, or relative to the current folder), then :ClassName"
         )
     path = path.resolve()
+    size = path.stat().st_size
+    if size > PROBLEM_FILE_MAX_BYTES:
+        raise ProblemLoadError(
+            f"{path}: the file holds {size / 2**20:.1f} MB, more than a problem file's "
+            f"{PROBLEM_FILE_MAX_BYTES / 2**20:.0f} MB: give the Python file that defines the class"
+        )
     stem = re.sub(r"\W", "_", path.stem)
     module_name = f"_perturb_file_{next(_counter)}_{stem}"
     module_spec = importlib.util.spec_from_file_location(module_name, path)

@@ -134,10 +134,9 @@ def _cmd_response(args) -> int:
             raise _UsageError(f"--tol {args.tol}: give a finite number > 0, e.g. --tol 0.01")
     true = _parse_true(args.true_curve)
     max_period = _parse_max_period(args.max_period, true)
-    from perturb.cost import check_cost, response_cost
+    from perturb.cost import check_cost, modes_of, response_cost
 
-    modes = len(problem.case().system.coordinates)
-    cost = response_cost(values, order, count, true, modes)
+    cost = response_cost(values, order, count, true, modes_of(problem))
     check_cost(cost, args.yes)  # counted from the text: no value is made before
     parameter, grid = _parse_sweep(args.sweep)
     if parameter in overrides:

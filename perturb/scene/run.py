@@ -154,7 +154,9 @@ def check_scene(scene: Scene, problem, yes: bool = False) -> None:
     """
     model = as_model(problem)
     outputs = scene.outputs
-    _check_cost(scene, yes, len(model.system().coordinates))
+    from perturb.cost import modes_of
+
+    _check_cost(scene, yes, modes_of(problem))
     if scene.response is not None and outputs.needs_response:
         from perturb.errors import InvalidParameterError
         from perturb.response.model import check_request, parse_sweep
@@ -194,14 +196,14 @@ def _check_cost(scene: Scene, yes: bool, modes: int = 1) -> None:
     cost = Cost("", 0, 0.0)
     parts = []
     if scene.response is not None and outputs.needs_response:
-        from perturb.response.model import parse_sweep
+        from perturb.axis import axis_size
 
-        _, grid = parse_sweep(scene.response.sweep, "sweep")
-        parts.append(response_cost(len(grid), scene.order, scene.response.validate, 0, modes))
+        values = axis_size(scene.response.sweep, "sweep")  # counted, not made again
+        parts.append(response_cost(values, scene.order, scene.response.validate, 0, modes))
     if scene.sweep is not None and outputs.needs_sweep:
-        from perturb.sweep.grid import Grid, parse_axis
+        from perturb.axis import axis_size
 
-        size = Grid(tuple(parse_axis(a) for a in scene.sweep.grid)).size
+        size = math.prod(axis_size(a) for a in scene.sweep.grid)  # counted, not made
         parts.append(sweep_cost(size, scene.order, scene.sweep.validate, len(scene.sweep.times)))
     for part in parts:
         cost = part if not cost.what else cost + part

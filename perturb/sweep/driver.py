@@ -269,11 +269,27 @@ class Cluster:
     def __exit__(self, *exc) -> None:
         if not self._owned:
             return
+        if self._cluster is not None:  # the workers of our own cluster closed without a word
+            with contextlib.suppress(Exception):
+                self.client.run(_quiet_shutdown)
         with contextlib.suppress(Exception):
             self.client.close()
         if self._cluster is not None:
-            with contextlib.suppress(Exception):
-                self._cluster.close()
+            distributed = logging.getLogger("distributed")
+            level = distributed.level
+            distributed.setLevel(logging.CRITICAL)
+            try:
+                with contextlib.suppress(Exception):
+                    self._cluster.close()
+            finally:
+                distributed.setLevel(level)
+
+
+def _quiet_shutdown() -> None:
+    """Run on each worker of the local cluster before it closes: the heartbeat a worker sends
+    to a scheduler closing first fails, and Dask logs it with a traceback on the terminal
+    (perturb reports the run's failures itself, in one line)."""
+    logging.getLogger("distributed").setLevel(logging.CRITICAL)
 
 
 def _private():

@@ -274,10 +274,10 @@ def phase_diagram(
         check_new_store(output)
     (x_name, xs), (y_name, ys) = _axes(problem, grid)
     check_request(problem, x_name)
-    from perturb.cost import Cost, census_seconds, check_cost, response_cost
+    from perturb.cost import Cost, census_seconds, check_cost, modes_of, response_cost
 
     case = problem.case()
-    modes = len(case.system.coordinates)
+    modes = modes_of(problem)
     seconds = ys.size * response_cost(xs.size, order, shots=0, modes=modes).seconds
     if columns:
         seconds += xs.size * response_cost(ys.size, order, shots=0, modes=modes).seconds

@@ -151,20 +151,25 @@ def test_a_hook_raising_a_base_exception_is_one_line_naming_it(
         ["families", "resonant-pair", "--set", "kappa=1e308"],
         ["solve", "linear-pair", "--set", "kappa=1e308"],
         ["response", "forced-duffing", "--sweep", "F=1e150:1e151:3"],
-        ["solve", "duffing", "--set", "eps=-1"],
     ],
 )
-def test_inputs_that_overflow_or_have_no_orbit_are_refused(capsys, argv):
+def test_inputs_that_overflow_fail_with_that_reason(capsys, argv):
     code, out, err = run(capsys, *argv)
-    _one_error(code, out, err)
-    assert "overflows" in err or "separatrix" in err
+    assert code == 1 and out == "" and err.startswith("perturb: failed:"), err
+    assert "past the floats" in err and "internal error" not in err
+
+
+def test_a_duffing_started_past_its_separatrix_is_refused(capsys):
+    _one_error(*run(capsys, "solve", "duffing", "--set", "eps=-1"), "separatrix")
 
 
 def test_the_parameter_bound_is_the_documented_one():
+    from perturb.errors import ParameterOverflowError
     from problems import get_problem
 
-    assert get_problem("duffing").create(eps=0.1, amplitude=PARAMETER_MAX_MAGNITUDE**0)
-    with pytest.raises(InvalidParameterError, match="overflows"):
+    edge = get_problem("linear-pair").create(kappa=PARAMETER_MAX_MAGNITUDE)
+    assert edge.values["kappa"] == PARAMETER_MAX_MAGNITUDE
+    with pytest.raises(ParameterOverflowError, match="past the floats"):
         get_problem("linear-pair").create(kappa=PARAMETER_MAX_MAGNITUDE * 10)
 
 
