@@ -164,14 +164,16 @@ def _cmd_basins(args) -> int:
     chunk = None if args.chunk_points is None else _whole("--chunk-points", args.chunk_points, 1)
     if args.resume and args.output is None:
         raise _UsageError("--resume: give the store to continue with --output STORE")
-    if args.output is not None or (workers or 0) > 0 or args.scheduler is not None:
-        from perturb.errors import MissingDependencyError
-        from perturb.sweep.api import require_extra
+    from perturb.dynamics.basins import require_xarray
+    from perturb.errors import MissingDependencyError
+    from perturb.sweep.api import require_extra
 
-        try:
+    try:
+        require_xarray()
+        if args.output is not None or (workers or 0) > 0 or args.scheduler is not None:
             require_extra()
-        except MissingDependencyError as exc:
-            raise _UsageError(str(exc)) from None
+    except MissingDependencyError as exc:
+        raise _UsageError(str(exc)) from None
     problem = _problem(args)
     order = order_of(args.order, problem)
     from perturb.dynamics.basins import basins

@@ -37,7 +37,7 @@ from perturb._defaults import (
 )
 from perturb.dynamics.classify import Outcome, merge_found, outcome_meanings
 from perturb.dynamics.mapping import assemble, meanings, open_sink, stored_catalogue
-from perturb.errors import InvalidParameterError, PerturbError, bad_value
+from perturb.errors import InvalidParameterError, MissingDependencyError, PerturbError, bad_value
 
 __all__ = ["BasinMap", "BasinStatus", "Fraction", "basins"]
 
@@ -196,6 +196,15 @@ def _samples(samples) -> int:
 
 
 # ---------------------------------------------------------------------------------- the study
+def require_xarray() -> None:
+    """Raise :class:`~perturb.errors.MissingDependencyError` unless xarray is installed: a basin
+    map is an ``xarray.Dataset`` (the extra ``perturb[sweep]``), checked before any work."""
+    from perturb._install import install_hint, installed
+
+    if not installed("xarray"):
+        raise MissingDependencyError(f"a basin map is an xarray Dataset: {install_hint('sweep')}")
+
+
 def basins(
     problem,
     grid=None,
@@ -285,6 +294,7 @@ def basins(
     from perturb.dynamics.ensemble import ensemble
     from perturb.dynamics.motion import motion_of
 
+    require_xarray()
     cap = _cap(periods)
     if not (isinstance(phase, int | float) and math.isfinite(phase)):
         raise bad_value("phase", phase, "give a finite drive phase (radians)",

@@ -114,3 +114,18 @@ def test_bad_input_is_one_line_and_exit_2(capsys, argv, needle):
 def test_requests_past_the_cost_rule_are_refused_at_once(capsys, argv, needle):
     code, _, err = run(capsys, *argv)
     assert code == 2 and needle in err and len(err.strip().splitlines()) == 1
+
+
+def test_basins_without_xarray_names_the_extra_not_an_internal_error(capsys, monkeypatch):
+    """A basin map is an xarray Dataset: without the extra sweep, one line naming it (exit 2),
+    before any work; transient and ramp need no xarray and still run."""
+    import sys
+
+    for module in [m for m in sys.modules if m == "xarray" or m.startswith("xarray.")]:
+        monkeypatch.setitem(sys.modules, module, None)
+    monkeypatch.setitem(sys.modules, "xarray", None)
+    code, out, err = run(capsys, "basins", *BISTABLE, "--grid", "x=-3:3:4", "--grid",
+                         "xdot=-3:3:4", "--quiet")  # fmt: skip
+    assert code == 2 and out == ""
+    assert "xarray" in err and "perturb-poincare[sweep]" in err and "internal" not in err
+    assert len(err.strip().splitlines()) == 1

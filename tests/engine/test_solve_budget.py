@@ -68,3 +68,62 @@ def test_a_thread_other_than_the_main_one_solves_in_process():
     assert not thread.is_alive() and pids == [os.getpid()]
     here = solve_bounded(EQUATIONS, [X, Y], 30.0, groebner_real_roots)
     assert sorted(map(str, results[0])) == sorted(map(str, here))
+
+
+#: A system sympy's solve does not finish in seconds: three dense cubics in three unknowns (27
+#: complex roots without a closed form). Its budget, 1 s, is spent on any machine.
+U, V, W = sp.symbols("u v w")
+SLOW = [
+    U**3 + 2 * V**2 * W - 3 * U * V + 5 * W - 7,
+    V**3 - U * W**2 + 4 * U * V * W - 2 * V + 1,
+    W**3 + 3 * U**2 * V - V * W + U - 11,
+]
+SLOW_BUDGET = 1.0
+
+
+def _slow_in_a_daemon(queue):
+    try:
+        solve_bounded(SLOW, [U, V, W], SLOW_BUDGET)
+        queue.put("finished")
+    except TimeoutError:
+        queue.put("timeout")
+    except BaseException as exc:  # noqa: BLE001 - reported to the parent
+        queue.put(f"{type(exc).__name__}: {exc}")
+
+
+@pytest.mark.skipif(
+    "fork" not in multiprocessing.get_all_start_methods(), reason="needs fork to start a daemon"
+)
+def test_a_daemonic_process_keeps_the_budget():
+    """A Dask worker is daemonic: its solve runs in a fresh interpreter, killed when the budget
+    is spent (it ran unbounded there, and a README phase diagram did not end in 40 minutes)."""
+    context = multiprocessing.get_context("fork")
+    queue = context.Queue()
+    daemon = context.Process(target=_slow_in_a_daemon, args=(queue,), daemon=True)
+    daemon.start()
+    outcome = queue.get(timeout=300)
+    daemon.join(timeout=30)
+    assert outcome == "timeout"
+
+
+def test_a_thread_keeps_the_budget_and_the_roots():
+    """Off the main thread an importable solver runs in a fresh interpreter: the same roots as
+    here, and a slow solve cut by its budget."""
+    import threading
+
+    outcomes = []
+
+    def work():
+        outcomes.append(solve_bounded(EQUATIONS, [X, Y], 30.0, groebner_real_roots))
+        try:
+            solve_bounded(SLOW, [U, V, W], SLOW_BUDGET)
+            outcomes.append("finished")
+        except TimeoutError:
+            outcomes.append("timeout")
+
+    thread = threading.Thread(target=work)
+    thread.start()
+    thread.join(300)
+    here = solve_bounded(EQUATIONS, [X, Y], 30.0, groebner_real_roots)
+    assert not thread.is_alive()
+    assert sorted(map(str, outcomes[0])) == sorted(map(str, here)) and outcomes[1] == "timeout"
