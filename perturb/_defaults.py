@@ -50,9 +50,9 @@ PROBE_NONZERO = 1e-6
 #: keep sympy busy for hours.
 SOLVE_SECONDS = 30.0
 
-#: Time given to a fresh interpreter to start (import sympy and the solver's module: 0.5-1.2 s
-#: measured on 2 shared cores) before a budgeted solve's own seconds are counted, where the solve
-#: cannot run in a forked child (a Dask worker, a thread other than the main one).
+#: Time given to the helper interpreter of a budgeted solve to start (import sympy: 0.5-1.2 s
+#: measured on 2 shared cores), where the solve cannot run in a forked child (a Dask worker, a
+#: thread other than the main one); the solve's own budget is counted after it.
 CHILD_START_SECONDS = 10.0
 
 #: Linear periodicity conditions with at most this many terms in all are solved by sympy's

@@ -57,7 +57,7 @@ from typing import TypeVar
 
 from perturb.errors import CacheWarning, bad_value
 
-__all__ = ["active", "bypassed", "cache_dir", "cached", "key_file"]
+__all__ = ["Uncached", "active", "bypassed", "cache_dir", "cached", "key_file"]
 
 T = TypeVar("T")
 
@@ -380,6 +380,27 @@ def active() -> bool:
     return cache_dir() is not None and not _BYPASS.get()
 
 
+class Uncached:
+    """A value :func:`cached` returns but does not keep: one that depends on this run, not on the
+    key alone (a solve cut by its time budget, which a faster or idler machine would finish).
+
+    Examples
+    --------
+    >>> Uncached(([], "the budget was spent")).value
+    ([], 'the budget was spent')
+    """
+
+    __slots__ = ("value",)
+
+    def __init__(self, value) -> None:
+        self.value = value
+
+    @staticmethod
+    def unwrap(value):
+        """``value``, or the value it holds when it is :class:`Uncached`."""
+        return value.value if isinstance(value, Uncached) else value
+
+
 def cached(kind: str, parts: tuple | Callable[[], tuple], compute: Callable[[], T]) -> T:
     """Return ``compute()``, reading it from / writing it to the disk cache when enabled.
 
@@ -402,7 +423,7 @@ def cached(kind: str, parts: tuple | Callable[[], tuple], compute: Callable[[], 
     if not isinstance(kind, str) or not _KIND.fullmatch(kind):
         raise bad_value("kind", kind, "use a short label of letters, digits, '-' or '_'")
     if not active():
-        return compute()
+        return Uncached.unwrap(compute())
     folder = cache_dir()
     if callable(parts):
         parts = parts()
@@ -411,7 +432,7 @@ def cached(kind: str, parts: tuple | Callable[[], tuple], compute: Callable[[], 
         secret = _secret(folder)
     except _Unusable as reason:
         _warn_once("unusable", f"{reason}; running without the disk cache")
-        return compute()
+        return Uncached.unwrap(compute())
     key = _key(kind, parts)
     path = folder / f"{kind}-{key}.pkl"
     try:
@@ -426,6 +447,8 @@ def cached(kind: str, parts: tuple | Callable[[], tuple], compute: Callable[[], 
     if isinstance(found, Rejection):
         _warn_once("invalid", f"the entry `{path}` {found.value}: it was recomputed and rewritten")
     value = compute()
+    if isinstance(value, Uncached):
+        return value.value
     try:
         data = encode(kind, key, value, secret)
     except (pickle.PicklingError, TypeError, AttributeError, RecursionError):

@@ -6,8 +6,6 @@ import multiprocessing
 import pickle
 import threading
 
-from perturb._defaults import CHILD_START_SECONDS
-
 __all__ = ["solve_bounded", "sympy_roots"]
 
 
@@ -35,9 +33,9 @@ def solve_bounded(eqs, unknowns, seconds: float, solver=sympy_roots):
     ``multiprocessing`` children: a Dask worker, a pool's worker), in a thread other than the
     main one (a fork copies the locks other threads hold, and the child can wait on them for
     ever: a Dask worker thread hung a Sphinx build so), or where the platform cannot fork — it
-    runs in a fresh interpreter (a subprocess, which copies no lock), killed the same way; only a
-    solver that cannot be pickled by reference (a local function) runs in-process, without a
-    budget. Without this a phase diagram's points, derived on the workers, ran an exact solve
+    runs in a helper interpreter (a subprocess, which copies no lock; one per process, kept warm
+    between solves: :mod:`perturb.algebra.solver_process`), killed the same way; only a solver
+    that cannot be pickled by reference (a local function) runs in-process, without a budget. Without this a phase diagram's points, derived on the workers, ran an exact solve
     that a budget would have cut after seconds for over 40 minutes.
 
     Parameters
@@ -77,13 +75,14 @@ def solve_bounded(eqs, unknowns, seconds: float, solver=sympy_roots):
         context = None
     if context is None or multiprocessing.current_process().daemon or not _main_thread():
         # a daemonic process may not start multiprocessing children, and a fork from a thread
-        # may deadlock: a fresh interpreter, or (a local solver) here without a budget
+        # may deadlock: the helper interpreter, or (a local solver) here without a budget
         try:
             payload = pickle.dumps((solver, eqs, unknowns))
         except (pickle.PicklingError, AttributeError, TypeError):
             return solver(eqs, unknowns)
-        kind, value = _in_fresh_interpreter(payload, seconds)
-        return _returned(kind, value)
+        from perturb.algebra.solver_process import solve_in_helper
+
+        return _returned(*solve_in_helper(payload, seconds))
     receiver, sender = context.Pipe(duplex=False)
     child = context.Process(target=_solve_worker, args=(solver, eqs, unknowns, sender), daemon=True)
     child.start()
@@ -112,46 +111,6 @@ def _returned(kind: str, value):
             else NotImplementedError(str(value))
         )
     return value
-
-
-#: The child's program: read the pickled ``(solver, eqs, unknowns)``, write back the pickled
-#: ``(kind, value)`` of :func:`_solve_worker`'s protocol.
-_CHILD_PROGRAM = (
-    "import pickle, sys\n"
-    "solver, eqs, unknowns = pickle.load(sys.stdin.buffer)\n"
-    "try:\n"
-    "    reply = ('ok', solver(eqs, unknowns))\n"
-    "except Exception as exc:\n"
-    "    reply = ('error', exc)\n"
-    "try:\n"
-    "    data = pickle.dumps(reply)\n"
-    "except Exception as exc:\n"
-    "    data = pickle.dumps(('error', NotImplementedError(repr(exc))))\n"
-    "sys.stdout.buffer.write(data)\n"
-)
-
-
-def _in_fresh_interpreter(payload: bytes, seconds: float) -> tuple[str, object]:
-    """Run the pickled solve in a fresh interpreter (``python -P``: nothing from the working
-    folder on its path), killed after ``seconds`` plus :data:`CHILD_START_SECONDS` (its imports)."""
-    import subprocess
-    import sys
-
-    process = subprocess.Popen(
-        [sys.executable, "-P", "-c", _CHILD_PROGRAM],
-        stdin=subprocess.PIPE,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.DEVNULL,
-    )
-    try:
-        out, _ = process.communicate(payload, timeout=seconds + CHILD_START_SECONDS)
-    except subprocess.TimeoutExpired:
-        process.kill()
-        process.communicate()
-        raise TimeoutError from None
-    if process.returncode != 0 or not out:
-        raise NotImplementedError("the solver process died")
-    return pickle.loads(out)
 
 
 def _main_thread() -> bool:

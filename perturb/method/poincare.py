@@ -42,7 +42,7 @@ from attrs import field, frozen
 
 from perturb._checks import known_keywords
 from perturb._defaults import SOLVE_SECONDS
-from perturb.cache import cached
+from perturb.cache import Uncached, cached
 from perturb.frame import DrivenFrame, FreeFrame
 from perturb.method.construction import OrderByOrder
 from perturb.method.given_period import DrivenOrderByOrder
@@ -58,7 +58,7 @@ from perturb.method.options import (
 )
 from perturb.native import NotNative
 from perturb.progress import stage
-from perturb.solution import PeriodicSolution
+from perturb.solution import PeriodicSolution, Status
 from perturb.system import QuasilinearSystem
 from perturb.trig import SympyRing
 
@@ -159,13 +159,14 @@ class PoincareMethod:
         """
         check_system(system)
 
-        def construct() -> PeriodicSolution:  # the one step a run may wait on: told (a cache hit
-            # is not)
+        def construct():  # the one step a run may wait on: told (a cache hit is not)
             with stage(f"deriving the order-{self.order} solution of {system.name}"):
-                return _construct(self, system)
+                solution = _construct(self, system)
+            # a spent budget is this run's, not the system's: a faster machine decides it
+            return Uncached(solution) if solution.status is Status.SOLVER_BUDGET else solution
 
         if not self.cache:
-            return construct()
+            return Uncached.unwrap(construct())
         return cached("solution", lambda: self._cache_key(system), construct)
 
     def cache_key(self, system: QuasilinearSystem) -> tuple:

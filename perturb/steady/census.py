@@ -32,7 +32,7 @@ from perturb._defaults import (
     SYMMETRY_SEED,
     SYMMETRY_TOL,
 )
-from perturb.cache import cached
+from perturb.cache import Uncached, cached
 from perturb.steady.roots import RootStatus, real_roots
 
 __all__ = [
@@ -119,6 +119,12 @@ def _first_rows(equations, fixed: dict) -> list[sp.Expr]:
     return [sp.expand(e.xreplace(fixed)) for e in equations.displacement(0)]
 
 
+def _kept_unless_spent(found, value):
+    """``value``, not kept in the disk cache when the solve behind it ran out of its time budget
+    (a faster or idler machine finishes it: the cache must not make one machine's budget law)."""
+    return Uncached(value) if found.status is RootStatus.BUDGET_EXCEEDED else value
+
+
 def census(equations, fixed: dict) -> tuple[list[np.ndarray], str]:
     """Every real root of the first-order equations at the exact parameter values ``fixed``
     (``{symbol: Rational}``): ``(roots as amplitude arrays, "")`` or ``([], why)``.
@@ -131,7 +137,7 @@ def census(equations, fixed: dict) -> tuple[list[np.ndarray], str]:
     def solve():
         found = real_roots(rows, unknowns)
         if not found.status.success:
-            return [], f"{found.status.value} ({found.message})"
+            return _kept_unless_spent(found, ([], f"{found.status.value} ({found.message})"))
         return [np.array([float(r[u]) for u in unknowns]) for r in found.roots], ""
 
     return cached("response-census", lambda: (sp.srepr(tuple(rows)),), solve)
@@ -163,7 +169,7 @@ def order_census(equations, order: int, fixed: dict) -> tuple[list[np.ndarray], 
         if found.status is RootStatus.NO_REAL_ROOT:
             return [], ""
         if not found.status.success:
-            return [], f"{found.status.value} ({found.message})"
+            return _kept_unless_spent(found, ([], f"{found.status.value} ({found.message})"))
         return [np.array([float(r[u]) for u in unknowns]) for r in found.roots], ""
 
     return cached("response-order-census", lambda: (sp.srepr(tuple(rows)),), solve)
@@ -185,7 +191,7 @@ def line_folds(equations, base: dict, slope: dict, lam: sp.Symbol) -> tuple[list
         if found.status is not RootStatus.SOLVED:
             if found.status is RootStatus.NO_REAL_ROOT:
                 return [], ""
-            return [], f"{found.status.value} ({found.message})"
+            return _kept_unless_spent(found, ([], f"{found.status.value} ({found.message})"))
         return [np.array([float(r[v]) for v in (*unknowns, lam)]) for r in found.roots], ""
 
     return cached("response-line-folds", lambda: (sp.srepr(tuple(rows)), lam.name), solve)

@@ -98,3 +98,24 @@ def test_a_key_given_as_a_function_is_built_only_when_the_cache_is_used(tmp_path
     assert cached("demo", parts, lambda: "stored") == "stored" and built == [1]
     # the function's key and the same tuple name one entry
     assert cached("demo", ("k",), lambda: "not called") == "stored"
+
+
+def test_a_value_that_depends_on_the_run_is_returned_not_kept(tmp_path, monkeypatch):
+    """A solve cut by its time budget (Uncached) is computed again next time: a loaded machine's
+    spent budget must not become every later run's answer."""
+    monkeypatch.setenv("PERTURB_CACHE_DIR", str(tmp_path))
+    calls = []
+
+    def spent():
+        calls.append("spent")
+        return perturb.cache.Uncached(([], "the budget was spent"))
+
+    def solved():
+        calls.append("solved")
+        return ([1.0], "")
+
+    parts = ("a system",)
+    assert perturb.cache.cached("budget-test", parts, spent) == ([], "the budget was spent")
+    assert perturb.cache.cached("budget-test", parts, solved) == ([1.0], "")
+    assert perturb.cache.cached("budget-test", parts, spent) == ([1.0], "")  # now kept
+    assert calls == ["spent", "solved"]
