@@ -24,6 +24,7 @@ from perturb import PerturbError
 from perturb.case import EPSILON_KEY, ParameterMap
 from perturb.case.points import checked_point, message_of
 from perturb.errors import InvalidSystemError
+from perturb.oracle import PeriodicOrbit
 from perturb.validation import Condition, OrbitEstimate
 
 __all__ = ["checked_columns", "older_hooks", "solution_reads", "traced_declarations"]
@@ -231,15 +232,15 @@ def _true_orbit(self, solution) -> OrbitEstimate | None:
     """The orbit of ``true_periodic_orbit(solution)``, read into an
     :class:`~perturb.validation.OrbitEstimate`."""
     true = self.true_periodic_orbit(solution)
-    if true is None or isinstance(true, OrbitEstimate):
-        return true
+    if true is None or isinstance(true, PeriodicOrbit):
+        return true  # the one orbit type (an OrbitEstimate is one)
     n_trivial = getattr(true, "n_trivial", None)
     return OrbitEstimate(
         success=bool(getattr(true, "success", False)),
         period=float(getattr(true, "period", math.nan)),
         initial_state=getattr(true, "initial_state", ()),
         message=str(getattr(true, "message", "")),
-        floquet=tuple(getattr(true, "floquet", ())),
+        floquet=tuple(getattr(true, "floquet", getattr(true, "multipliers", ()))),
         n_trivial=None if n_trivial is None else int(n_trivial),
         trivial_multiplier_error=float(getattr(true, "trivial_multiplier_error", math.nan)),
         resolution=float(getattr(true, "resolution", 0.0)),

@@ -477,3 +477,147 @@ def test_no_private_member_is_called_from_outside(tmp_path):
     planted = tmp_path / "driver.py"
     planted.write_text("runner._generating()\nself._own()\nsuper()._hook()\nrunner.step(1)\n")
     assert private_calls([planted]) == ["driver.py:1 calls runner._generating"]
+
+
+# ---------------------------------------------------------------- one orbit record, one corrector
+
+#: The one true periodic orbit (state, period, multipliers, how it was found, status): every
+#: route to a true orbit returns it (docs/architecture.md, "One orbit record, one corrector").
+TRUE_ORBIT_TYPE = "perturb/oracle/orbit.py:PeriodicOrbit"
+#: Records whose multipliers are the series' (Magnus along the order-N orbit, the amplitude
+#: equations' eigenvalues): analytic numbers, not a true orbit's.
+SERIES_MULTIPLIERS = {
+    "perturb/method/driven.py:SlowFlow",
+    "perturb/steady/floquet.py:Stability",
+    "perturb/steady/point.py:ResponsePoint",
+    "perturb/steady/continued.py:SpecialResponse",
+    "perturb/steady/continued.py:ResponseCurve",
+    "perturb/response/model.py:TrueResponse",  # multipliers_analytic; its true orbit is held
+}
+#: Records that copy a true orbit's multipliers under a contract of their own, beside the orbit:
+#: the validation report's row (users and tests build it field by field) and a catalogue's
+#: steady state (stored on disk and read back without its orbit). A ceiling: it only falls.
+ORBIT_MULTIPLIER_COPIES = {
+    "perturb/validation/report.py:OrbitCheck",
+    "perturb/dynamics/attractors.py:SteadyOrbit",
+}
+
+
+def _holds_multipliers(name: str) -> bool:
+    """A field that holds Floquet multipliers (not one critical ``multiplier`` or an error)."""
+    return name in ("multipliers", "floquet", "floquet_multipliers") or name.startswith(
+        ("multipliers_", "floquet_")
+    )
+
+
+def multiplier_records(paths) -> dict[str, list[str]]:
+    """``path:Class`` -> the names of its class-level annotated fields that hold multipliers."""
+    found = {}
+    for path in paths:
+        tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+        for node in ast.walk(tree):
+            if not isinstance(node, ast.ClassDef):
+                continue
+            names = [
+                item.target.id
+                for item in node.body
+                if isinstance(item, ast.AnnAssign)
+                and isinstance(item.target, ast.Name)
+                and _holds_multipliers(item.target.id)
+            ]
+            if names:
+                found[f"{_relative(path)}:{node.name}"] = names
+    return found
+
+
+def test_one_true_orbit_record():
+    found = multiplier_records(_sources())
+    assert found.get(TRUE_ORBIT_TYPE) == ["multipliers"], found  # the scan sees the one type
+    allowed = {TRUE_ORBIT_TYPE} | SERIES_MULTIPLIERS | ORBIT_MULTIPLIER_COPIES
+    extra = sorted(set(found) - allowed)
+    assert not extra, (
+        "a new record holds an orbit's multipliers: hold a perturb.oracle.PeriodicOrbit "
+        f"instead: {extra}"
+    )
+
+
+def test_multipliers_are_named_one_way():
+    """``multipliers`` (or ``multipliers_<whose>``); older names live on as read-only properties."""
+    found = multiplier_records(_sources())
+    other = sorted(
+        f"{where}.{name}"
+        for where, names in found.items()
+        for name in names
+        if not (name == "multipliers" or name.startswith("multipliers_"))
+    )
+    assert not other, other
+
+
+#: What a Newton loop solves with: a linear solve or a step function.
+_SOLVES = {"solve", "lstsq", "qr_solve", "lu_solve", "_solve", "newton_step", "step"}
+#: The Newton loops on systems of equations, each with why it is its own: the shooting's damped
+#: loop down to the precision floor (perturb/oracle/newton.py), the continuation's one loop whose
+#: step is a function (its bordered, fixed-λ and least-norm correctors, and the true curve's
+#: minimally augmented systems), the disk's second route in 40-digit mpmath arithmetic (its
+#: independence is the point), and the certified roots' polish in mpmath (a root, not an orbit).
+NEWTON_LOOPS = {
+    "perturb/oracle/newton.py:damped_newton",
+    "perturb/continuation/newton.py:newton",
+    "problems/rigid_body/true_orbit_mp.py:mp_true_orbit",
+    "perturb/algebra/msolve.py:_refined",
+}
+
+
+def _inside(node):
+    """The nodes under ``node``, not entering nested functions, lambdas or classes."""
+    stack = list(ast.iter_child_nodes(node))
+    while stack:
+        item = stack.pop()
+        if isinstance(item, ast.FunctionDef | ast.AsyncFunctionDef | ast.Lambda | ast.ClassDef):
+            continue
+        yield item
+        stack.extend(ast.iter_child_nodes(item))
+
+
+def _name(node) -> str:
+    if isinstance(node, ast.Attribute):
+        return node.attr
+    return node.id if isinstance(node, ast.Name) else ""
+
+
+def newton_loops(paths) -> list[str]:
+    """``path:function`` of every loop that evaluates a Jacobian (a name holding ``jac``, or a
+    ``linearised`` call) and solves with it (:data:`_SOLVES`) in one iteration."""
+    found = []
+    for path in paths:
+        tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+        for function in ast.walk(tree):
+            if not isinstance(function, ast.FunctionDef | ast.AsyncFunctionDef):
+                continue
+            for loop in _inside(function):
+                if not isinstance(loop, ast.For | ast.While):
+                    continue
+                body = list(_inside(loop))
+                calls = {_name(n.func) for n in body if isinstance(n, ast.Call)}
+                names = {_name(n) for n in body if isinstance(n, ast.Name | ast.Attribute)}
+                derivative = any("jac" in n.lower() for n in names) or "linearised" in calls
+                if derivative and calls & _SOLVES:
+                    found.append(f"{_relative(path)}:{function.name}")
+    return found
+
+
+def test_one_newton_loop_per_arithmetic():
+    found = newton_loops(_sources())
+    assert len(found) == len(set(found)), found  # one loop a function
+    assert set(found) == NEWTON_LOOPS, sorted(set(found) ^ NEWTON_LOOPS)
+
+
+def test_the_orbit_rules_see_what_they_are_shown(tmp_path):
+    planted = tmp_path / "copy.py"
+    planted.write_text(
+        "class Found:\n    floquet: tuple\n    multiplier: complex\n\n"
+        "def polish(f, x):\n    for _ in range(8):\n        jac = f.jacobian(x)\n"
+        "        x = x - np.linalg.solve(jac, f(x))\n    while True:\n        break\n"
+    )
+    assert multiplier_records([planted]) == {"copy.py:Found": ["floquet"]}
+    assert newton_loops([planted]) == ["copy.py:polish"]

@@ -5,7 +5,8 @@ Newton's corrector on the hyperplane normal to it, the step from the corrector),
 changes of test functions on it (folds, branch points, and a client's: Neimark-Sacker, period
 doubling...), and stops where λ leaves its range, the curve closes or leaves a domain; a step below
 its floor is a failed status that says where. :meth:`Curve.values_at` reads every point of the curve
-at given λ. Nothing here knows what the unknowns mean: the response of a driven system
+at given λ. Every corrector is one Newton loop, :func:`newton`, whose step is a function (a
+client corrects onto its own augmented systems with it). Nothing here knows what the unknowns mean: the response of a driven system
 (:mod:`perturb.response`) and the shooting of true orbits are its clients.
 
 Examples
@@ -24,6 +25,7 @@ The unit circle u² + λ² = 1 from (1, 0), both ways: a loop with two folds at 
 
 from perturb.continuation.arclength import CurveEquations, continue_both, continue_curve
 from perturb.continuation.events import BRANCH_POINT, FOLD, TestFunction, locate_on_curve
+from perturb.continuation.newton import Correction, newton
 from perturb.continuation.reading import values_at
 from perturb.continuation.result import ContinuationStatus, Curve
 from perturb.continuation.special import SpecialPoint
@@ -32,6 +34,7 @@ __all__ = [
     "BRANCH_POINT",
     "FOLD",
     "ContinuationStatus",
+    "Correction",
     "Curve",
     "CurveEquations",
     "SpecialPoint",
@@ -39,5 +42,6 @@ __all__ = [
     "continue_both",
     "continue_curve",
     "locate_on_curve",
+    "newton",
     "values_at",
 ]

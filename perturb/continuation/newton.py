@@ -1,4 +1,4 @@
-"""The linear algebra of a continuation step: the tangent, the corrector, Newton at fixed λ.
+"""The linear algebra of a continuation step: the tangent, and one Newton loop with three steps.
 
 For G: R^(n+1) -> R^n with Jacobian J = [G_u | G_λ] (n x (n+1)), the tangent t is the unit null
 vector of J, oriented along the continuation by solving the bordered system
@@ -9,6 +9,10 @@ so that t·t_old > 0 (Keller). The corrector is Newton's method on {G(x) = 0, t_
 (the hyperplane through the predictor orthogonal to the previous tangent); its matrix is the same
 bordered matrix, regular at folds. The determinant of the bordered matrix keeps its sign along a
 curve with a continuously oriented tangent except where the curve crosses another: a branch point.
+
+Every corrector of the continuation is :func:`newton`, one loop whose step is a function: the
+bordered step (:func:`correct`), the step of G_u at fixed λ (:func:`newton_fixed`), the least-norm
+step (:func:`newton_nearest`), and a client's own (the true curve's minimally augmented systems).
 """
 
 from __future__ import annotations
@@ -24,6 +28,7 @@ __all__ = [
     "Correction",
     "bordered",
     "correct",
+    "newton",
     "newton_fixed",
     "newton_nearest",
     "null_tangent",
@@ -33,11 +38,28 @@ __all__ = [
 
 @frozen
 class Correction:
-    """The outcome of one corrector run.
+    """The outcome of one corrector run (:func:`newton`).
 
-    ``x`` the corrected point (the last iterate when not converged), ``jacobian`` J at ``x``,
-    ``iterations`` the Newton steps taken, ``converged``, ``finite`` (False: a non-finite value
-    was met, which ends the continuation).
+    Attributes
+    ----------
+    x : ndarray
+        The corrected point (the last iterate when not converged).
+    jacobian : ndarray or None
+        J at ``x`` (None where it was not evaluated or not finite).
+    iterations : int
+        The Newton steps taken.
+    converged : bool
+    finite : bool
+        False: a non-finite value was met, which ends the continuation.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from perturb.continuation import CurveEquations, newton
+    >>> line = CurveEquations(lambda x: [x[0] - 2 * x[1]], lambda x: [[1.0, -2.0]])
+    >>> found = newton(line, np.array([0.0, 1.0]), lambda x, g, jac: np.append(-g, 0.0))
+    >>> found.converged, found.x.tolist(), found.iterations
+    (True, [2.0, 1.0], 2)
     """
 
     x: np.ndarray
@@ -107,41 +129,54 @@ def tangent(jacobian: np.ndarray, previous: np.ndarray) -> np.ndarray | None:
     return z / norm
 
 
-def correct(equations, predictor: np.ndarray, normal: np.ndarray) -> Correction:
-    """Newton on {G(x) = 0, normal·(x − predictor) = 0} from the predictor.
+def newton(
+    equations,
+    x0: np.ndarray,
+    step,
+    max_iter: int = CORRECTOR_MAX_ITER,
+    tol: float = CORRECTOR_TOL,
+    contracting: bool = True,
+    jacobian_at_end: bool = True,
+) -> Correction:
+    """The one Newton loop of the continuation, its step a function.
 
-    Converged when a step is below ``CORRECTOR_TOL * max(1, |x|)``; rejected when the steps stop
-    shrinking (the predictor is outside the basin) or after ``CORRECTOR_MAX_ITER``.
+    From ``x0``, each iteration evaluates G and J = ``equations.jacobian`` at x and moves x by
+    ``step(x, g, jac)`` (an array of x's length; it may raise
+    :class:`numpy.linalg.LinAlgError` on a singular system). Converged when a step is below
+    ``tol * max(1, |x|)`` (max norms); then J is evaluated at the result (unless
+    ``jacobian_at_end`` is False: a caller that does not need it saves its cost). Rejected when
+    a value is not finite (``finite`` False), the system is singular, the step is not finite, the
+    steps stop shrinking (from the third on, one more than half the previous: the start is outside
+    the basin; only when ``contracting``) or after ``max_iter`` iterations.
+
+    Parameters
+    ----------
+    equations : CurveEquations or any object with ``residual(x)`` and ``jacobian(x)``
+    x0 : ndarray
+    step : callable
+        ``step(x, g, jac) -> dx``.
+    max_iter : int
+    tol : float
+    contracting : bool
+    jacobian_at_end : bool
+
+    Returns
+    -------
+    Correction
+
+    Examples
+    --------
+    The unit circle u² + λ² = 1 at λ = 0.6, Newton in u alone:
+
+    >>> import numpy as np
+    >>> from perturb.continuation import CurveEquations
+    >>> circle = CurveEquations(lambda x: [x[0] ** 2 + x[1] ** 2 - 1],
+    ...                         lambda x: [[2 * x[0], 2 * x[1]]])
+    >>> fixed = lambda x, g, jac: np.append(-g / jac[:, 0], 0.0)
+    >>> found = newton(circle, np.array([1.0, 0.6]), fixed)
+    >>> found.converged, round(float(found.x[0]), 12)
+    (True, 0.8)
     """
-    x = np.array(predictor, dtype=float)
-    previous = math.inf
-    for iteration in range(1, CORRECTOR_MAX_ITER + 1):
-        g = np.asarray(equations.residual(x), dtype=float)
-        jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))
-        if not _finite(g, jac):
-            return Correction(x, None, iteration, False, False)
-        rhs = np.concatenate((-g, [-float(normal @ (x - predictor))]))
-        try:
-            step = _solve(bordered(jac, normal), rhs)
-        except np.linalg.LinAlgError:
-            return Correction(x, jac, iteration, False)
-        size = _size(step)
-        if not math.isfinite(size):
-            return Correction(x, jac, iteration, False)
-        if iteration > 2 and size > 0.5 * previous:
-            return Correction(x, jac, iteration, False)  # not contracting: outside the basin
-        x = x + step
-        previous = size
-        if size <= CORRECTOR_TOL * max(1.0, _size(x)):
-            jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))
-            if not _finite(x, jac):
-                return Correction(x, None, iteration, False, False)
-            return Correction(x, jac, iteration, True)
-    return Correction(x, None, CORRECTOR_MAX_ITER, False)
-
-
-def newton_fixed(equations, x0: np.ndarray, max_iter: int = CORRECTOR_MAX_ITER) -> Correction:
-    """Newton on G(u, λ) = 0 in u with λ = x0[-1] fixed (G_u square)."""
     x = np.array(x0, dtype=float)
     previous = math.inf
     for iteration in range(1, max_iter + 1):
@@ -150,41 +185,51 @@ def newton_fixed(equations, x0: np.ndarray, max_iter: int = CORRECTOR_MAX_ITER) 
         if not _finite(g, jac):
             return Correction(x, None, iteration, False, False)
         try:
-            step = _solve(jac[:, :-1], -g)
+            dx = step(x, g, jac)
         except np.linalg.LinAlgError:
             return Correction(x, jac, iteration, False)
-        size = _size(step)
-        if not math.isfinite(size) or (iteration > 2 and size > 0.5 * previous):
-            return Correction(x, jac, iteration, False)
-        x[:-1] = x[:-1] + step
+        size = _size(dx)
+        if not math.isfinite(size) or (contracting and iteration > 2 and size > 0.5 * previous):
+            return Correction(x, jac, iteration, False)  # not contracting: outside the basin
+        x = x + dx
         previous = size
-        if size <= CORRECTOR_TOL * max(1.0, _size(x)):
+        if size <= tol * max(1.0, _size(x)):
+            if not jacobian_at_end:
+                return Correction(x, None, iteration, True, _finite(x))
             jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))
             if not _finite(x, jac):
                 return Correction(x, None, iteration, False, False)
             return Correction(x, jac, iteration, True)
     return Correction(x, None, max_iter, False)
+
+
+def correct(equations, predictor: np.ndarray, normal: np.ndarray) -> Correction:
+    """Newton on {G(x) = 0, normal·(x − predictor) = 0} from the predictor (:func:`newton` with
+    the bordered step): regular at folds."""
+
+    def bordered_step(x, g, jac):
+        rhs = np.concatenate((-g, [-float(normal @ (x - predictor))]))
+        return _solve(bordered(jac, normal), rhs)
+
+    return newton(equations, predictor, bordered_step)
+
+
+def newton_fixed(equations, x0: np.ndarray, max_iter: int = CORRECTOR_MAX_ITER) -> Correction:
+    """Newton on G(u, λ) = 0 in u with λ = x0[-1] fixed (G_u square; :func:`newton` with the
+    step of G_u alone)."""
+
+    def fixed_step(x, g, jac):
+        return np.append(_solve(jac[:, :-1], -g), 0.0)
+
+    return newton(equations, x0, fixed_step, max_iter)
 
 
 def newton_nearest(equations, x0: np.ndarray, max_iter: int = CORRECTOR_MAX_ITER) -> Correction:
     """Newton's method with the least-norm step (Gauss-Newton on the n x (n+1) Jacobian): to a
-    point of the curve near x0, λ free; regular at folds, where Newton at fixed λ is not."""
-    x = np.array(x0, dtype=float)
-    previous = math.inf
-    for iteration in range(1, max_iter + 1):
-        g = np.asarray(equations.residual(x), dtype=float)
-        jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))
-        if not _finite(g, jac):
-            return Correction(x, None, iteration, False, False)
-        step = np.linalg.lstsq(jac, -g, rcond=None)[0]
-        size = _size(step)
-        if not math.isfinite(size) or (iteration > 2 and size > 0.5 * previous):
-            return Correction(x, jac, iteration, False)
-        x = x + step
-        previous = size
-        if size <= CORRECTOR_TOL * max(1.0, _size(x)):
-            jac = np.atleast_2d(np.asarray(equations.jacobian(x), dtype=float))
-            if not _finite(x, jac):
-                return Correction(x, None, iteration, False, False)
-            return Correction(x, jac, iteration, True)
-    return Correction(x, None, max_iter, False)
+    point of the curve near x0, λ free; regular at folds, where Newton at fixed λ is not
+    (:func:`newton` with the least-squares step)."""
+
+    def least_norm_step(x, g, jac):
+        return np.linalg.lstsq(jac, -g, rcond=None)[0]
+
+    return newton(equations, x0, least_norm_step, max_iter)

@@ -258,7 +258,7 @@ def catalogue(problem, order: int = 1, phase: float = 0.0, motion=None) -> Catal
         proved.append((name, start, orbit))
     states = []
     for name, start, orbit in proved:
-        largest = max(abs(z) for z in orbit.floquet_multipliers)
+        largest = max(abs(z) for z in orbit.multipliers)
         if largest < 1 - DYNAMICS_MULTIPLIER_MARGIN:
             kind = StateKind.ATTRACTOR
         elif largest > 1 + DYNAMICS_MULTIPLIER_MARGIN:
@@ -273,7 +273,7 @@ def catalogue(problem, order: int = 1, phase: float = 0.0, motion=None) -> Catal
             name,
             kind,
             pts,
-            tuple(complex(z) for z in orbit.floquet_multipliers),
+            tuple(complex(z) for z in orbit.multipliers),
             _radius(placed, k),
             orbit.message,
         )  # fmt: skip
@@ -367,6 +367,6 @@ def confirm(motion, orbit: SteadyOrbit, phase: float) -> SteadyOrbit:
                             f"({shot.message})")  # fmt: skip
     return attrs.evolve(
         orbit,
-        multipliers=tuple(complex(z) for z in shot.floquet_multipliers),
+        multipliers=tuple(complex(z) for z in shot.multipliers),
         message=f"{orbit.message}; proved by shooting: {shot.message}",
     )

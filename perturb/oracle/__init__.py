@@ -27,7 +27,7 @@ from perturb.oracle.driven_family import DrivenFamily, Shot
 from perturb.oracle.floquet import expected_trivial_multipliers
 from perturb.oracle.forced import find_forced_orbit
 from perturb.oracle.heyoka import Heyoka, heyoka_available
-from perturb.oracle.orbit import OrbitStatus, PeriodicOrbit
+from perturb.oracle.orbit import OrbitRoute, OrbitStatus, PeriodicOrbit
 from perturb.oracle.registry import INTEGRATORS, choose, default_integrator, get_integrator
 from perturb.oracle.rk4 import RK4
 from perturb.oracle.scipy import Scipy, scaled_atol
@@ -42,6 +42,7 @@ __all__ = [
     "Heyoka",
     "Integrator",
     "IntegratorBase",
+    "OrbitRoute",
     "OrbitStatus",
     "PeriodicOrbit",
     "Scipy",

@@ -30,7 +30,7 @@ from perturb._defaults import (
 )
 from perturb.errors import bad_value
 from perturb.oracle.newton import NewtonOutcome, PeriodMap, Shot, damped_newton
-from perturb.oracle.orbit import OrbitStatus, PeriodicOrbit, multipliers_of
+from perturb.oracle.orbit import OrbitRoute, OrbitStatus, PeriodicOrbit, multipliers_of
 from perturb.oracle.symbolic import SymbolicRHS
 from perturb.oracle.variational import shooting_integrator, variational_rhs
 
@@ -65,7 +65,7 @@ def find_forced_orbit(
     Returns
     -------
     PeriodicOrbit
-        ``n_trivial_expected = 0``; ``floquet_multipliers`` of the state block, sorted by distance
+        ``n_trivial_expected = 0``; ``multipliers`` of the state block, sorted by distance
         from 1; failures as a status with the reason.
 
     Examples
@@ -99,7 +99,7 @@ def find_forced_orbit(
     return PeriodicOrbit(
         period=period,
         initial_state=result.x,
-        floquet_multipliers=multipliers,
+        multipliers=multipliers,
         monodromy=phi,
         residual=result.residual,
         iterations=result.iterations,
@@ -108,6 +108,7 @@ def find_forced_orbit(
         integrator=solver.name,
         precision_floor=result.floor,
         defect=result.shot.defect,
+        found_by=OrbitRoute.FORCED,
     )
 
 

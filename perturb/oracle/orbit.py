@@ -1,4 +1,13 @@
-"""The result of a periodic-orbit search: :class:`PeriodicOrbit` and its :class:`OrbitStatus`."""
+"""The one true periodic orbit: :class:`PeriodicOrbit`, its :class:`OrbitStatus` and its
+:class:`OrbitRoute`.
+
+Every route to a true orbit returns this value — the autonomous shooting, the driven (period
+given) shooting, the disk's conditioned extended-precision shooting and its 40-digit mpmath
+route, a model's own finder (:class:`perturb.validation.OrbitEstimate` builds one) — with its
+Floquet multipliers under one name, :attr:`PeriodicOrbit.multipliers`, and the route that found
+it, :attr:`PeriodicOrbit.found_by`. What a client measures about an orbit (a validation's errors,
+a response's amplitudes, a catalogue's capture radius) lives in the client's own result, beside
+the orbit, never as another orbit type."""
 
 from __future__ import annotations
 
@@ -12,7 +21,7 @@ from attrs import field, frozen
 
 from perturb.errors import PerturbError
 
-__all__ = ["OrbitStatus", "PeriodicOrbit"]
+__all__ = ["OrbitRoute", "OrbitStatus", "PeriodicOrbit", "multipliers_of"]
 
 
 class OrbitStatus(enum.Enum):
@@ -37,6 +46,12 @@ class OrbitStatus(enum.Enum):
     EQUILIBRIUM = (
         "Converged onto an equilibrium, not a periodic orbit (a family parameter was not pinned)."
     )
+    UNAVAILABLE = "The orbit finder cannot run here (a capability it needs is not installed)."
+    REFUSED = "The orbit finder refused its seed or its problem."
+    UNRESOLVED = (
+        "Converged, but the defect does not determine the orbit (a singular Newton matrix)."
+    )
+    FAILED = "The orbit finder failed; its message says why."
 
     @property
     def success(self) -> bool:
@@ -48,6 +63,17 @@ class OrbitStatus(enum.Enum):
         """The legacy integer code (0 converged, negative failure), for integer JSON fields."""
         return _ORBIT_CODES[self]
 
+    @classmethod
+    def of_code(cls, code: int) -> OrbitStatus:
+        """The status of a legacy integer code (:attr:`code`'s inverse).
+
+        Examples
+        --------
+        >>> OrbitStatus.of_code(-3).name
+        'STALLED'
+        """
+        return _BY_CODE[int(code)]
+
 
 _ORBIT_CODES = {
     OrbitStatus.CONVERGED: 0,
@@ -56,7 +82,32 @@ _ORBIT_CODES = {
     OrbitStatus.STALLED: -3,
     OrbitStatus.WRONG_DIRECTION: -4,
     OrbitStatus.EQUILIBRIUM: -5,
+    OrbitStatus.UNAVAILABLE: -10,
+    OrbitStatus.REFUSED: -11,
+    OrbitStatus.UNRESOLVED: -12,
+    OrbitStatus.FAILED: -13,
 }
+_BY_CODE = {code: status for status, code in _ORBIT_CODES.items()}
+
+
+class OrbitRoute(enum.Enum):
+    """How a true orbit was found; the values are the sentences a report gives.
+
+    Examples
+    --------
+    >>> from perturb.oracle import OrbitRoute
+    >>> print(OrbitRoute.SHOOTING.value)
+    Newton shooting on a Poincaré section (the period among the unknowns).
+    """
+
+    SHOOTING = "Newton shooting on a Poincaré section (the period among the unknowns)."
+    FORCED = "Newton shooting with the period given by the forcing."
+    CONDITIONED = (
+        "Newton shooting in conditioned coordinates, in extended precision, from exact inputs."
+    )
+    MPMATH = "Newton shooting on a Taylor flow in mpmath arithmetic (40 digits)."
+    CONTINUATION = "Pseudo-arclength continuation of the fixed-period shooting map."
+    MODEL = "The model's own true-orbit finder."
 
 
 def _readonly(value: Any) -> np.ndarray:
@@ -78,8 +129,9 @@ class PeriodicOrbit:
         The period :math:`T`.
     initial_state : ndarray, shape (n,)
         :math:`y(0)`, on the section.
-    floquet_multipliers : ndarray, shape (n,), complex
-        Eigenvalues of :attr:`monodromy`, sorted by distance from 1 (the trivial ones first).
+    multipliers : ndarray, shape (n,), complex
+        The Floquet multipliers: eigenvalues of :attr:`monodromy`, sorted by distance from 1 (the
+        trivial ones first). :attr:`floquet_multipliers` is the same array by its older name.
     monodromy : ndarray, shape (n, n)
         :math:`\\Phi(T)`, the linearised flow over one period.
     residual : float
@@ -105,9 +157,10 @@ class PeriodicOrbit:
         ``residual``): the round-off of the defect and, when Newton stopped gaining above ``tol``,
         the integration error measured a posteriori. A residual above ``tol`` but within
         ``FLOOR_SAFETY`` of it is converged (the message says so).
-    n_trivial_expected : int
+    n_trivial_expected : int or None
         Multipliers that must equal 1: the ``n_trivial`` given, or the count derived from the
-        integrals and ``hamiltonian`` by :func:`~perturb.oracle.floquet.expected_trivial_multipliers`.
+        integrals and ``hamiltonian`` by :func:`~perturb.oracle.floquet.expected_trivial_multipliers`
+        (None: a model's own finder left it to validation).
     n_trivial_found : int
         Multipliers found within ``TRIVIAL_MULTIPLIER_TOL`` of 1 (0 when the monodromy is not
         finite).  More than expected: a nearly neutral direction or an unlisted integral; fewer: an
@@ -129,13 +182,16 @@ class PeriodicOrbit:
     >>> orbit = find_periodic_orbit(vdp, [2.0, 0.0], 6.5, section_index=1)
     >>> bool(orbit.success), round(orbit.period, 6)
     (True, 6.663287)
-    >>> bool(abs(orbit.floquet_multipliers[0] - 1) < 1e-6)  # the trivial multiplier of an autonomous orbit
+    >>> bool(abs(orbit.multipliers[0] - 1) < 1e-6)  # the trivial multiplier of an autonomous orbit
     True
+    >>> orbit.found_by.name
+    'SHOOTING'
+
     """
 
     period: float = field(converter=float)
     initial_state: np.ndarray = field(converter=_readonly, eq=_array_eq)
-    floquet_multipliers: np.ndarray = field(converter=_readonly, eq=_array_eq)
+    multipliers: np.ndarray = field(converter=_readonly, eq=_array_eq)
     monodromy: np.ndarray = field(converter=_readonly, eq=_array_eq)
     residual: float = field(converter=float)
     iterations: int
@@ -143,12 +199,21 @@ class PeriodicOrbit:
     message: str
     trivial_multiplier_error: float = math.nan
     integrator: str = ""
-    n_trivial_expected: int = 0
+    n_trivial_expected: int | None = 0
     n_trivial_found: int = 0
     precision_floor: float = math.nan
     defect: np.ndarray | None = field(
         default=None, converter=attrs.converters.optional(_readonly), eq=False
     )
+    found_by: OrbitRoute = field(
+        default=OrbitRoute.SHOOTING, validator=attrs.validators.instance_of(OrbitRoute)
+    )
+    resolution: float = field(default=math.nan, converter=float)
+
+    @property
+    def floquet_multipliers(self) -> np.ndarray:
+        """:attr:`multipliers`, by the name of earlier versions."""
+        return self.multipliers
 
     @property
     def success(self) -> bool:

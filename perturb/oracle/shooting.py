@@ -368,9 +368,7 @@ def find_periodic_orbit(
             n_trivial_found=count_near_one(multipliers_of(matrix)) if finite else 0,
             period=period,
             initial_state=y,
-            floquet_multipliers=multipliers_of(matrix)
-            if finite
-            else np.full(n, np.nan, dtype=complex),
+            multipliers=multipliers_of(matrix) if finite else np.full(n, np.nan, dtype=complex),
             monodromy=matrix,
             residual=residual,
             iterations=iterations,
@@ -442,7 +440,7 @@ def find_periodic_orbit(
     return PeriodicOrbit(
         period=period,
         initial_state=y,
-        floquet_multipliers=multipliers,
+        multipliers=multipliers,
         monodromy=phi,
         residual=residual,
         iterations=iterations,

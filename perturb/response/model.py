@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 from attrs import field, frozen
@@ -31,6 +32,9 @@ from perturb.steady.curve import (
     FrequencyResponse,
 )
 
+if TYPE_CHECKING:
+    from perturb.oracle import PeriodicOrbit
+
 __all__ = ["Backbone", "ProblemResponse", "TrueResponse", "problem_response"]
 
 
@@ -42,7 +46,10 @@ class TrueResponse:
     ``measure`` (of the first resonant coordinate); ``amplitude_error`` the largest distance of
     the analytic orbit from the true one over a period, relative to the true amplitude;
     ``within_tol`` whether that is within the run's ``tol``; ``reason`` why the point was chosen
-    (the largest amplitude, a side of a fold, an end, the arclength spread).
+    (the largest amplitude, a side of a fold, an end, the arclength spread); ``orbit`` the true
+    orbit shot (a :class:`~perturb.oracle.PeriodicOrbit`; None when the shooting failed), whose
+    multipliers :attr:`multipliers_true` and :attr:`floquet_max` read; ``multipliers_analytic``
+    the series' multipliers at the point.
     """
 
     value: float
@@ -50,7 +57,6 @@ class TrueResponse:
     success: bool
     amplitude: float
     amplitude_error: float
-    floquet_max: float
     stable_true: bool | None
     stable_analytic: bool | None
     message: str
@@ -58,9 +64,19 @@ class TrueResponse:
     measure: str = "initial"
     within_tol: bool | None = None
     reason: str = ""
-    multipliers_true: tuple = field(converter=tuple, factory=tuple)
     multipliers_analytic: tuple = field(converter=tuple, factory=tuple)
     curve: int = -1
+    orbit: PeriodicOrbit | None = None
+
+    @property
+    def multipliers_true(self) -> tuple:
+        """The true orbit's Floquet multipliers (empty when the shooting failed)."""
+        return () if self.orbit is None else tuple(complex(z) for z in self.orbit.multipliers)
+
+    @property
+    def floquet_max(self) -> float:
+        """The largest modulus of :attr:`multipliers_true` (NaN when there are none)."""
+        return max((abs(z) for z in self.multipliers_true), default=math.nan)
 
 
 @frozen
@@ -342,8 +358,7 @@ def _true_points(result, response, count, measure, tol) -> tuple[TrueResponse, .
     out = []
     for shot in shoot_along(result, response, count, measure, tol):
         true = shot.get("true", {})
-        multipliers = shot.get("multipliers", ())
-        largest = max((abs(z) for z in multipliers), default=math.nan)
+        orbit = shot.get("orbit")
         success = bool(shot["success"])
         out.append(
             TrueResponse(
@@ -352,17 +367,22 @@ def _true_points(result, response, count, measure, tol) -> tuple[TrueResponse, .
                 success=success,
                 amplitude=shot["analytic"][first],
                 amplitude_error=shot.get("orbit_error", math.nan),
-                floquet_max=largest,
-                stable_true=(largest < 1) if success else None,
+                stable_true=_stable(orbit) if success else None,
                 stable_analytic=shot["stable_analytic"],
                 message=shot["message"],
                 true_amplitude=true.get(first, math.nan),
                 measure=measure,
                 within_tol=shot.get("within_tol"),
                 reason=shot["reason"],
-                multipliers_true=multipliers,
                 multipliers_analytic=shot["multipliers_analytic"],
                 curve=shot["curve"],
+                orbit=orbit,
             )
         )
     return tuple(out)
+
+
+def _stable(orbit: PeriodicOrbit | None) -> bool:
+    """All the orbit's multipliers inside the unit circle (False when there are none: NaN)."""
+    multipliers = () if orbit is None else orbit.multipliers
+    return max((abs(complex(z)) for z in multipliers), default=math.nan) < 1

@@ -378,8 +378,8 @@ def _bifurcation(kind, lam, here, monodromy, lo, hi, located, note) -> TrueBifur
         rotation = abs(math.atan2(multiplier.imag, multiplier.real)) / (2 * math.pi)
     return TrueBifurcation(
         kind=kind, value=lam, norms=here.norms, peaks=here.peaks, multiplier=multiplier,
-        multipliers=here.multipliers, harmonics=here.harmonics, inside=bool(lo <= lam <= hi),
-        located=located, note=note, rotation=rotation, state=here.state,
+        orbit=here.orbit, harmonics=here.harmonics, inside=bool(lo <= lam <= hi),
+        located=located, note=note, rotation=rotation,
     )  # fmt: skip
 
 

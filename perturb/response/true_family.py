@@ -8,6 +8,7 @@ the scaled equations the continuation follows, and the Floquet test functions.""
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -20,6 +21,9 @@ from perturb._defaults import (
 from perturb.errors import PerturbError
 from perturb.response.true_results import NEIMARK_SACKER, PERIOD_DOUBLING, TruePoint
 from perturb.system import Regime
+
+if TYPE_CHECKING:
+    from perturb.oracle import PeriodicOrbit
 
 __all__ = ["OutsideDomain", "ScaledEquations", "TrueFamily", "floquet_tests"]
 
@@ -154,8 +158,11 @@ class TrueFamily:
         stable = None if abs(largest - 1.0) <= TRUE_CURVE_MULTIPLIER_TOL else largest < 1.0
         if not math.isfinite(largest):
             stable = None
+        defect = shot.defect
+        residual = float(np.max(np.abs(defect))) / max(1.0, float(np.max(np.abs(y0))))
+        orbit = self.orbit_at(lam, y0, shot.monodromy, mu, residual, 1, shot.message)
         return TruePoint(
-            lam, y0, self.norms(lam, y0), self._peaks(shot), self._harmonics(shot), mu, stable
+            lam, orbit, self.norms(lam, y0), self._peaks(shot), self._harmonics(shot), stable
         )
 
     def point_of_orbit(self, lam: float, y0, monodromy, orbit, periods: int) -> TruePoint:
@@ -171,8 +178,32 @@ class TrueFamily:
             stable = None
         orbit = np.asarray(orbit)
         peaks = {name: _peak(orbit[i]) for i, name in enumerate(self.names)}
+        found = self.orbit_at(lam, y0, mono, mu, math.nan, periods, "")
         return TruePoint(
-            lam, y0, self.norms(lam, y0), peaks, self._harmonics_of(orbit, periods), mu, stable
+            lam, found, self.norms(lam, y0), peaks, self._harmonics_of(orbit, periods), stable
+        )
+
+    def orbit_at(
+        self, lam, y0, monodromy, multipliers, residual, periods, failure
+    ) -> PeriodicOrbit:
+        """The true orbit of a point on a continued curve (``periods`` response periods; its
+        ``residual`` relative to the state's size, NaN where the composed map does not give
+        it; ``failure`` the integrator's message when its shot failed)."""
+        from perturb.oracle import OrbitRoute, OrbitStatus, PeriodicOrbit
+
+        finite = bool(np.all(np.isfinite(monodromy)))
+        status = OrbitStatus.CONVERGED if finite else OrbitStatus.INTEGRATION_FAILED
+        return PeriodicOrbit(
+            period=self.family.period * periods / self.omega(lam),
+            initial_state=y0,
+            multipliers=multipliers,
+            monodromy=monodromy,
+            residual=residual,
+            iterations=0,
+            status=status,
+            message=failure or status.value,
+            integrator=getattr(self.family.integrator, "name", ""),
+            found_by=OrbitRoute.CONTINUATION,
         )
 
     def norms(self, lam: float, y0) -> dict:

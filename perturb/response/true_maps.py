@@ -176,34 +176,33 @@ def refine(equations: MapEquations, test, x0) -> tuple[np.ndarray | None, float]
         None when Newton does not converge to ``REFINE_TOL`` within ``REFINE_MAX_ITER`` steps
         (the secant's point is then kept).
     """
-    x = np.array(x0, dtype=float)
-    m = len(x) - 1
+    from perturb.continuation import CurveEquations, newton
 
     def psi(y):
         mono = equations.monodromy(y)
         return math.nan if mono is None else float(test(mono))
 
-    for _ in range(REFINE_MAX_ITER):
-        g = equations.residual(x)
-        jac = equations.jacobian(x)
-        value = psi(x)
-        if not (np.all(np.isfinite(g)) and np.all(np.isfinite(jac)) and math.isfinite(value)):
-            return None, math.nan
-        gradient = np.empty(m + 1)
-        for i in range(m + 1):
+    def residual(x):
+        return np.append(equations.residual(x), psi(x))
+
+    def jacobian(x):
+        jac = equations.jacobian(x)  # before the probes: the shot at x is still cached
+        gradient = np.empty(len(x))
+        for i in range(len(x)):
             h = REFINE_STEP * max(1.0, abs(float(x[i])))
             up, down = x.copy(), x.copy()
             up[i] += h
             down[i] -= h
             gradient[i] = (psi(up) - psi(down)) / (2 * h)
-        if not np.all(np.isfinite(gradient)):
-            return None, math.nan
-        matrix = np.vstack((jac, gradient))
-        try:
-            step = np.linalg.solve(matrix, -np.append(g, value))
-        except np.linalg.LinAlgError:
-            return None, math.nan
-        x = x + step
-        if float(np.max(np.abs(step))) <= REFINE_TOL * max(1.0, float(np.max(np.abs(x)))):
-            return x, psi(x)
-    return None, math.nan
+        return np.vstack((jac, gradient))
+
+    def square_step(x, g, jac):
+        return np.linalg.solve(jac, -g)
+
+    found = newton(
+        CurveEquations(residual, jacobian), x0, square_step, REFINE_MAX_ITER, REFINE_TOL,
+        contracting=False, jacobian_at_end=False,
+    )  # fmt: skip
+    if not (found.converged and found.finite):
+        return None, math.nan
+    return found.x, psi(found.x)

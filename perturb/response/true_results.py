@@ -4,11 +4,15 @@ curves and partings (:mod:`perturb.response.true_curve` computes them)."""
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from attrs import field, frozen
 
 from perturb._defaults import TRUE_CURVE_SAME_ORBIT
 from perturb.errors import bad_value
+
+if TYPE_CHECKING:
+    from perturb.oracle import PeriodicOrbit
 
 __all__ = ["Parting", "TrueBifurcation", "TrueCurve", "TrueCurves", "TruePoint", "same_point"]
 
@@ -29,8 +33,10 @@ class TruePoint:
     ----------
     value : float
         The swept parameter's value.
-    state : tuple of float
-        The state at t = 0 (θ = 0): ``(x..., xdot...)``.
+    orbit : PeriodicOrbit
+        The true orbit (``found_by`` :attr:`~perturb.oracle.OrbitRoute.CONTINUATION`): its state
+        at t = 0 (θ = 0), ``(x..., xdot...)``, its period in physical time, its multipliers and
+        monodromy; :attr:`state` and :attr:`multipliers` read them.
     norms : dict
         Per resonant coordinate, the measure the analytic curve plots: the first harmonic's
         amplitude read from the initial values, :math:`\\sqrt{x(0)^2 + (\\dot x(0)\\,p/(m\\Omega))^2}`.
@@ -38,20 +44,27 @@ class TruePoint:
         Per coordinate, max ``|x|`` over one period.
     harmonics : dict
         Per resonant coordinate, the amplitude of its resonant harmonic (Fourier, over a period).
-    multipliers : tuple of complex
-        The Floquet multipliers (eigenvalues of the monodromy).
     stable : bool or None
         All multipliers inside the unit circle (None: the largest within
         ``TRUE_CURVE_MULTIPLIER_TOL`` of it, a conservative system's orbit).
     """
 
     value: float = field(converter=float)
-    state: tuple = field(converter=lambda v: tuple(float(x) for x in v))
+    orbit: PeriodicOrbit
     norms: dict
     peaks: dict
     harmonics: dict
-    multipliers: tuple = field(converter=_complexes)
     stable: bool | None
+
+    @property
+    def state(self) -> tuple:
+        """The orbit's state at t = 0 (θ = 0), as floats."""
+        return tuple(float(x) for x in self.orbit.initial_state)
+
+    @property
+    def multipliers(self) -> tuple:
+        """The orbit's Floquet multipliers (eigenvalues of the monodromy), as complex numbers."""
+        return _complexes(self.orbit.multipliers)
 
     def norm(self, coordinate: str | None = None) -> float:
         """The initial-value measure of ``coordinate`` (default: the first resonant one)."""
@@ -78,7 +91,9 @@ class TrueBifurcation:
         As :class:`TruePoint`'s, at the point.
     multiplier : complex
         The critical multiplier (+1, −1, or on the circle), as computed there.
-    multipliers : tuple of complex
+    orbit : PeriodicOrbit or None
+        The true orbit there (None when not known); :attr:`multipliers` and :attr:`state` read
+        it (empty when not known).
     inside : bool
         Within the sweep (False: in the margin past an end).
     located : bool
@@ -89,8 +104,6 @@ class TrueBifurcation:
     rotation : float
         At a Neimark–Sacker point, the rotation number of the torus born there: the argument of
         the complex multiplier over 2π (NaN at the other kinds).
-    state : tuple of float
-        The state at t = 0 there (empty when not known).
     """
 
     kind: str
@@ -98,13 +111,22 @@ class TrueBifurcation:
     norms: dict
     peaks: dict
     multiplier: complex = field(converter=complex)
-    multipliers: tuple = field(converter=_complexes)
+    orbit: PeriodicOrbit | None
     inside: bool
     located: bool = True
     note: str = ""
     harmonics: dict = field(factory=dict)
     rotation: float = field(default=math.nan, converter=float)
-    state: tuple = field(default=(), converter=lambda v: tuple(float(x) for x in v))
+
+    @property
+    def state(self) -> tuple:
+        """The state at t = 0 there (empty when not known)."""
+        return () if self.orbit is None else tuple(float(x) for x in self.orbit.initial_state)
+
+    @property
+    def multipliers(self) -> tuple:
+        """The Floquet multipliers there (empty when not known)."""
+        return () if self.orbit is None else _complexes(self.orbit.multipliers)
 
     def amplitude(self, coordinate: str | None = None, measure: str = "initial") -> float:
         """As :meth:`TruePoint.amplitude`, at the special point."""

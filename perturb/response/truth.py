@@ -70,8 +70,9 @@ def _rhs(system, values: dict, eps: float, omega: float) -> SymbolicRHS:
 
 
 def shoot_point(evaluator, line, u: np.ndarray, lam: float) -> dict:
-    """The true response near the order-N point (u, λ): its amplitudes by every measure, its
-    multipliers, the orbit error; ``success`` False with the shooting's message when it fails."""
+    """The true response near the order-N point (u, λ): its amplitudes by every measure, the
+    orbit (a :class:`~perturb.oracle.PeriodicOrbit`), the orbit error; ``success`` False with
+    the shooting's message when it fails."""
     equations = evaluator.equations
     system = equations.system
     x, params, eps = evaluator.rows(np.atleast_2d(u), np.array([lam]))
@@ -115,7 +116,8 @@ def shoot_point(evaluator, line, u: np.ndarray, lam: float) -> dict:
     }  # fmt: skip
     scale = max(float(np.max(np.abs(samples))), 1e-300)
     out["orbit_error"] = float(np.max(np.abs(analytic - samples))) / scale
-    out["multipliers"] = tuple(complex(z) for z in orbit.floquet_multipliers)
+    out["orbit"] = orbit
+    out["multipliers"] = tuple(complex(z) for z in orbit.multipliers)  # the orbit's, read off it
     return out
 
 

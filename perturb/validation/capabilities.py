@@ -52,8 +52,9 @@ class EulerAngles(Protocol):
 
 @runtime_checkable
 class OwnTrueOrbit(Protocol):
-    """A model-specific true periodic orbit (an :class:`~perturb.validation.OrbitEstimate`),
-    asked for only when generic shooting cannot resolve the orbit (it is dearer).
+    """A model-specific true periodic orbit (a :class:`~perturb.oracle.PeriodicOrbit`, which
+    :class:`~perturb.validation.OrbitEstimate` builds from what a finder knows), asked for only
+    when generic shooting cannot resolve the orbit (it is dearer).
 
     Examples
     --------

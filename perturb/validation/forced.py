@@ -60,7 +60,7 @@ def forced_orbit_check(
         success=True,
         period=period,
         initial_state=dict(zip(names, map(float, true_y0), strict=True)),
-        floquet=tuple(complex(z) for z in orbit.floquet_multipliers),
+        floquet=tuple(complex(z) for z in orbit.multipliers),
         n_trivial=0,
         trivial_multiplier_error=0.0,
         trivial_ok=True,

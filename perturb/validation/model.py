@@ -17,7 +17,7 @@ from attrs import field, frozen
 
 from perturb.case import Case
 from perturb.errors import bad_value
-from perturb.oracle import Integrator, SymbolicRHS
+from perturb.oracle import Integrator, OrbitRoute, OrbitStatus, PeriodicOrbit, SymbolicRHS
 from perturb.solution import PeriodicSolution
 from perturb.system import QuasilinearSystem
 from perturb.validation._quasilinear import (
@@ -152,22 +152,26 @@ class ShootingSetup:
         return cls(**dict(setup))
 
 
-@frozen
-class OrbitEstimate:
+class OrbitEstimate(PeriodicOrbit):
     """A true periodic orbit found by a model's own method (its ``true_orbit(solution)``: the
-    capability :class:`~perturb.validation.capabilities.OwnTrueOrbit`).
+    capability :class:`~perturb.validation.capabilities.OwnTrueOrbit`): a
+    :class:`~perturb.oracle.PeriodicOrbit` (``found_by`` :attr:`~perturb.oracle.OrbitRoute.MODEL`)
+    built from what such a finder knows.
 
-    Attributes
+    Parameters
     ----------
     success : bool
+        Whether it was found (status ``CONVERGED``, else ``FAILED`` with ``message``).
     period : float
         Physical period.
-    initial_state : tuple of float
+    initial_state : array_like of float
         State on the analytic solution's section, in the order of :meth:`Model.state_names`.
     message : str
         What ran, or why it failed (e.g. no extended precision available).
-    floquet : tuple of complex
+    floquet : sequence of complex
+        The Floquet multipliers (:attr:`~perturb.oracle.PeriodicOrbit.multipliers`).
     n_trivial : int or None
+        Multipliers expected at 1 (None: validation's own count).
     trivial_multiplier_error : float
     resolution : float
         Uncertainty of the orbit relative to its amplitudes.
@@ -179,19 +183,51 @@ class OrbitEstimate:
 
     >>> from perturb.validation import OrbitEstimate
     >>> estimate = OrbitEstimate(True, 6.2871, [2.0002, 0.0], message="converged")
-    >>> estimate.success, estimate.period
-    (True, 6.2871)
+    >>> estimate.success, estimate.period, estimate.found_by.name
+    (True, 6.2871, 'MODEL')
     """
 
-    success: bool
-    period: float = field(converter=float)
-    initial_state: tuple = field(converter=lambda v: tuple(float(x) for x in np.ravel(v)))
-    message: str = ""
-    floquet: tuple = field(default=(), converter=tuple)
-    n_trivial: int | None = None
-    trivial_multiplier_error: float = field(default=math.nan, converter=float)
-    resolution: float = field(default=0.0, converter=float)
-    integrator: str = ""
+    __slots__ = ()
+
+    def __init__(
+        self,
+        success: bool,
+        period: float,
+        initial_state,
+        message: str = "",
+        floquet=(),
+        n_trivial: int | None = None,
+        trivial_multiplier_error: float = math.nan,
+        resolution: float = 0.0,
+        integrator: str = "",
+    ) -> None:
+        state = np.array([float(x) for x in np.ravel(initial_state)])
+        size = state.size
+        super().__init__(
+            period=period,
+            initial_state=state,
+            multipliers=np.array([complex(z) for z in floquet], dtype=complex),
+            monodromy=np.full((size, size), math.nan),
+            residual=math.nan,
+            iterations=0,
+            status=OrbitStatus.CONVERGED if success else OrbitStatus.FAILED,
+            message=message,
+            trivial_multiplier_error=trivial_multiplier_error,
+            integrator=integrator,
+            n_trivial_expected=n_trivial,
+            found_by=OrbitRoute.MODEL,
+            resolution=resolution,
+        )
+
+    @property
+    def floquet(self) -> np.ndarray:
+        """:attr:`multipliers`, by the name of the constructor."""
+        return self.multipliers
+
+    @property
+    def n_trivial(self) -> int | None:
+        """:attr:`n_trivial_expected`, by the name of the constructor."""
+        return self.n_trivial_expected
 
 
 class Model(ABC):

@@ -19,10 +19,10 @@ from perturb._defaults import (
     STIFF_SHOOTING_TOL,
 )
 from perturb.errors import PerturbError
-from perturb.oracle import Scipy, find_periodic_orbit
+from perturb.oracle import PeriodicOrbit, Scipy, find_periodic_orbit
 from perturb.validation.capabilities import own_true_orbit
 from perturb.validation.checks import analytic_states, component_errors
-from perturb.validation.model import Equations, Model, OrbitEstimate, ShootingSetup
+from perturb.validation.model import Equations, Model, ShootingSetup
 from perturb.validation.report import OrbitCheck
 from perturb.validation.setup import amplitudes, integrator_for
 
@@ -92,7 +92,7 @@ def orbit_check(
     found = dict(
         period=orbit.period,
         initial_state=dict(zip(names, map(float, orbit.initial_state), strict=True)),
-        floquet=tuple(complex(z) for z in orbit.floquet_multipliers),
+        floquet=tuple(complex(z) for z in orbit.multipliers),
         trivial_multiplier_error=orbit.trivial_multiplier_error,
         integrator=orbit.integrator,
     )
@@ -102,7 +102,7 @@ def orbit_check(
         model, solution, equations, y0, period, orbit.initial_state, orbit.period, integrator, rtol,
         stiff,
     )  # fmt: skip
-    multipliers = list(orbit.floquet_multipliers)
+    multipliers = list(orbit.multipliers)
     n_trivial = setup.n_trivial
     gap = abs(complex(multipliers[n_trivial]) - 1) if len(multipliers) > n_trivial else 1.0
     defect = max(float(orbit.residual), SHOOTING_PRECISION)
@@ -169,7 +169,7 @@ def with_model_true_orbit(
     unresolved check is kept with the reason appended.
     """
     try:
-        true: OrbitEstimate | None = own_true_orbit(model, solution)
+        true: PeriodicOrbit | None = own_true_orbit(model, solution)
     except PerturbError as exc:
         return _append(unresolved, f"The model's own true-orbit finder failed: {exc}")
     if true is None:
@@ -182,12 +182,12 @@ def with_model_true_orbit(
         model, solution, equations, y0, period, true.initial_state, true.period, integrator, rtol,
         stiff,
     )  # fmt: skip
-    n_trivial = unresolved.n_trivial if true.n_trivial is None else true.n_trivial
+    n_trivial = unresolved.n_trivial if true.n_trivial_expected is None else true.n_trivial_expected
     return OrbitCheck(
         success=True,
         period=true.period,
-        initial_state=dict(zip(model.state_names(), true.initial_state, strict=True)),
-        floquet=tuple(complex(z) for z in true.floquet),
+        initial_state=dict(zip(model.state_names(), map(float, true.initial_state), strict=True)),
+        floquet=tuple(complex(z) for z in true.multipliers),
         n_trivial=n_trivial,
         trivial_multiplier_error=true.trivial_multiplier_error,
         trivial_ok=true.trivial_multiplier_error <= FLOQUET_TOL,

@@ -242,8 +242,10 @@ class OrbitCheck:
         True period (NaN on failure).
     initial_state : dict
         True state at the section crossing, by name.
-    floquet : tuple of complex
-        Floquet multipliers, sorted by distance from 1 (trivial ones first).
+    multipliers : tuple of complex
+        Floquet multipliers of the true orbit, sorted by distance from 1 (trivial ones first);
+        given to the constructor as ``floquet``, and read as :attr:`floquet` too (the name of
+        the report's contract).
     n_trivial : int
         Number of multipliers expected at 1 (autonomy + first integrals / families).
     trivial_multiplier_error : float
@@ -289,7 +291,7 @@ class OrbitCheck:
     success: bool
     period: float = field(converter=float)
     initial_state: dict
-    floquet: tuple = field(converter=tuple)
+    multipliers: tuple = field(converter=tuple, alias="floquet")
     n_trivial: int
     trivial_multiplier_error: float = field(converter=float)
     trivial_ok: bool
@@ -301,6 +303,11 @@ class OrbitCheck:
     integrator: str = ""
     resolution: float = field(default=0.0, converter=float)
     resolution_limit: float = field(default=1e-3, converter=float)
+
+    @property
+    def floquet(self) -> tuple:
+        """:attr:`multipliers`, by the name of the report (its JSON keys ``floquet``)."""
+        return self.multipliers
 
     @property
     def resolved(self) -> bool:

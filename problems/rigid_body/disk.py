@@ -28,7 +28,7 @@ import sympy as sp
 
 from perturb import PeriodicSolution, Status
 from perturb.errors import InvalidParameterError
-from perturb.validation import OrbitEstimate
+from perturb.oracle import PeriodicOrbit
 from problems import register
 from problems.rigid_body._body import FastSpinBody, _user_parameter, body_parameter_specs
 from problems.rigid_body.equations import a, b
@@ -181,25 +181,14 @@ class DiskInNewtonianField(FastSpinBody):
         return [("detuning dominates", ratio, ok, sentence)]
 
     # ------------------------------------------------------------------ true orbit
-    def true_orbit(self, solution: PeriodicSolution) -> OrbitEstimate:
+    def true_orbit(self, solution: PeriodicSolution) -> PeriodicOrbit:
         """The true periodic orbit by the conditioned extended-precision shooting (Model hook).
 
         :func:`perturb.validation.validate` asks for it when its double-precision shooting cannot
         resolve the orbit (the P-multipliers sit ~eps**2 k M3**2 pi from 1); without extended
         precision (heyoka) it reports that it could not run.
         """
-        true = self.true_periodic_orbit(solution)
-        return OrbitEstimate(
-            success=true.success,
-            period=true.period,
-            initial_state=true.initial_state,
-            message=true.message,
-            floquet=true.floquet,
-            n_trivial=true.n_trivial,
-            trivial_multiplier_error=true.trivial_multiplier_error,
-            resolution=true.resolution,
-            integrator=true.integrator,
-        )
+        return self.true_periodic_orbit(solution).orbit
 
     def true_periodic_orbit(self, solution: PeriodicSolution | None = None):
         """The true periodic orbit by the conditioned extended-precision shooting (validation hook).

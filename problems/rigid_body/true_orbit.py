@@ -52,7 +52,15 @@ import sympy as sp
 from attrs import field, frozen
 
 from perturb.errors import PerturbError
-from perturb.oracle import Heyoka, SymbolicRHS, find_periodic_orbit, heyoka_available
+from perturb.oracle import (
+    Heyoka,
+    OrbitRoute,
+    OrbitStatus,
+    PeriodicOrbit,
+    SymbolicRHS,
+    find_periodic_orbit,
+    heyoka_available,
+)
 from perturb.oracle.newton import defect_noise, rounding_norm
 from problems.rigid_body._stored import stored
 from problems.rigid_body.exact_inputs import (
@@ -107,84 +115,131 @@ _SOURCES = ("true_orbit.py", "exact_inputs.py", "equations.py")
 
 @frozen
 class TrueOrbit:
-    """The disk's true periodic orbit (physical units), or why it was not found.
+    """The disk's true periodic orbit (:class:`~perturb.oracle.PeriodicOrbit`, physical units) and
+    what the disk reads off it, or why it was not found.
 
     Attributes
     ----------
-    success : bool
-        Whether the conditioned shooting converged.
-    initial_state : ndarray, shape (6,)
-        (p, q, r, gamma, gamma', gamma'') on the analytic solution's section dG = 0 (NaN on failure).
-    period : float
-        The true period in physical time.
+    orbit : PeriodicOrbit
+        The orbit (``found_by`` :attr:`~perturb.oracle.OrbitRoute.CONDITIONED`): ``initial_state``
+        (p, q, r, gamma, gamma', gamma'') on the analytic solution's section dG = 0 (NaN on
+        failure), the true ``period`` in physical time, the ``multipliers`` and ``monodromy`` of
+        the conditioned (7-D) map (the first :data:`N_TRIVIAL` multipliers are trivial, the next
+        pair is :math:`e^{\\pm i\\varphi}`), the conditioned ``residual`` (TOL corresponds to a
+        relative error RESOLUTION of P(0)), the ``resolution``: the relative uncertainty of the
+        amplitudes, :math:`|\\delta(\\beta_1, \\beta_2)| / |(\\beta_1, \\beta_2)|`, the bound
+        :func:`amplitude_resolution` of the converged orbit, and the ``status`` and ``message``.
     beta1, beta2 : float
         :math:`P(0)/\\varepsilon`, :math:`\\dot P(0)/\\varepsilon` on that section.
     alpha : float
         :math:`(T_\\tau - 2\\pi)/\\varepsilon^2`.
     first_order : tuple
         The same three from the analytic solution.
-    floquet : tuple of complex
-        Multipliers of the conditioned (7-D) map sorted by distance from 1; the first
-        :data:`N_TRIVIAL` are trivial, the next pair is :math:`e^{\\pm i\\varphi}`.
-    n_trivial : int
-    trivial_multiplier_error : float
-    residual : float
-        Conditioned periodicity defect (TOL corresponds to a relative error RESOLUTION of P(0)).
-    resolution : float
-        Relative uncertainty of the amplitudes, :math:`|\\delta(\\beta_1, \\beta_2)| /
-        |(\\beta_1, \\beta_2)|`: the bound :func:`amplitude_resolution` of the converged orbit
-        (about residual / TOL * RESOLUTION where the Newton matrix is well conditioned).
     pin_mismatch : float
         :math:`|r_1 - 1| + |\\gamma'' - \\gamma_0''|` at dG = 0.
-    iterations : int
-    status : int
-        0 converged; the shooting's negative codes; STATUS_UNAVAILABLE, STATUS_REFUSED,
-        STATUS_UNRESOLVED.
-    message : str
-    integrator : str
+
+    The orbit's own numbers are read here by their earlier names too: ``success``,
+    ``initial_state``, ``period``, ``floquet`` (the multipliers, a tuple), ``n_trivial``,
+    ``trivial_multiplier_error``, ``residual``, ``resolution``, ``iterations``, ``message``,
+    ``integrator`` and ``status`` (the integer code: 0 converged; the shooting's negative codes;
+    STATUS_UNAVAILABLE, STATUS_REFUSED, STATUS_UNRESOLVED).
     """
 
-    success: bool
-    initial_state: np.ndarray = field(eq=False)
-    period: float = field(converter=float)
+    orbit: PeriodicOrbit
     beta1: float = field(converter=float)
     beta2: float = field(converter=float)
     alpha: float = field(converter=float)
     first_order: tuple
-    floquet: tuple = field(converter=tuple)
-    n_trivial: int
-    trivial_multiplier_error: float = field(converter=float)
-    residual: float = field(converter=float)
-    resolution: float = field(converter=float)
     pin_mismatch: float = field(converter=float)
-    iterations: int
-    status: int
-    message: str
-    integrator: str = ""
+
+    @property
+    def success(self) -> bool:
+        """Whether the conditioned shooting converged and resolved the amplitudes."""
+        return self.orbit.success
+
+    @property
+    def initial_state(self) -> np.ndarray:
+        """The orbit's state on the section dG = 0."""
+        return self.orbit.initial_state
+
+    @property
+    def period(self) -> float:
+        """The true period in physical time."""
+        return self.orbit.period
+
+    @property
+    def floquet(self) -> tuple:
+        """The orbit's multipliers, as a tuple of complex."""
+        return tuple(complex(z) for z in self.orbit.multipliers)
+
+    @property
+    def n_trivial(self) -> int:
+        """The trivial multipliers of the conditioned map (:data:`N_TRIVIAL`)."""
+        return self.orbit.n_trivial_expected
+
+    @property
+    def trivial_multiplier_error(self) -> float:
+        """The orbit's trivial-multiplier error."""
+        return self.orbit.trivial_multiplier_error
+
+    @property
+    def residual(self) -> float:
+        """The conditioned periodicity defect."""
+        return self.orbit.residual
+
+    @property
+    def resolution(self) -> float:
+        """The relative uncertainty of the amplitudes."""
+        return self.orbit.resolution
+
+    @property
+    def iterations(self) -> int:
+        """Newton iterations of the last pass."""
+        return self.orbit.iterations
+
+    @property
+    def status(self) -> int:
+        """The integer code of the orbit's status."""
+        return self.orbit.status.code
+
+    @property
+    def message(self) -> str:
+        """What ran, or why it failed."""
+        return self.orbit.message
+
+    @property
+    def integrator(self) -> str:
+        """The shooting's integrator."""
+        return self.orbit.integrator
 
 
-def _failed(status: int, message: str, first_order=(math.nan,) * 3, **extra) -> TrueOrbit:
+def _failed(
+    status: int,
+    message: str,
+    first_order=(math.nan,) * 3,
+    floquet=(),
+    monodromy=None,
+    trivial_multiplier_error=math.nan,
+    residual=math.nan,
+    iterations=0,
+    integrator="",
+) -> TrueOrbit:
     nan = math.nan
-    values = dict(
-        success=False,
-        initial_state=np.full(6, nan),
+    orbit = PeriodicOrbit(
         period=nan,
-        beta1=nan,
-        beta2=nan,
-        alpha=nan,
-        first_order=first_order,
-        floquet=(),
-        n_trivial=N_TRIVIAL,
-        trivial_multiplier_error=nan,
-        residual=nan,
-        resolution=nan,
-        pin_mismatch=nan,
-        iterations=0,
-        status=status,
+        initial_state=np.full(6, nan),
+        multipliers=np.array(floquet, dtype=complex),
+        monodromy=np.full((7, 7), nan) if monodromy is None else monodromy,
+        residual=residual,
+        iterations=iterations,
+        status=OrbitStatus.of_code(status),
         message=message,
+        trivial_multiplier_error=trivial_multiplier_error,
+        integrator=integrator,
+        n_trivial_expected=N_TRIVIAL,
+        found_by=OrbitRoute.CONDITIONED,
     )
-    values.update(extra)
-    return TrueOrbit(**values)
+    return TrueOrbit(orbit, nan, nan, nan, first_order, nan)
 
 
 def _exact(value) -> sp.Rational:
@@ -430,9 +485,9 @@ def conditioned_true_orbit(
         u0 = np.zeros(7)
         u0[6] = orbit.initial_state[6]
         guess = orbit.period
-    floquet = tuple(complex(m) for m in orbit.floquet_multipliers)
     common = dict(
-        floquet=floquet,
+        floquet=orbit.multipliers,
+        monodromy=orbit.monodromy,
         trivial_multiplier_error=orbit.trivial_multiplier_error,
         residual=orbit.residual,
         iterations=orbit.iterations,
@@ -460,18 +515,14 @@ def conditioned_true_orbit(
             first,
             **common,
         )
-    return TrueOrbit(
-        success=True,
-        initial_state=np.asarray(y, dtype=float),
+    found = PeriodicOrbit(
         period=t_true,
-        beta1=float(z[0] / eps),
-        beta2=float(z[1] / eps),
-        alpha=alpha,
-        first_order=first,
-        n_trivial=N_TRIVIAL,
-        resolution=resolution,
-        pin_mismatch=float(abs(y[2] / r0 - 1) + abs(y[5] - g3)),
-        status=orbit.status.code,
+        initial_state=np.asarray(y, dtype=float),
+        multipliers=orbit.multipliers,
+        monodromy=orbit.monodromy,
+        residual=orbit.residual,
+        iterations=orbit.iterations,
+        status=orbit.status,
         message=(
             f"conditioned extended-precision shooting ({orbit.integrator}, exact rational "
             f"parameters) converged in {orbit.iterations} iterations: conditioned residual "
@@ -479,5 +530,19 @@ def conditioned_true_orbit(
             f"{phi:.3g} per period); true period {t_true:.12g}, beta1/eps = {z[0] / eps:.7g}, "
             f"beta2/eps = {z[1] / eps:.7g}"
         ),
-        **common,
+        trivial_multiplier_error=orbit.trivial_multiplier_error,
+        integrator=orbit.integrator,
+        n_trivial_expected=N_TRIVIAL,
+        n_trivial_found=orbit.n_trivial_found,
+        precision_floor=orbit.precision_floor,
+        found_by=OrbitRoute.CONDITIONED,
+        resolution=resolution,
+    )
+    return TrueOrbit(
+        found,
+        beta1=float(z[0] / eps),
+        beta2=float(z[1] / eps),
+        alpha=alpha,
+        first_order=first,
+        pin_mismatch=float(abs(y[2] / r0 - 1) + abs(y[5] - g3)),
     )

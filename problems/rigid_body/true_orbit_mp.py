@@ -29,6 +29,7 @@ import numpy as np
 import sympy as sp
 from attrs import frozen
 
+from perturb.oracle import OrbitRoute, OrbitStatus, PeriodicOrbit
 from problems.rigid_body.exact_inputs import (
     FamilyMember,
     exact_epsilon,
@@ -145,10 +146,15 @@ def taylor_flow(field: PolynomialField, x0: Sequence, t_end, order: int = TAYLOR
 
 @frozen
 class MpTrueOrbit:
-    """The second route's orbit: physical state on the shooting section and period, in mpf.
+    """The second route's orbit: a :class:`~perturb.oracle.PeriodicOrbit` and its 40-digit numbers.
 
     Attributes
     ----------
+    orbit : PeriodicOrbit
+        The orbit in float64 (``found_by`` :attr:`~perturb.oracle.OrbitRoute.MPMATH`): the state
+        below, rounded, its period, ``residual`` the largest component of the period-map defect
+        (scaled state), the Newton ``iterations``. No multipliers: the route's Jacobian is the
+        finite differences of its free columns, not the monodromy.
     state : tuple of mpf
         (p, q, r, gamma, gamma', gamma'') at t = 0 on the section gamma' = const.
     period : mpf
@@ -157,21 +163,27 @@ class MpTrueOrbit:
         :math:`(r_0T - 2\\pi)/\\varepsilon^2`.
     beta1, beta2 : float
         :math:`P/\\varepsilon`, :math:`\\dot P/\\varepsilon` on the analytic solution's section dG = 0.
-    iterations : int
     last_step : float
         Relative size of the last Newton correction of (p, q) (the result's resolution).
-    defect : float
-        Largest component of the period-map defect (scaled state) at the result.
     """
 
+    orbit: PeriodicOrbit
     state: tuple
     period: object
     alpha: object
     beta1: float
     beta2: float
-    iterations: int
     last_step: float
-    defect: float
+
+    @property
+    def iterations(self) -> int:
+        """Newton iterations."""
+        return self.orbit.iterations
+
+    @property
+    def defect(self) -> float:
+        """Largest component of the period-map defect (scaled state) at the result."""
+        return self.orbit.residual
 
 
 def mp_true_orbit(problem, solution=None, digits: int = DIGITS) -> MpTrueOrbit:
@@ -252,13 +264,28 @@ def mp_true_orbit(problem, solution=None, digits: int = DIGITS) -> MpTrueOrbit:
     forward = problem.reduction().forward_function(problem.symbol_values(), problem.epsilon())
     _, z = _move_to_section(problem, np.array([float(v) for v in y]), forward)
     eps_float = problem.epsilon()
+    orbit = PeriodicOrbit(
+        period=float(period),
+        initial_state=[float(v) for v in y],
+        multipliers=np.empty(0, dtype=complex),
+        monodromy=np.full((6, 6), math.nan),
+        residual=largest,
+        iterations=iterations,
+        status=OrbitStatus.CONVERGED,
+        message=(
+            f"mpmath Taylor shooting ({digits} digits) converged in {iterations} iterations: "
+            f"last relative step {last_step:.1e}, defect {largest:.1e}"
+        ),
+        integrator=f"mpmath Taylor order {TAYLOR_ORDER}",
+        found_by=OrbitRoute.MPMATH,
+        resolution=last_step,
+    )
     return MpTrueOrbit(
+        orbit=orbit,
         state=y,
         period=period,
         alpha=alpha,
         beta1=float(z[0] / eps_float),
         beta2=float(z[1] / eps_float),
-        iterations=iterations,
         last_step=last_step,
-        defect=largest,
     )
