@@ -325,19 +325,20 @@ def steady_state(
 ) -> SteadyState:
     """Every branch of the driven ``system``'s response at ``values`` (:class:`SteadyState`).
 
-    The branches are named by rank at order 0 (:func:`branch_names` of the first-order
-    equations' roots) and at order N > 0 each inherits the name of its partner one order lower
+    The branches are named by rank at order 1, the lowest order a command takes
+    (:func:`branch_names`; the first-order equations, order 0, by rank too), and at order N > 1
+    each inherits the name of its partner one order lower
     (:func:`perturb.steady.lineage.inherited_names`), so that a name picks the same orbit at
     every order. ``lower``: the order-(N−1) steady state at the same values, when the caller
     keeps it (else it is computed).
     """
     from perturb.method.driven import amplitude_equations
     from perturb.steady.census import shift_symmetry
-    from perturb.steady.lineage import inherited_names
+    from perturb.steady.lineage import RANKED_ORDER, inherited_names
 
     equations = amplitude_equations(system, order)
     points, why, lowers = _branches(equations, values, epsilon, order)
-    if order <= 0 or why:
+    if order <= RANKED_ORDER or why:
         return SteadyState(points, branch_names(points, equations.harmonics), equations, why)
     if lower is None:
         lower = steady_state(system, values, epsilon, order - 1)

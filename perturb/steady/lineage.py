@@ -4,8 +4,8 @@ Naming the branches at one point by their rank (``lower``, ``middle``, ``upper``
 within each mode shape) at every order on its own lets a name jump to another orbit when two
 branches change places between orders (near a fold, where the series barely converges): ``--family
 NAME`` would then pick a different orbit when ``--order`` changes. So the ranks are read once, at
-the first-order equations (order 0: their roots are certified), and every order-N branch inherits
-the name of its partner one order lower, at the same parameters:
+order 1 (:data:`RANKED_ORDER`, the lowest order a command takes), and every branch of a higher
+order N inherits the name of its partner one order lower, at the same parameters:
 
 1. **Carried.** The order-N root carried continuously to the order-(N−1) equations (Newton, else
    the homotopy in the truncation: :meth:`perturb.steady.evaluate.PointEvaluator.lower_root`)
@@ -30,7 +30,12 @@ import numpy as np
 from perturb._defaults import ORDER_LINK, ORDER_NEAREST
 from perturb.steady.census import orbit_images
 
-__all__ = ["inherited_names", "orbit_distance"]
+__all__ = ["RANKED_ORDER", "inherited_names", "orbit_distance"]
+
+#: The order whose branches are named by rank (:func:`perturb.steady.branches.branch_names`); the
+#: orders above inherit their names. The lowest order a command takes (``--order`` and a scene's
+#: ``[solve] order`` start at 1), so that every name a user sees is read at one order.
+RANKED_ORDER = 1
 
 #: The name given to a branch with no partner one order lower (and its count).
 NO_PARTNER = "beyond-series"
