@@ -988,6 +988,19 @@ HOMOTOPY_MAX_STEP = 0.1
 #: distinct branches.
 CENSUS_SAME_ORBIT = 1e-7
 
+# -- perturb.steady.lineage
+#: An order-N branch carried to the order-(N−1) equations (Newton or the homotopy, each polished to
+#: the corrector's tolerance) lands on the order-(N−1) branch whose amplitudes agree with the root
+#: it reached to this relative distance: far above both correctors' tolerances (~1e-10), far
+#: below any two distinct branches (CENSUS_SAME_ORBIT is the census' own, tighter, identity).
+ORDER_LINK = 1e-6
+
+#: A branch not carried to one order lower is paired with the nearest order-(N−1) branch only
+#: when they differ by less than this fraction of the larger size (besides being each other's
+#: nearest, closer than half the distance to any other): two responses whose amplitudes differ
+#: by half their size are not one orbit corrected by one more order.
+ORDER_NEAREST = 0.5
+
 #: Largest fraction 1/G of the forcing period tried as a symmetry of the equations: beyond the
 #: largest harmonic a driven system's forcing has (MAX_RESONANCE_INTEGER) with room to spare.
 MAX_SHIFT_DIVISOR = 24

@@ -31,6 +31,9 @@ def _load(scene):
     except (InvalidParameterError, UnknownNameError) as exc:
         raise scene.error(f"[parameters] {exc}") from None
     if scene.family is not None:
+        from perturb.scene.run import with_order
+
+        scene = with_order(scene, problem)
         try:
             problem.families(scene.order).get(scene.family)
         except UnknownNameError as exc:
@@ -56,7 +59,7 @@ def _family_along_sweep(scene, problem, exc):
 def _cmd_report(args) -> int:
     from perturb.report.scene_output import prepare_folder, write_report
     from perturb.scene import read_scene
-    from perturb.scene.run import check_scene, run_scene
+    from perturb.scene.run import check_scene, run_scene, with_order
 
     scene = read_scene(args.scene)
     if scene.sweep is not None and scene.outputs.needs_sweep:
@@ -74,6 +77,7 @@ def _cmd_report(args) -> int:
                 "remove the plots"
             )
     problem = _load(scene)
+    scene = with_order(scene, problem)  # without [solve] order: the default of its kind
     check_scene(scene, problem, args.yes)
     # the folder is claimed now, before the computation: unwritable, or holding a file perturb
     # did not write where the report writes, it is refused (exit 2) with nothing computed

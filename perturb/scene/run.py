@@ -25,6 +25,7 @@ import time
 import warnings
 from collections.abc import Callable
 
+import attrs
 import numpy as np
 from attrs import field, frozen
 
@@ -36,7 +37,28 @@ from perturb.validation.capabilities import has_euler_angles
 from perturb.validation.model import Model
 from perturb.validation.system_model import as_model
 
-__all__ = ["SceneResult", "check_scene", "run_scene"]
+__all__ = ["SceneResult", "check_scene", "run_scene", "with_order"]
+
+
+def with_order(scene: Scene, problem) -> Scene:
+    """``scene`` with its order: its own ``[solve] order``, else the one default order of every
+    command for ``problem``'s kind (:attr:`perturb.validation.frames.FrameWork.default_order`:
+    3 for a driven problem, 1 for a free one).
+
+    Examples
+    --------
+    >>> from perturb.scene import parse_scene
+    >>> from problems import get_problem
+    >>> scene = parse_scene('[problem]\\nname = "forced-duffing"')
+    >>> with_order(scene, get_problem("forced-duffing").create()).order
+    3
+    """
+    if scene.order is not None:
+        return scene
+    from perturb.validation.frames import work_of
+
+    model = as_model(problem)
+    return attrs.evolve(scene, order=work_of(model.system()).default_order)
 
 
 @frozen
@@ -153,6 +175,7 @@ def check_scene(scene: Scene, problem, yes: bool = False) -> None:
         ``yes``.
     """
     model = as_model(problem)
+    scene = with_order(scene, model)
     outputs = scene.outputs
     from perturb.cost import modes_of
 
@@ -220,7 +243,8 @@ def run_scene(scene: Scene, problem, yes: bool = False) -> SceneResult:
     Parameters
     ----------
     scene : Scene
-        The parsed scene (:func:`perturb.scene.read_scene`).
+        The parsed scene (:func:`perturb.scene.read_scene`); without an order, the default order
+        of ``problem``'s kind (:func:`with_order`), which ``result.scene`` carries.
     problem : perturb.validation.Model
         The scene's problem, already created with the scene's parameters (and family).
     yes : bool
@@ -240,6 +264,7 @@ def run_scene(scene: Scene, problem, yes: bool = False) -> SceneResult:
         An unknown integrator name (from the oracle, before any integration).
     """
     model = as_model(problem)
+    scene = with_order(scene, model)
     check_scene(scene, model, yes)
     outputs = scene.outputs
 

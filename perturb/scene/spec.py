@@ -9,7 +9,7 @@ A scene is a TOML file naming a problem, its parameters, the solve settings and 
     [parameters]                  # any problem parameter; the rest take the problem's defaults
     r0 = 0.755155
     [solve]
-    order = 1
+    order = 1                     # default: 3 for a driven problem, 1 for a free one
     periods = 3                   # horizon, in periods of the analytic solution
     [outputs]                     # each false (empty) unless asked for
     table = true
@@ -235,7 +235,11 @@ class Scene:
         The family of periodic solutions followed (``perturb families``), None for the default.
     parameters : dict
         Parameter values by name; the others take the problem's defaults.
-    order : int
+    order : int or None
+        ``[solve] order``; None when the scene gives none: the one default order of every
+        command (3 for a driven problem, 1 for a free one:
+        :attr:`perturb.validation.frames.FrameWork.default_order`), put in when the scene runs
+        (:func:`perturb.scene.run.with_order`) and printed in its summary.
     periods : float
         Horizon in periods of the analytic solution.
     samples : int
@@ -263,7 +267,7 @@ class Scene:
     problem: str
     family: str | None = None
     parameters: dict = field(factory=dict, converter=dict)
-    order: int = 1
+    order: int | None = None
     periods: float = float(SCENE_PERIODS)
     samples: int = SCENE_SAMPLES_PER_PERIOD
     integrator: str | None = None
@@ -573,7 +577,7 @@ def parse_scene(text: str, source: str = "<scene>", folder: str = "") -> Scene:
     --------
     >>> scene = parse_scene('[problem]\\nname = "duffing"\\n[outputs]\\ntable = true')
     >>> scene.problem, scene.order, scene.outputs.table, scene.outputs.validation
-    ('duffing', 1, True, False)
+    ('duffing', None, True, False)
     """
     if not isinstance(text, str):
         raise SceneError(f"{source}: the scene must be text (TOML), got {type(text).__name__}")

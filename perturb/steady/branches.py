@@ -65,6 +65,13 @@ def branches_at(
         The branches sorted by amplitude (max ``|x|``), and "" or why the roots could not be
         enumerated (then the list is empty: never a silent drop).
     """
+    points, why, _ = _branches(equations, values, epsilon, order)
+    return points, why
+
+
+def _branches(equations: AmplitudeEquations, values: Mapping, epsilon: float, order: int):
+    """:func:`branches_at` with each branch's order-(N−1) root reached from it (None: none was,
+    or order 0), in the branches' order: ``(points, why, lowers)``."""
     from perturb.steady.evaluate import PointEvaluator
     from perturb.steady.line import excitation_frequency, line_of_values
     from perturb.steady.traced import trace
@@ -78,7 +85,7 @@ def branches_at(
     if swept is None:  # no detuning to follow: the point's roots carried by the homotopy alone
         swept = names[0] if names else None
     if swept is None:
-        return [], "the system has no parameter to continue its branches in"
+        return [], "the system has no parameter to continue its branches in", []
     line = line_of_values(names, floats, float(epsilon), swept)
     centre = floats[swept]
     half = max(SINGLE_POINT_WINDOW, SINGLE_POINT_SHARE * abs(centre))
@@ -86,10 +93,10 @@ def branches_at(
                    folds=False)  # fmt: skip
     census_failed = [f for f in traced.failures if f.startswith(f"{swept} = ")]
     if census_failed:
-        return [], census_failed[0].split(": ", 1)[1]
+        return [], census_failed[0].split(": ", 1)[1], []
     found = traced.at([centre])[0]
     if not found:
-        return [], ""
+        return [], "", []
     evaluator = PointEvaluator(equations, line)
     at = evaluator.evaluate([u for u, _ in found], [centre] * len(found))
     trouble = "; ".join(traced.failures)
@@ -122,7 +129,8 @@ def branches_at(
                 liouville=float(stability.liouville[k]),
             )
         )
-    return sorted(out, key=lambda p: (*p.peak.values(), *p.norms.values())), ""
+    ranked = sorted(range(len(out)), key=lambda k: (*out[k].peak.values(), *out[k].norms.values()))
+    return [out[k] for k in ranked], "", [at["lower"][k] for k in ranked]
 
 
 def count_name(name: str) -> bool:
@@ -312,10 +320,31 @@ class SteadyState:
         return FamilyList(system_name, order, 1, families, why=why)
 
 
-def steady_state(system, values: Mapping, epsilon: float, order: int = 1) -> SteadyState:
-    """Every branch of the driven ``system``'s response at ``values`` (:class:`SteadyState`)."""
+def steady_state(
+    system, values: Mapping, epsilon: float, order: int = 1, lower: SteadyState | None = None
+) -> SteadyState:
+    """Every branch of the driven ``system``'s response at ``values`` (:class:`SteadyState`).
+
+    The branches are named by rank at order 1, the lowest order a command takes
+    (:func:`branch_names`; the first-order equations, order 0, by rank too), and at order N > 1
+    each inherits the name of its partner one order lower
+    (:func:`perturb.steady.lineage.inherited_names`), so that a name picks the same orbit at
+    every order. ``lower``: the order-(N−1) steady state at the same values, when the caller
+    keeps it (else it is computed).
+    """
     from perturb.method.driven import amplitude_equations
+    from perturb.steady.census import shift_symmetry
+    from perturb.steady.lineage import RANKED_ORDER, inherited_names
 
     equations = amplitude_equations(system, order)
-    points, why = branches_at(equations, values, epsilon, order)
-    return SteadyState(points, branch_names(points, equations.harmonics), equations, why)
+    points, why, lowers = _branches(equations, values, epsilon, order)
+    if order <= RANKED_ORDER or why:
+        return SteadyState(points, branch_names(points, equations.harmonics), equations, why)
+    if lower is None:
+        lower = steady_state(system, values, epsilon, order - 1)
+    if lower.why:  # no branches one order lower to inherit from: named by rank here
+        return SteadyState(points, branch_names(points, equations.harmonics), equations, why)
+    names = inherited_names(
+        points, lowers, lower.points, lower.names, equations.harmonics, shift_symmetry(system)
+    )
+    return SteadyState(points, names, equations, why)

@@ -6,8 +6,9 @@ same λ — Newton from it, else the homotopy in the truncation from τ = 1 to 0
 its error is the largest distance over a period between the order-N state and the order-(N−1)
 state at that root: the last correction, which bounds the error of order N wherever the series
 converges (the next correction is smaller). A point with no order-(N−1) root reached from it (the
-homotopy turns back) is a root of the truncated series that the series one order lower does not
-have: not a motion the series describes (in the O(ε^N) band beside a fold, not a sure one); a
+homotopy turns back) is a root of the order-N equations that the series one order lower does not
+have: the series does not vouch for it (in the O(ε^N) band beside a fold it may be a true orbit or
+none; only a shooting from it tells, and the label never claims either); a
 point whose terms of order ≥ 1 do not decrease is outside the series' domain too. Both are
 ``series_ok`` False, with the reason.
 """
@@ -86,7 +87,8 @@ class PointEvaluator:
                 return "", reached[-1][:-1]
         return (
             f"no order-{self.order - 1} root is reached from it at this {self.line.parameter} "
-            "(the homotopy in the truncation turns back): a root of the truncated series",
+            "(the homotopy in the truncation turns back): the series does not vouch for it "
+            "(a shooting from it tells whether a true orbit is near)",
             None,
         )
 
@@ -170,6 +172,7 @@ class PointEvaluator:
         sizes = self.terms.sizes(x)[:, self.resonant]
         reasons = [series_estimate(s)[1] for s in sizes]
         error = [dict.fromkeys(coords, float("nan")) for _ in lam]
+        lowers: list = [None] * len(lam)
         if check_lower == "along":
             lower = self.lower_order_along(u, lam)
             reasons = [[*r, *filter(None, [why])] for r, why in zip(reasons, lower, strict=True)]
@@ -178,7 +181,8 @@ class PointEvaluator:
             reasons = [
                 [*r, *filter(None, [why])] for r, (why, _) in zip(reasons, found, strict=True)
             ]
-            error = self._estimate(cos, sin, [v for _, v in found], lam)
+            lowers = [v for _, v in found]
+            error = self._estimate(cos, sin, lowers, lam)
         steps = MAGNUS_DRAW_STEPS if check_lower == "along" else MAGNUS_STEPS
         stability = stability_along(self.motion, self.series, x, params, eps, steps)
         return {
@@ -186,5 +190,6 @@ class PointEvaluator:
             "stability": stability,
             "error": error,
             "reasons": reasons,
+            "lower": lowers,
             "eps": eps,
         }

@@ -45,12 +45,14 @@ _STEADY: dict[tuple, object] = {}
 
 def steady_states(system, order: int, symbol_values: Mapping[str, float], epsilon: float):
     """Every branch of the driven ``system``'s response at a point
-    (:func:`perturb.steady.steady_state`), kept per system, order and point."""
+    (:func:`perturb.steady.steady_state`), kept per system, order and point (the order below,
+    whose names the branches inherit, kept with it)."""
     from perturb.steady import steady_state
 
     key = (system, order, tuple(sorted(symbol_values.items())), epsilon)
     if key not in _STEADY:
-        _STEADY[key] = steady_state(system, dict(symbol_values), epsilon, order)
+        lower = steady_states(system, order - 1, symbol_values, epsilon) if order > 0 else None
+        _STEADY[key] = steady_state(system, dict(symbol_values), epsilon, order, lower)
     return _STEADY[key]
 
 

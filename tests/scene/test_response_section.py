@@ -97,7 +97,7 @@ def test_the_report_holds_the_same_curve_as_perturb_response(tmp_path, capsys):
     summary = capsys.readouterr().out
     assert main(
         ["response", "forced-duffing", "--set", "eps=0.05", "--sweep", "Omega=1.0:1.1:6",
-         "--order", "1", "--format", "json"]  # the scene's [solve] order (the command's is 3)
+         "--format", "json"]  # no order in the scene nor here: the one default of its kind
     ) == 0  # fmt: skip
     command = json.loads(capsys.readouterr().out)
     written = json.loads((folder / "response.json").read_text())
