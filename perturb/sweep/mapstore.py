@@ -26,6 +26,7 @@ from perturb.sweep.store import (
     STATE,
     SweepStore,
     _attrs_of,
+    _check_chunk_entries,
     _consolidate,
     _coordinate,
     _empty_folder,
@@ -104,6 +105,7 @@ class MapStore(SweepStore):
                 raise _refuse(path, "already holds this very request",
                               "pass --resume (resume=True in Python) to continue it, or choose "
                               "a new path")  # fmt: skip
+            _check_chunk_entries(path)
             return True
         parent = path.parent if str(path.parent) else Path(".")
         if not parent.is_dir():

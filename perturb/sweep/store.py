@@ -65,6 +65,47 @@ def _refuse(path: Path, why: str, fix: str) -> InvalidParameterError:
     return InvalidParameterError(f"--output {str(path)!r}: {why}; {fix}")
 
 
+def _check_chunk_entries(path: Path) -> None:
+    """Raise when a chunk's place in the store at ``path`` holds something perturb never writes
+    there (a folder, a link): found from the arrays' metadata before any work (a cluster started,
+    a solution derived), so the refusal is the run's one line.
+
+    Arrays whose chunk keys are not the default ``c/i/j`` layout are left to the resume's own
+    check (:meth:`SweepStore.sound`).
+    """
+    for array in sorted(path.iterdir()):
+        meta = array / "zarr.json"
+        if array.is_symlink() or not meta.is_file() or array == path:
+            continue
+        try:
+            spec = json.loads(meta.read_text())
+            ndim = len(spec["shape"])
+            encoding = spec.get("chunk_key_encoding") or {}
+            separator = (encoding.get("configuration") or {}).get("separator", "/")
+        except (OSError, ValueError, KeyError, TypeError):
+            continue  # unreadable metadata: the store is rebuilt on resume
+        if encoding.get("name") != "default" or separator != "/" or ndim == 0:
+            continue
+        root = array / "c"
+        if not root.exists() and not root.is_symlink():
+            continue
+        stack = [(root, 0)]
+        while stack:
+            place, depth = stack.pop()
+            bad = place.is_symlink() or (
+                not place.is_dir() if depth < ndim else not place.is_file()
+            )
+            if bad:
+                key = place.relative_to(array).as_posix()
+                raise _refuse(
+                    path,
+                    f"is damaged: {array.name}/{key} there is not a chunk file (a folder, a link)",
+                    "move it away (perturb removes nothing it did not write), then --resume",
+                )
+            if depth < ndim:
+                stack.extend((child, depth + 1) for child in place.iterdir())
+
+
 def _attrs_of(path: Path) -> dict | None:
     """The attributes of the sweep store at ``path``, None if it is not one."""
     zarr = _zarr()
@@ -130,6 +171,7 @@ class SweepStore:
                 )
             if attrs.get("fingerprint") != spec.fingerprint(version):
                 raise _refuse(path, _difference(attrs, spec, version), "choose a new path")
+            _check_chunk_entries(path)
             return True
         parent = path.parent if str(path.parent) else Path(".")
         if not parent.is_dir():

@@ -129,3 +129,23 @@ def test_basins_without_xarray_names_the_extra_not_an_internal_error(capsys, mon
     assert code == 2 and out == ""
     assert "xarray" in err and "perturb-poincare[sweep]" in err and "internal" not in err
     assert len(err.strip().splitlines()) == 1
+
+
+def test_a_basin_store_with_a_folder_for_a_chunk_is_refused_in_one_line(capsys, tmp_path):
+    """A folder where perturb writes a chunk: --resume refuses it in one line (exit 2), naming the
+    place, before any cluster starts; nothing is removed."""
+    pytest.importorskip("distributed")
+    store = tmp_path / "b.zarr"
+    grid = ["--grid", "x=-3:3:6", "--grid", "xdot=-3:3:6", "--output", str(store), "--workers",
+            "1", "--quiet"]  # fmt: skip
+    code, _, err = run(capsys, "basins", *BISTABLE, *grid)
+    assert code == 0, err
+    chunk = next(p for p in (store / "code" / "c").rglob("*") if p.is_file())
+    chunk.unlink()
+    chunk.mkdir()
+    before = sorted(p.relative_to(store).as_posix() for p in store.rglob("*"))
+    code, out, err = run(capsys, "basins", *BISTABLE, *grid[:-1], "--resume")  # not --quiet
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and "there is not a chunk file" in err
+    assert chunk.relative_to(store).as_posix() in err
+    assert sorted(p.relative_to(store).as_posix() for p in store.rglob("*")) == before

@@ -109,6 +109,33 @@ def test_a_damaged_chunk_is_computed_again_with_the_same_numbers(
         _same(ds[variable].values, original[1][variable].values, variable)
 
 
+@pytest.mark.parametrize("damage", ["folder", "link"])
+def test_a_chunk_place_holding_a_folder_or_a_link_is_refused_before_any_work(
+    original, tmp_path, damage, monkeypatch
+):
+    """A folder or a link where perturb writes a chunk: refused from the store's own files, with
+    the place named, before a cluster is asked for (no client, no workers: the check comes first)
+    and before the solution is derived; nothing is removed."""
+    store = _copy(original, tmp_path)
+    chunk = _chunks(store, "period")[1]
+    chunk.unlink()
+    if damage == "folder":
+        chunk.mkdir()
+    else:
+        chunk.symlink_to(_chunks(store, "status")[0])
+    before = sorted(p.name for p in store.rglob("*"))
+    import perturb.sweep.driver as driver
+
+    def no_cluster(*args, **kwargs):
+        raise AssertionError("a cluster was asked for before the store was checked")
+
+    monkeypatch.setattr(driver, "Cluster", no_cluster)
+    with pytest.raises(InvalidParameterError, match=rf"period/c/{chunk.name} there is not a chunk"):
+        perturb.sweep(get_problem("duffing").create(), AXIS, validate=True, output=store,
+                      chunk_points=CHUNK, resume=True)  # fmt: skip
+    assert sorted(p.name for p in store.rglob("*")) == before
+
+
 def _same(actual, desired, name) -> None:
     """Equal codes and texts; floats within :data:`SAME_NUMBERS` (NaN where NaN)."""
     if np.issubdtype(np.asarray(desired).dtype, np.floating):
