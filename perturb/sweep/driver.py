@@ -29,9 +29,7 @@ from attrs import frozen
 
 from perturb._defaults import (
     SWEEP_CHUNKS_PER_WORKER,
-    SWEEP_CONNECT_RETRY,
     SWEEP_CONNECT_SECONDS,
-    SWEEP_HANDSHAKE_BYTES,
     SWEEP_MAX_CHUNK_POINTS,
     SWEEP_OVERHEAD_SHARE,
     SWEEP_PILOT_GROWTH,
@@ -46,6 +44,7 @@ from perturb._defaults import (
 from perturb.errors import InvalidParameterError
 from perturb.progress import notify, stage
 from perturb.sweep.grid import Chunking
+from perturb.sweep.scheduler import probe, refused
 from perturb.sweep.spec import SweepJob
 from perturb.sweep.task import run_chunk
 from perturb.sweep.watch import scatter, watched
@@ -315,82 +314,22 @@ def _private():
         ) from None
 
 
-def _refused(address: str, timeout: float, reason: str) -> InvalidParameterError:
-    return InvalidParameterError(
-        f"--scheduler (scheduler=) {address!r}: no Dask scheduler answered within {timeout:g} s "
-        f"({reason}); start one with `dask scheduler` and check the address (tcp://HOST:PORT)"
-    )
-
-
-def _probe(address: str, timeout: float) -> None:
-    """Check, within ``timeout`` seconds, that a Dask scheduler listens at the TCP ``address``:
-    it sends its handshake as soon as a connection opens (an 8-byte frame length, then the
-    frames), while a server of another kind is silent or sends something else. Other schemes
-    (``tls://``...) are left to the client."""
-    import socket
-    import struct
-    from urllib.parse import urlsplit
-
-    scheme, _, rest = address.partition("://")
-    if not rest:
-        scheme, rest = "tcp", address
-    if scheme != "tcp":
-        return
-    try:
-        parts = urlsplit(f"//{rest}")
-        host, port = parts.hostname, parts.port
-    except ValueError as exc:
-        raise _refused(address, timeout, f"the address is malformed: {exc}") from None
-    if not host or port is None:
-        raise _refused(address, timeout, "give the host and the port, tcp://HOST:PORT")
-    deadline = time.monotonic() + timeout
-    while True:  # a scheduler starting up refuses connections for a moment: retried
-        try:
-            data = _first_bytes(host, port, deadline)
-            break
-        except ConnectionRefusedError as exc:
-            if time.monotonic() + SWEEP_CONNECT_RETRY > deadline:
-                raise _refused(address, timeout, " ".join(str(exc).split())) from None
-            time.sleep(SWEEP_CONNECT_RETRY)
-        except (OSError, TimeoutError, ConnectionError) as exc:
-            reason = " ".join(str(exc).split()) or type(exc).__name__
-            if isinstance(exc, socket.timeout | TimeoutError) and "not Dask" not in reason:
-                reason = "it accepts connections but says nothing: not a Dask scheduler"
-            raise _refused(address, timeout, reason) from None
-    (length,) = struct.unpack("<Q", data)
-    if not 0 < length <= SWEEP_HANDSHAKE_BYTES:
-        raise _refused(address, timeout, "it answers, but it is not a Dask scheduler")
-
-
-def _first_bytes(host: str, port: int, deadline: float) -> bytes:
-    """The first 8 bytes a server at ``host:port`` sends when a connection opens (by
-    ``deadline``, a time of :func:`time.monotonic`)."""
-    import socket
-
-    left = max(deadline - time.monotonic(), 0.01)
-    with socket.create_connection((host, port), timeout=left) as sock:
-        data = b""
-        while len(data) < 8:
-            left = deadline - time.monotonic()
-            if left <= 0:
-                raise TimeoutError("it accepts connections but says nothing: not Dask")
-            sock.settimeout(left)
-            chunk = sock.recv(8 - len(data))
-            if not chunk:
-                raise ConnectionError("it closed the connection: not a Dask scheduler")
-            data += chunk
-    return data
-
-
 def _connect(address: str, timeout: float):
     """A client of the scheduler at ``address``, connected within ``timeout`` seconds in all
-    (the probe and the client's own connection), or a one-line refusal."""
+    (the probe and the client's own connection), or a one-line refusal.
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        No Dask scheduler answers at ``address`` within ``timeout`` seconds: the reason in one
+        line (refused, silent, another kind of server, a malformed address).
+    """
     import threading
 
     from distributed import Client
 
     deadline = time.monotonic() + timeout
-    _probe(address, timeout)
+    probe(address, timeout)
     left = max(deadline - time.monotonic(), 0.1)
     outcome: dict = {}
 
@@ -411,7 +350,7 @@ def _connect(address: str, timeout: float):
         if error is not None
         else "the connection did not complete"
     )
-    raise _refused(address, timeout, reason[:200])
+    raise refused(address, timeout, reason[:200])
 
 
 #: No pages on the HTTP servers of the local cluster's scheduler and workers (Dask starts them
