@@ -12,10 +12,15 @@ On a terminal a step is drawn at once and its elapsed time ticks; a loop is draw
 once it has lasted :data:`~perturb._defaults.PROGRESS_FIRST_SECONDS` and another every
 :data:`~perturb._defaults.PROGRESS_LINE_SECONDS` while it lasts, with the count, the rate and the
 time left for a loop, and a closing line when it ends; a quick command prints none.
+
+Progress never holds a run up: a pipe that nobody drains (a caller reading only stdout) fills,
+and a line that would wait for room in it is dropped rather than written (the computation that
+told it, and the heartbeat, go on).
 """
 
 from __future__ import annotations
 
+import select
 import threading
 import time
 from collections.abc import Callable
@@ -41,25 +46,45 @@ def duration(seconds: float) -> str:
     return f"{seconds // 3600}h{seconds % 3600 // 60:02d}m"
 
 
+def _has_room(stream) -> bool:
+    """Whether a write to ``stream`` returns at once: False only for a file descriptor the system
+    says is full (a pipe nobody reads); a stream without one, or one the system cannot be asked
+    about, is written to."""
+    try:
+        _, ready, _ = select.select([], [stream.fileno()], [], 0)
+    except (AttributeError, OSError, ValueError):
+        return True
+    return bool(ready)
+
+
 class _Line:
-    """The stream, with the width of what stands on its current line (to wipe it)."""
+    """The stream, with the width of what stands on its current line (to wipe it).
+
+    A text the stream has no room for is dropped (see the module's notes); ``dropped`` counts
+    them.
+    """
 
     def __init__(self, stream):
         self.stream = stream
         self.width = 0
+        self.dropped = 0
 
     def write(self, text: str) -> None:
+        if not _has_room(self.stream):
+            self.dropped += 1
+            return
         self.stream.write(text)
         tail = max(text.rfind("\r"), text.rfind("\n"))
         self.width = len(text) - tail - 1 if tail >= 0 else self.width + len(text)
 
     def flush(self) -> None:
-        self.stream.flush()
+        if _has_room(self.stream):
+            self.stream.flush()
 
     def wipe(self) -> None:
         """Blank the current line and return to its start."""
         if self.width:
-            self.stream.write("\r" + " " * self.width + "\r")
+            self.write("\r" + " " * self.width + "\r")
             self.width = 0
 
 

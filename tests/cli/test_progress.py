@@ -16,6 +16,7 @@ import select
 import subprocess
 import sys
 import textwrap
+import threading
 
 import pytest
 
@@ -258,3 +259,54 @@ def test_a_wait_is_drawn_on_a_terminal(tmp_path):
     assert "\rperturb: waiting for the test ... 1s so far" in text
     segments = text.split("\r")
     assert segments[-1] == "" and segments[-2].strip() == ""  # the line was wiped at the end
+
+
+def _full_pipe() -> tuple[int, int]:
+    """A pipe whose buffer is full (nobody reads it): a blocking write to it would wait forever."""
+    read, write = os.pipe()
+    os.set_blocking(write, False)
+    try:
+        while True:
+            os.write(write, b"x" * 65536)
+    except BlockingIOError:
+        pass
+    os.set_blocking(write, True)
+    return read, write
+
+
+def test_a_full_pipe_never_holds_the_reporter_up():
+    """The listener is called from the computation's own thread: a line that waited for room in
+    a pipe nobody drains would stop the run. It is dropped instead, and counted."""
+    read, write = _full_pipe()
+    stream = os.fdopen(write, "w")
+    clock = Clock()
+    reporter = Reporter(stream, terminal=False, clock=clock)
+    finished = []
+
+    def run():
+        with listening(reporter):
+            for _ in track(range(5), label="work"):
+                clock.now += 30  # every step due for a line
+        finished.append(True)
+
+    thread = threading.Thread(target=run, daemon=True)
+    thread.start()
+    thread.join(timeout=60)  # a generous bound: the loop itself takes microseconds
+    blocked = thread.is_alive()
+    os.close(read)  # a writer still waiting (the failure) now meets a broken pipe and ends
+    thread.join(timeout=60)
+    assert not blocked and finished, "the reporter waited on a full pipe"
+    assert reporter.out.dropped >= 5
+
+
+def test_a_command_whose_stderr_nobody_drains_still_ends(tmp_path):
+    """End to end: the command's progress meets a full pipe (a caller reading only stdout) and
+    the command ends with its answer all the same."""
+    read, write = _full_pipe()
+    try:
+        proc = _started(tmp_path, stderr=write)
+        os.close(write)
+        out, _ = proc.communicate(timeout=300)
+    finally:
+        os.close(read)
+    assert proc.returncode == 0 and "waiting" in out
