@@ -18,17 +18,15 @@ A scene is a TOML file naming a problem, its parameters, the solve settings and 
 The parser knows every section and key: an unknown one, a value of the wrong type or out of range
 and malformed TOML raise :class:`perturb.errors.SceneError` with one line naming the file, the line
 where it can be found, the value and the fix, and the closest known name (difflib). Problem and
-parameter names are checked later, against the problem (:func:`check_parameter_names`): this
+parameter names are checked later, against the problem (:mod:`perturb.scene.checks`): this
 module does not know the problems (``perturb`` never imports ``problems``).
 """
 
 from __future__ import annotations
 
-import difflib
 import math
-import re
 import tomllib
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Mapping
 
 import attrs
 from attrs import field, frozen
@@ -42,9 +40,9 @@ from perturb._defaults import (
     SCENE_MAX_SAMPLES_PER_PERIOD,
     SCENE_PERIODS,
     SCENE_SAMPLES_PER_PERIOD,
-    SCENE_SUGGESTION_CUTOFF,
 )
 from perturb.errors import SceneError
+from perturb.scene.checks import Checker, close_name, line_of
 
 __all__ = [
     "EULER_PLOTS",
@@ -58,8 +56,6 @@ __all__ = [
     "Scene",
     "SweepSettings",
     "WorkPrecisionSettings",
-    "check_parameter_names",
-    "check_sweep_names",
     "parse_scene",
 ]
 
@@ -97,11 +93,6 @@ EULER_PLOTS = frozenset({"euler", "orientation"})
 
 #: File formats of the plots: PNG always unless changed, PDF and SVG on request.
 PLOT_FORMATS = ("png", "pdf", "svg")
-
-
-def _close(name: str, names: Iterable[str]) -> str:
-    close = difflib.get_close_matches(name, list(names), n=1, cutoff=SCENE_SUGGESTION_CUTOFF)
-    return f" (did you mean {close[0]!r}?)" if close else ""
 
 
 # ---------------------------------------------------------------------------------- value objects
@@ -286,73 +277,6 @@ class Scene:
 
 
 # ---------------------------------------------------------------------------------- the schema
-class _Checker:
-    """Type checks of one section's values; each returns the value converted or raises."""
-
-    def __init__(self, source: str, text: str, section: str):
-        self.source, self.text, self.section = source, text, section
-
-    def fail(self, key: str | None, value: object, fix: str) -> SceneError:
-        line = _line_of(self.text, self.section, key)
-        where = f"line {line}: " if line else ""
-        name = f"[{self.section}] {key}" if key else f"[{self.section}]"
-        shown = repr(value)
-        if len(shown) > 60:
-            shown = shown[:57] + "..."
-        return SceneError(f"{self.source}: {where}{name} = {shown} is invalid: {fix}")
-
-    def boolean(self, key: str, value: object) -> bool:
-        if not isinstance(value, bool):
-            raise self.fail(key, value, "write true or false")
-        return value
-
-    def string(self, key: str, value: object) -> str:
-        if not isinstance(value, str) or not value.strip():
-            raise self.fail(key, value, 'write a non-empty string in quotes, e.g. "disk"')
-        return value.strip()
-
-    def integer(self, key: str, value: object, low: int, high: int) -> int:
-        if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
-            raise self.fail(key, value, f"write a whole number from {low} to {high}")
-        return value
-
-    def positive(self, key: str, value: object, high: float = math.inf) -> float:
-        ok = isinstance(value, int | float) and not isinstance(value, bool)
-        if not ok or not (math.isfinite(value) and 0 < value <= high):
-            limit = f" and at most {high:g}" if math.isfinite(high) else ""
-            raise self.fail(key, value, f"write a finite number > 0{limit}")
-        return float(value)
-
-    def names(self, key: str, value: object, known: tuple[str, ...]) -> tuple[str, ...]:
-        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
-            raise self.fail(key, value, f"write a list of names in quotes, from {list(known)}")
-        for item in value:
-            if item not in known:
-                raise self.fail(
-                    key, item, f"unknown name{_close(item, known)}; choose from {list(known)}"
-                )
-        if len(set(value)) != len(value):
-            raise self.fail(key, value, "name each entry once")
-        return tuple(value)
-
-
-def _line_of(text: str, section: str, key: str | None) -> int | None:
-    """The line (1-based) of ``key`` in ``[section]`` (of the header if ``key`` is None), if found."""
-    current = None
-    header = re.compile(r"^\s*\[\s*([^\[\]]+?)\s*\]")
-    for number, line in enumerate(text.splitlines(), start=1):
-        match = header.match(line)
-        if match:
-            current = match.group(1).strip().strip("\"'")
-            if key is None and current == section:
-                return number
-            continue
-        if key is not None and current == section:
-            if re.match(rf"^\s*[\"']?{re.escape(key)}[\"']?\s*=", line):
-                return number
-    return None
-
-
 _SECTIONS = ("problem", "parameters", "solve", "outputs", "work_precision", "sweep", "response")
 _OUTPUT_FLAGS = ("table", "euler", "validation", "work_precision", "latex", "sweep", "response")
 
@@ -368,7 +292,7 @@ def _keys(section: str) -> tuple[str, ...]:
     }[section]
 
 
-def _section(data: Mapping, name: str, check: _Checker) -> dict:
+def _section(data: Mapping, name: str, check: Checker) -> dict:
     """The table ``[name]`` (empty when absent), its keys checked against the schema."""
     table = data.get(name, {})
     if not isinstance(table, dict):
@@ -380,8 +304,8 @@ def _section(data: Mapping, name: str, check: _Checker) -> dict:
         if key not in known:
             raise SceneError(
                 f"{check.source}: "
-                + (f"line {line}: " if (line := _line_of(check.text, name, key)) else "")
-                + f"unknown key {key!r} in [{name}]{_close(key, known)}; the keys are "
+                + (f"line {line}: " if (line := line_of(check.text, name, key)) else "")
+                + f"unknown key {key!r} in [{name}]{close_name(key, known)}; the keys are "
                 f"{', '.join(known)}"
             )
     return table
@@ -390,13 +314,13 @@ def _section(data: Mapping, name: str, check: _Checker) -> dict:
 def _parse_data(data: Mapping, source: str, text: str) -> Scene:
     for name in data:
         if name not in _SECTIONS:
-            line = _line_of(text, name, None)
+            line = line_of(text, name, None)
             where = f"line {line}: " if line else ""
             raise SceneError(
-                f"{source}: {where}unknown section [{name}]{_close(name, _SECTIONS)}; the sections "
+                f"{source}: {where}unknown section [{name}]{close_name(name, _SECTIONS)}; the sections "
                 f"are {', '.join(f'[{s}]' for s in _SECTIONS)}"
             )
-    checkers: dict[str, _Checker] = {s: _Checker(source, text, s) for s in _SECTIONS}
+    checkers: dict[str, Checker] = {s: Checker(source, text, s) for s in _SECTIONS}
     tables = {s: _section(data, s, checkers[s]) for s in _SECTIONS}
 
     problem, c = tables["problem"], checkers["problem"]
@@ -468,7 +392,7 @@ def _parse_data(data: Mapping, source: str, text: str) -> Scene:
     return Scene(**fields, source=source, text=text)
 
 
-def _sweep_section(table: dict, c: _Checker) -> SweepSettings:
+def _sweep_section(table: dict, c: Checker) -> SweepSettings:
     """The ``[sweep]`` section, its axes parsed (their names are checked against the problem
     later, :func:`check_sweep_names`)."""
     from perturb.errors import InvalidParameterError
@@ -510,7 +434,7 @@ def _sweep_section(table: dict, c: _Checker) -> SweepSettings:
     return SweepSettings(**settings)
 
 
-def _response_section(table: dict, c: _Checker) -> ResponseSettings:
+def _response_section(table: dict, c: Checker) -> ResponseSettings:
     """The ``[response]`` section (its parameter is checked against the problem later,
     :func:`perturb.scene.run.check_scene`)."""
     from perturb.errors import InvalidParameterError
@@ -531,7 +455,7 @@ def _response_section(table: dict, c: _Checker) -> ResponseSettings:
     return ResponseSettings(**settings)
 
 
-def _check_maps(outputs: Outputs, sweep: SweepSettings | None, c: _Checker) -> None:
+def _check_maps(outputs: Outputs, sweep: SweepSettings | None, c: Checker) -> None:
     """The maps and ``sweep = true`` need a ``[sweep]``; maps two axes; three of them validation."""
     maps = [p for p in outputs.plots if p in MAP_PLOTS]
     if (maps or outputs.sweep) and sweep is None:
@@ -586,36 +510,3 @@ def parse_scene(text: str, source: str = "<scene>", folder: str = "") -> Scene:
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"{source}: malformed TOML: {' '.join(str(exc).split())}") from None
     return attrs.evolve(_parse_data(data, source, text), folder=str(folder))
-
-
-def check_sweep_names(scene: Scene, known: Iterable[str], problem: str) -> None:
-    """Raise :class:`SceneError` unless every ``[sweep]`` axis names a parameter once (the closest
-    name suggested), none also set in ``[parameters]``."""
-    if scene.sweep is None:
-        return
-    from perturb.errors import InvalidParameterError, UnknownNameError
-    from perturb.sweep.grid import check_names, parse_axis
-
-    try:
-        axes = [parse_axis(axis) for axis in scene.sweep.grid]
-        check_names(axes, list(known), problem, fixed=set(scene.parameters))
-    except (UnknownNameError, InvalidParameterError) as exc:
-        line = _line_of(scene.text, "sweep", "grid")
-        where = f"line {line}: " if line else ""
-        raise scene.error(f"{where}[sweep] {exc}") from None
-
-
-def check_parameter_names(scene: Scene, known: Iterable[str], problem: str) -> None:
-    """Raise :class:`SceneError` unless every ``[parameters]`` key is one of ``known``.
-
-    The caller knows the problem (the CLI loads it); the message suggests the closest name.
-    """
-    known = list(known)
-    for name in scene.parameters:
-        if name not in known:
-            line = _line_of(scene.text, "parameters", name)
-            where = f"line {line}: " if line else ""
-            raise scene.error(
-                f"{where}unknown parameter {name!r} of {problem}{_close(name, known)}; the "
-                f"parameters are {', '.join(known)}"
-            )
