@@ -17,7 +17,7 @@ file                        written when ``[outputs]`` has
 ==========================  ==================================================
 
 matplotlib is imported only when a plot is asked for. The folder also holds the marker
-``.perturb-report.json`` (:mod:`perturb.report.written`): the scene reported and the files perturb
+``.perturb-report.json`` (:mod:`perturb.report.folder`): the scene reported and the files perturb
 wrote. Files of an earlier report of the scene that are not asked for this time are removed when
 perturb wrote them and they are unchanged, so that the folder holds what the scene asks for; a
 file perturb did not write is never removed or overwritten (a clash is refused before any work).
@@ -35,13 +35,13 @@ from pathlib import Path
 import numpy as np
 
 from perturb.errors import OutputError
+from perturb.report.folder import STORE_TOKEN, ReportFolder, claim_folder
 from perturb.report.json_text import json_text
 from perturb.report.latex import solution_document
 from perturb.report.response import response_as_csv, response_as_dict
 from perturb.report.sweep import sweep_as_csv
 from perturb.report.validation import validation_as_dict
 from perturb.report.workprecision import work_precision_as_csv
-from perturb.report.written import STORE_TOKEN, ReportFolder, claim_folder
 from perturb.scene.spec import MAP_PLOTS, PLOT_FORMATS, PLOT_NAMES, RESPONSE_PLOTS
 
 __all__ = [
@@ -82,9 +82,9 @@ def prepare_folder(path, scene=None, *, force: bool = False) -> ReportFolder:
     """Claim the report folder ``path`` for a report of ``scene``, before any work.
 
     The folder is created if missing (with its parents). It may hold an earlier report of the
-    same scene file (recognised by the marker :data:`perturb.report.written.MARKER`), whose
+    same scene file (recognised by the marker :data:`perturb.report.folder.MARKER`), whose
     files are replaced; anything perturb did not write is never removed or overwritten
-    (:func:`perturb.report.written.claim_folder`).
+    (:func:`perturb.report.folder.claim_folder`).
 
     Parameters
     ----------
@@ -358,7 +358,7 @@ def write_report(result, folder) -> tuple[list[str], str]:
     Parameters
     ----------
     result : perturb.scene.run.SceneResult
-    folder : path or perturb.report.written.ReportFolder
+    folder : path or perturb.report.folder.ReportFolder
         A folder claimed by :func:`prepare_folder` (a path is claimed here).
 
     Returns

@@ -16,7 +16,7 @@ import pytest
 
 from perturb.cli import main
 from perturb.oracle.base import IntegratorBase
-from perturb.report.written import MARKER
+from perturb.report.folder import MARKER
 from perturb.scene import parse_scene, run_scene
 from problems import get_problem
 

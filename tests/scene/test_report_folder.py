@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from perturb.cli import main
-from perturb.report.written import MARKER
+from perturb.report.folder import MARKER
 
 SCENE = """[problem]
 name = "duffing"
