@@ -65,6 +65,16 @@ def _refuse(path: Path, why: str, fix: str) -> InvalidParameterError:
     return InvalidParameterError(f"--output {str(path)!r}: {why}; {fix}")
 
 
+def _not_a_chunk(path: Path, entry: str) -> InvalidParameterError:
+    """The refusal of a store whose chunk place ``entry`` (``array/key``) holds a folder or a
+    link: perturb writes only files there, and removes nothing it did not write."""
+    return _refuse(
+        path,
+        f"is damaged: {entry} there is not a chunk file (a folder, a link)",
+        "move it away (perturb removes nothing it did not write), then --resume",
+    )
+
+
 def _check_chunk_entries(path: Path) -> None:
     """Raise when a chunk's place in the store at ``path`` holds something perturb never writes
     there (a folder, a link): found from the arrays' metadata before any work (a cluster started,
@@ -96,12 +106,7 @@ def _check_chunk_entries(path: Path) -> None:
                 not place.is_dir() if depth < ndim else not place.is_file()
             )
             if bad:
-                key = place.relative_to(array).as_posix()
-                raise _refuse(
-                    path,
-                    f"is damaged: {array.name}/{key} there is not a chunk file (a folder, a link)",
-                    "move it away (perturb removes nothing it did not write), then --resume",
-                )
+                raise _not_a_chunk(path, f"{array.name}/{place.relative_to(array).as_posix()}")
             if depth < ndim:
                 stack.extend((child, depth + 1) for child in place.iterdir())
 
@@ -335,11 +340,7 @@ class SweepStore:
             key = array.metadata.encode_chunk_key(where + (0,) * (array.ndim - len(where)))
             chunk = self.path / name / key
             if chunk.is_symlink() or (chunk.exists() and not chunk.is_file()):
-                raise _refuse(
-                    self.path,
-                    f"is damaged: {name}/{key} there is not a chunk file (a folder, a link)",
-                    "move it away (perturb removes nothing it did not write), then --resume",
-                )
+                raise _not_a_chunk(self.path, f"{name}/{key}")
             if not chunk.is_file():
                 return False
             try:
