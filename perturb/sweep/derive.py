@@ -8,8 +8,8 @@ Three ways, chosen on the driver (:class:`Derivation`):
     the swept parameters do not enter its derivation (the disk's ``r0``: only ε changes). Each
     point is then exactly what ``perturb validate`` computes there.
 ``symbolic``
-    The problem offers a symbolic derivation (:meth:`~perturb.validation.Model.symbolic_derivation`:
-    the rigid bodies above order 1) and a swept
+    The problem offers a symbolic derivation (the capability
+    :class:`~perturb.validation.capabilities.SymbolicDerivation`: the rigid bodies above order 1) and a swept
     parameter enters its specialised derivation: the solution symbolic in the body's parameters is
     derived once and every point evaluates it. ``perturb validate`` derives for the point's
     values instead; the two are the same exact series, evaluated in another form, so they agree
@@ -38,6 +38,7 @@ from attrs import frozen
 from perturb._defaults import SWEEP_POINTS_PER_DERIVATION
 from perturb.case import CasePoints
 from perturb.errors import InvalidParameterError, PerturbError
+from perturb.validation.capabilities import symbolic_derivation
 from perturb.validation.model import Model
 
 __all__ = ["DeriveMode", "Derivation", "plan"]
@@ -89,9 +90,9 @@ class Derivation:
 
 
 def _symbolic(model: Model) -> Model:
-    """The model's symbolic derivation (:meth:`Model.symbolic_derivation`; the plan chose this
-    mode only where it is offered)."""
-    symbolic = model.symbolic_derivation()
+    """The model's symbolic derivation (:func:`~perturb.validation.capabilities.symbolic_derivation`;
+    the plan chose this mode only where it is offered)."""
+    symbolic = symbolic_derivation(model)
     if symbolic is None:
         raise InvalidParameterError(
             f"`problem` = {model.label()!r} offers no symbolic derivation: sweep it per point"
@@ -190,7 +191,7 @@ def plan(base: Model, axes, order: int, derive: str = "auto") -> tuple[Derivatio
             f"{points} points: each made once",
             tuple(entering),
         ), own
-    if base.symbolic_derivation() is not None:
+    if symbolic_derivation(base) is not None:
         solution = _symbolic(base).solve(order)
         return Derivation(
             DeriveMode.SYMBOLIC,
