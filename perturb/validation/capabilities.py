@@ -238,7 +238,17 @@ def report_extras(model) -> dict:
 class SymbolicDerivation(Protocol):
     """A model whose solution can be derived once, symbolic in its parameters, for every
     parameter set of a sweep (the rigid bodies; a problem whose solution is symbolic already
-    does not need it)."""
+    does not need it).
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import SymbolicDerivation
+    >>> from problems import get_problem
+    >>> isinstance(get_problem("disk").create(), SymbolicDerivation)
+    True
+    >>> isinstance(get_problem("duffing").create(), SymbolicDerivation)
+    False
+    """
 
     def symbolic_derivation(self): ...
 
