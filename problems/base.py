@@ -265,7 +265,7 @@ class Problem(Model, ABC):
     #: Whether :meth:`solve` derives the solution symbolic in the parameters (one derivation for
     #: every parameter set) instead of for these values; None: the problem's default: the
     #: constructor's ``symbolic``. Offered by problems that define ``symbolic_derivation`` (the
-    #: rigid bodies: the capability :class:`perturb.validation.capabilities.SymbolicDerivation`).
+    #: rigid bodies: the capability :class:`perturb.sweep.derive.SymbolicDerivation`).
     _symbolic: bool | None = field(default=None, kw_only=True)
     #: This point's :class:`~perturb.case.Case`, made on first use (the map is evaluated once).
     _case: Case | None = field(default=None, init=False, eq=False, repr=False)

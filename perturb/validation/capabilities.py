@@ -14,7 +14,6 @@ capability                  the method a model defines             asked through
 :class:`OwnShootingSetup`   ``shooting_setup()``                   :func:`own_shooting_setup`
 :class:`ValidityEstimates`  ``validity_estimates()``               :func:`validity_estimates`
 :class:`ReportExtras`       ``report_extras()``                    :func:`report_extras`
-:class:`SymbolicDerivation` ``symbolic_derivation()``              :func:`symbolic_derivation`
 ==========================  =====================================  ==========================
 """
 
@@ -27,12 +26,10 @@ __all__ = [
     "OwnShootingSetup",
     "OwnTrueOrbit",
     "ReportExtras",
-    "SymbolicDerivation",
     "ValidityEstimates",
     "own_shooting_setup",
     "own_true_orbit",
     "report_extras",
-    "symbolic_derivation",
     "validity_estimates",
 ]
 
@@ -232,44 +229,3 @@ def report_extras(model) -> dict:
     ['mu', 'regime']
     """
     return dict(model.report_extras()) if isinstance(model, ReportExtras) else {}
-
-
-@runtime_checkable
-class SymbolicDerivation(Protocol):
-    """A model whose solution can be derived once, symbolic in its parameters, for every
-    parameter set of a sweep (the rigid bodies; a problem whose solution is symbolic already
-    does not need it).
-
-    Examples
-    --------
-    >>> from perturb.validation.capabilities import SymbolicDerivation
-    >>> from problems import get_problem
-    >>> isinstance(get_problem("disk").create(), SymbolicDerivation)
-    True
-    >>> isinstance(get_problem("duffing").create(), SymbolicDerivation)
-    False
-    """
-
-    def symbolic_derivation(self): ...
-
-
-def symbolic_derivation(model):
-    """The model with its solution derived symbolic in its parameters
-    (:class:`SymbolicDerivation`), or None: not offered.
-
-    Parameters
-    ----------
-    model : Model
-
-    Returns
-    -------
-    Model or None
-
-    Examples
-    --------
-    >>> from perturb.validation.capabilities import symbolic_derivation
-    >>> from problems import get_problem
-    >>> symbolic_derivation(get_problem("duffing").create()) is None  # symbolic already
-    True
-    """
-    return model.symbolic_derivation() if isinstance(model, SymbolicDerivation) else None

@@ -257,9 +257,9 @@ class Model(ABC):
     7. optionally declare a capability of :mod:`perturb.validation.capabilities` by defining its
        method: ``validity_estimates()``, ``true_orbit(solution)`` (a model-specific true-orbit
        finder for near-degenerate cases), ``shooting_setup()``, ``euler_angles(solution, t)``
-       (rigid bodies), ``report_extras()`` (what a report adds), ``symbolic_derivation()`` (the
-       model with its solution derived once for every parameter set: a sweep's); a model
-       without one has none.
+       (rigid bodies), ``report_extras()`` (what a report adds); a model without one has none.
+       A sweep asks for ``symbolic_derivation()`` the same way
+       (:class:`perturb.sweep.derive.SymbolicDerivation`).
 
     Examples
     --------

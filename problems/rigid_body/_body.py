@@ -204,7 +204,7 @@ class FastSpinBody(Problem):
     def symbolic_derivation(self) -> FastSpinBody:
         """This body with its solution derived symbolic in its parameters
         (``solve(symbolic=True)``): a sweep derives once with it (the capability
-        :class:`perturb.validation.capabilities.SymbolicDerivation`)."""
+        :class:`perturb.sweep.derive.SymbolicDerivation`)."""
         return attrs.evolve(self, symbolic=True)
 
     def exact_values(self) -> dict[sp.Symbol, sp.Rational]:

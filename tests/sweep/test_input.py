@@ -12,13 +12,12 @@ pytest.importorskip("zarr")
 
 from perturb.cli import main  # noqa: E402
 from perturb.errors import InvalidParameterError  # noqa: E402
-from perturb.sweep.derive import Derivation, DeriveMode  # noqa: E402
+from perturb.sweep.derive import Derivation, DeriveMode, symbolic_derivation  # noqa: E402
 from perturb.sweep.grid import parse_axis  # noqa: E402
 from perturb.sweep.memory import MemoryResult  # noqa: E402
 from perturb.sweep.spec import SweepJob, check_spec  # noqa: E402
 from perturb.sweep.store import SweepStore  # noqa: E402
 from perturb.sweep.task import run_chunk  # noqa: E402
-from perturb.validation.capabilities import symbolic_derivation  # noqa: E402
 from problems import get_problem  # noqa: E402
 
 
