@@ -379,6 +379,10 @@ class OwnParameterValue(Protocol):
     def parameter_value(self) -> float: ...
 
 
+#: Whether a model class defines its own ``parameter_value()`` (:class:`OwnParameterValue`), by class.
+_OWN_PARAMETER_VALUE: dict[type, bool] = {}
+
+
 def parameter_value_of(model) -> float:
     """The value the model's solution takes for its system's own parameter: ε, or μ = 1/ε in
     the large-parameter regime — the model's own ``parameter_value()`` where it defines one
@@ -399,7 +403,11 @@ def parameter_value_of(model) -> float:
     >>> parameter_value_of(get_problem("duffing").create(eps=0.1))
     0.1
     """
-    if isinstance(model, OwnParameterValue):
+    kind = type(model)
+    own = _OWN_PARAMETER_VALUE.get(kind)
+    if own is None:  # asked once per class: a protocol's isinstance costs tens of microseconds
+        own = _OWN_PARAMETER_VALUE[kind] = isinstance(model, OwnParameterValue)
+    if own:
         return model.parameter_value()
     eps = model.epsilon()
     return 1.0 / eps if model.system().regime is Regime.LARGE else eps
