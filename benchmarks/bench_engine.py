@@ -70,11 +70,12 @@ def _worker_derive(name: str, order: int) -> dict:
 def _worker_evaluate(name: str, order: int) -> dict:
     import numpy as np
 
+    from perturb.validation.model import parameter_value_of
     from problems import get_problem
 
     problem = get_problem(name).create()
     solution = problem.solve(order)
-    values, eps = problem.symbol_values(), problem.parameter_value()
+    values, eps = problem.symbol_values(), parameter_value_of(problem)
     t = np.linspace(0.0, 100.0, N_POINTS)
     solution.evaluate(t[:10], eps, values)  # compile once
     # best of EVALUATE_REPEATS (as timeit does): a single 40 ms call varied 2x with the first

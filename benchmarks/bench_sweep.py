@@ -166,7 +166,7 @@ class Symbolic(Model):  # a sweep's derivations: solve(order, symbolic=True), or
         q = self.p.with_epsilon(eps)
         return None if q is None else Symbolic(q)
 for name in ["state_names", "state", "period", "epsilon", "system", "symbol_values",
-             "parameter_value", "label", "parameters_in_force", "method_options",
+             "label", "case", "method_options",
              "original_equations", "integrals_of_motion", "validity_estimates", "true_orbit",
              "shooting_setup", "euler_angles"]:
     setattr(Symbolic, name, (lambda n: lambda self, *a, **k: getattr(self.p, n)(*a, **k))(name))

@@ -77,7 +77,7 @@ def _probe(cls: type, base: ParameterMap | None, symbols: dict):
     """An instance of ``cls`` whose values are ``symbols`` (sympy objects; no check runs) and
     whose case reads the base map's expressions in them."""
     probe = object.__new__(cls)
-    for name, value in (("values", symbols), ("family", None), ("symbolic", None)):
+    for name, value in (("values", symbols), ("_family", None), ("_symbolic", None)):
         object.__setattr__(probe, name, value)
     real = {sp.Symbol(n, real=True): s for n, s in symbols.items()}
     object.__setattr__(probe, "_case", _SymbolicPoint(base, real))

@@ -69,6 +69,7 @@ from perturb.validation import (
     state_along,
 )
 from perturb.validation.frames import steady_states, work_of
+from perturb.validation.model import parameter_value_of
 from problems._declared import (
     checked_columns,
     older_hooks,
@@ -191,7 +192,7 @@ def _solution_reads(cls: type, values: dict) -> frozenset | None:
     if key not in _READS_CACHE:
         if len(_READS_CACHE) >= _OPTION_KEYS_SIZE:
             _READS_CACHE.clear()
-        _READS_CACHE[key] = solution_reads(cls, Problem, cls.map(), values)
+        _READS_CACHE[key] = solution_reads(cls, Problem, cls._map(), values)
     return _READS_CACHE[key]
 
 
@@ -258,12 +259,14 @@ class Problem(Model, ABC):
 
     values: dict = field(converter=dict)
     #: The family of periodic solutions :meth:`solve` follows, by its name in :meth:`families`
-    #: (None: the one :meth:`method_options` selects). Set it with :meth:`with_family`.
-    family: str | None = field(default=None, kw_only=True)
+    #: (None: the one :meth:`method_options` selects): the constructor's ``family``. Set it with
+    #: :meth:`with_family`; read it from :meth:`case` (``problem.case().family``).
+    _family: str | None = field(default=None, kw_only=True)
     #: Whether :meth:`solve` derives the solution symbolic in the parameters (one derivation for
-    #: every parameter set) instead of for these values; None: the problem's default. Offered by
-    #: problems that define ``symbolic_derivation`` (the rigid bodies).
-    symbolic: bool | None = field(default=None, kw_only=True)
+    #: every parameter set) instead of for these values; None: the problem's default: the
+    #: constructor's ``symbolic``. Offered by problems that define ``symbolic_derivation`` (the
+    #: rigid bodies: the capability :class:`perturb.sweep.derive.SymbolicDerivation`).
+    _symbolic: bool | None = field(default=None, kw_only=True)
     #: This point's :class:`~perturb.case.Case`, made on first use (the map is evaluated once).
     _case: Case | None = field(default=None, init=False, eq=False, repr=False)
 
@@ -280,7 +283,7 @@ class Problem(Model, ABC):
         known = {s.name for s in cls.parameter_specs}
         unknown = sorted(set(overrides) - known)
         if unknown:
-            told = cls.map().set_by(unknown[0], "set")  # a system symbol the map sets
+            told = cls._map().set_by(unknown[0], "set")  # a system symbol the map sets
             raise UnknownNameError(
                 f"`{unknown[0]}` is not a parameter of {cls.name}: "
                 + (f"{told} (the parameters: {sorted(known)})" if told else
@@ -312,16 +315,9 @@ class Problem(Model, ABC):
         """Numeric values of the system's free symbols, by name (from the map)."""
         return self.case().symbol_values
 
-    def parameter_value(self) -> float:
-        """The value passed to the solution for its own parameter (ε, or μ if LARGE)."""
-        from perturb import Regime
-
-        eps = self.epsilon()
-        return 1.0 / eps if self.system().regime is Regime.LARGE else eps
-
     # ------------------------------------------------------------------ the seam
     @classmethod
-    def map(cls) -> ParameterMap:
+    def _map(cls) -> ParameterMap:
         """The declared :attr:`parameter_map`, checked against the system once per class.
 
         Raises
@@ -355,9 +351,10 @@ class Problem(Model, ABC):
         family; its other points are checked as :meth:`create` checks them."""
         if self._case is None:
             made = Case(
-                self.system(), self.map(), self.values, self.family, check=self._checked,
+                self.system(), self._map(), self.values, self._family, check=self._checked,
                 model_of=self._at, check_columns=self._checked_columns,
                 solution_reads=functools.partial(_solution_reads, type(self)),
+                evaluates_directly=self._evaluates_directly(),
             )  # fmt: skip
             object.__setattr__(self, "_case", made)
         return self._case
@@ -389,9 +386,9 @@ class Problem(Model, ABC):
 
     def _carry(self, problem: Problem) -> Problem:
         """``problem`` (made at other values) on this one's family and derivation."""
-        if self.family is None and self.symbolic is None:
+        if self._family is None and self._symbolic is None:
             return problem
-        return attrs.evolve(problem, family=self.family, symbolic=self.symbolic)
+        return attrs.evolve(problem, family=self._family, symbolic=self._symbolic)
 
     def _family_options(self, order: int) -> tuple[QuasilinearSystem, dict]:
         """The system and the options that define the frame of :meth:`families` at ``order``.
@@ -442,12 +439,12 @@ class Problem(Model, ABC):
     def solve(self, order: int = 1, family: str | None = None) -> PeriodicSolution:
         """The symbolic periodic solution (cached per class, order and method options).
 
-        ``family`` (or the problem's :attr:`family`) names a family of :meth:`families` to follow
+        ``family`` (or the problem's own, :meth:`with_family`) names a family of :meth:`families` to follow
         instead of the one :meth:`method_options` selects. A driven problem's solution is the
         branch of its steady-state response at these parameter values (default: the largest
         amplitude; :meth:`families` lists them all).
         """
-        name = family if family is not None else self.family
+        name = family if family is not None else self._family
         work = work_of(self.system())  # free: one solution for all points; driven: a branch here
         if name is not None:
             return work.solve(
@@ -467,7 +464,7 @@ class Problem(Model, ABC):
 
     def state(self, solution: PeriodicSolution, t) -> dict[str, np.ndarray]:
         """The state along ``solution`` at physical times ``t``, by name."""
-        return state_along(solution, t, self.parameter_value(), self.symbol_values())
+        return state_along(solution, t, parameter_value_of(self), self.symbol_values())
 
     def with_parameters(self, **values) -> Problem:
         """The same problem with some parameters changed (validated as by :meth:`create`), on the
@@ -482,19 +479,15 @@ class Problem(Model, ABC):
 
     def period(self, solution: PeriodicSolution) -> float:
         """The period in physical time."""
-        return float(solution.period_at(self.parameter_value(), self.symbol_values()))
+        return float(solution.period_at(parameter_value_of(self), self.symbol_values()))
 
     def original_rhs(self, solution: PeriodicSolution | None = None):
         """The original equations as ``F(t, y)`` on the state of :meth:`state` (default: the system)."""
-        return self.system().vector_field(self.parameter_value(), self.symbol_values())
+        return self.system().vector_field(parameter_value_of(self), self.symbol_values())
 
     # ------------------------------------------------------------------ validation (Model)
     def label(self) -> str:
         return self.name
-
-    def parameters_in_force(self) -> dict[str, float]:
-        """Every parameter value in force (defaults included), for reports."""
-        return dict(self.values)
 
     def original_equations(self, y0: np.ndarray | None = None) -> Equations:
         """The unreduced equations: ``original_symbolic()`` if the class defines it (the older
@@ -534,8 +527,8 @@ class Problem(Model, ABC):
         # the same family: validate's slope scan re-creates the problem at other eps
         return self._carry(type(self).create(**moved.values))
 
-    def evaluates_solution_directly(self) -> bool:
+    def _evaluates_directly(self) -> bool:
         """True unless the class maps the solution to its own state or period (``state``,
-        ``period`` overridden)."""
+        ``period`` overridden): :attr:`perturb.case.Case.evaluates_directly`."""
         own = type(self).state is Problem.state and type(self).period is Problem.period
         return own and work_of(self.system()).state_is_solution()  # driven: the phase added

@@ -99,6 +99,11 @@ class Case:
         depends on besides the system's symbols (its method options read them), the others at
         ``values``; None (as the default, or as its answer): unknown, each point may have its
         own solution and :meth:`points` offers none.
+    evaluates_directly : bool, optional
+        Whether the model's state and period at every point are the solution's own
+        ``evaluate`` and ``period_at`` at the point's numbers (no map of its own, no phase
+        appended), so that the points sharing one solution can be evaluated in one vectorised
+        call (a sweep); default: False.
 
     Examples
     --------
@@ -127,6 +132,7 @@ class Case:
     model_of: Callable | None = field(default=None, eq=False, repr=False)
     check_columns: Callable | None = field(default=None, eq=False, repr=False)
     solution_reads: Callable | None = field(default=None, eq=False, repr=False)
+    evaluates_directly: bool = field(default=False, kw_only=True, eq=False, repr=False)
     _point: tuple = field(init=False, eq=False, repr=False)
     _model: list = field(init=False, eq=False, repr=False, factory=list)
 
@@ -150,6 +156,7 @@ class Case:
         model_of: Callable | None = None,
         check_columns: Callable | None = None,
         solution_reads: Callable | None = None,
+        evaluates_directly: bool = False,
     ) -> Case:
         """The case of a bare ``system`` at ``values``: each of its symbols the value of its
         name, ε its own parameter (``epsilon``, or ``1/mu`` in the large-parameter regime) —
@@ -170,6 +177,7 @@ class Case:
         return cls(
             system, mapping, values, family, check=check, model_of=model_of,
             check_columns=check_columns, solution_reads=solution_reads,
+            evaluates_directly=evaluates_directly,
         )  # fmt: skip
 
     # ------------------------------------------------------------------ the point

@@ -43,6 +43,7 @@ def _cmd_list(args=None) -> int:
 
 def _cmd_solve(args) -> int:
     from perturb.validation.capabilities import has_euler_angles, report_extras
+    from perturb.validation.model import parameter_value_of
     from problems import load_problem
 
     cls = load_problem(args.problem)
@@ -60,7 +61,7 @@ def _cmd_solve(args) -> int:
         solution = problem.solve(order)
         domain = None
         if solution.success:
-            domain = series_domain(solution, problem.parameter_value(), problem.symbol_values())
+            domain = series_domain(solution, parameter_value_of(problem), problem.symbol_values())
     notes = [str(w.message) for w in caught]
     if not solution.success or not domain.ok:
         reason = (
@@ -83,7 +84,7 @@ def _cmd_solve(args) -> int:
     report = report_extras(problem)
     payload = {
         "problem": args.problem,
-        "parameters": problem.parameters_in_force(),
+        "parameters": problem.case().values,
         "epsilon": problem.epsilon(),
         **report,
         "order": order,
@@ -139,6 +140,7 @@ def _cmd_validate(args) -> int:
 def _cmd_work_precision(args) -> int:
     from perturb._defaults import MAX_ORDER, SCENE_MAX_REPEAT
     from perturb.cost import check_cost, work_precision_cost
+    from perturb.validation.model import parameter_value_of
     from perturb.workprecision import work_precision
     from problems import load_problem
 
@@ -161,7 +163,7 @@ def _cmd_work_precision(args) -> int:
     check_cost(cost, args.yes)
     plot = _check_plot(args)
     solution = problem.solve(1)  # the horizon is periods of it: inside its domain, or refused
-    domain = series_domain(solution, problem.parameter_value(), problem.symbol_values())
+    domain = series_domain(solution, parameter_value_of(problem), problem.symbol_values())
     if not solution.success or not domain.ok:
         reason = (
             f"{solution.status.value}: {solution.message}"
@@ -266,14 +268,17 @@ def _values_of(problem) -> dict:
     """The problem's values by symbol name, with ``epsilon`` (the expansion's small parameter:
     1/mu in the large-parameter regime), to put a family's frequency in numbers."""
     from perturb.system import Regime
+    from perturb.validation.model import parameter_value_of
 
-    value = float(problem.parameter_value())
+    value = float(parameter_value_of(problem))
     large = problem.system().regime is Regime.LARGE
     return {**problem.symbol_values(), "epsilon": 1.0 / value if large else value}
 
 
 def _family_domain(problem, family) -> tuple[str, str]:
     """``(outside, beyond)`` of one family at the problem's values (``perturb solve``'s check)."""
+    from perturb.validation.model import parameter_value_of
+
     own = {p.name for p in problem.system().parameters}
     if not family.solution.success or any(
         p.name not in own for p in family.solution.system.parameters
@@ -283,7 +288,7 @@ def _family_domain(problem, family) -> tuple[str, str]:
         warnings.simplefilter("ignore")
         try:
             check = series_domain(
-                family.solution, problem.parameter_value(), problem.symbol_values()
+                family.solution, parameter_value_of(problem), problem.symbol_values()
             )
         except (ArithmeticError, ValueError, TypeError) as exc:
             return f"the series cannot be evaluated at these values ({exc})", ""

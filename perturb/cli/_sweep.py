@@ -70,7 +70,7 @@ def _cmd_sweep(args) -> int:
     axes = axes_of(args.grids)
     check_names(
         axes, [spec.name for spec in cls.parameter_specs], cls.name, fixed=set(overrides),
-        advice=lambda name: cls.map().set_by(name, "sweep"),
+        advice=lambda name: problem.case().map.set_by(name, "sweep"),
     )  # fmt: skip
     if args.family is not None:  # looked for along the grid; an unknown name exits 2 with the list
         from perturb.sweep.grid import Grid, check_size

@@ -283,7 +283,7 @@ def catalogue(problem, order: int = 1, phase: float = 0.0, motion=None) -> Catal
     saddles = [s for s in out if s.kind is StateKind.SADDLE]
     status = CatalogueStatus.OK if attractors else CatalogueStatus.NO_STABLE_STATE
     return Catalogue(
-        problem=problem.label(), values=dict(problem.parameters_in_force()), order=order,
+        problem=problem.label(), values=dict(problem.case().values), order=order,
         phase=float(phase), omega=motion.omega, names=motion.names,
         states=(*attractors, *saddles), status=status, notes=tuple(notes),
     )  # fmt: skip

@@ -353,7 +353,7 @@ def basins(
         from perturb.sweep.mapstore import MapStore
 
         fingerprint = request_fingerprint(
-            motion.label, problem.parameters_in_force(), order, float(phase), axes, box,
+            motion.label, problem.case().values, order, float(phase), axes, box,
             base_state, cap, backend, int(seed), perturb.__version__,
         )  # fmt: skip
         if MapStore.check_map(output, fingerprint, resume) is not False:

@@ -178,7 +178,7 @@ def check_request(problem, parameter: str):
         from difflib import get_close_matches
 
         close = get_close_matches(parameter, list(problem.values), n=1)
-        told = problem.map().set_by(parameter, "sweep")
+        told = problem.case().map.set_by(parameter, "sweep")
         hint = f" ({told})" if told else f" (did you mean {close[0]!r}?)" if close else ""
         raise bad_value(
             "sweep", parameter,

@@ -34,7 +34,7 @@ from perturb.progress import track
 from perturb.scene.spec import Scene
 from perturb.solution import PeriodicSolution
 from perturb.validation.capabilities import has_euler_angles
-from perturb.validation.model import Model
+from perturb.validation.model import Model, parameter_value_of
 from perturb.validation.system_model import as_model
 
 __all__ = ["SceneResult", "check_scene", "run_scene", "with_order"]
@@ -288,7 +288,7 @@ def run_scene(scene: Scene, problem, yes: bool = False) -> SceneResult:
     if not solution.success:
         failure = f"{solution.status.value}: {solution.message}"
     else:
-        domain = series_domain(solution, model.parameter_value(), model.symbol_values())
+        domain = series_domain(solution, parameter_value_of(model), model.symbol_values())
         if not domain.ok:
             failure = "the series is outside its domain: " + "; ".join(domain.reasons)
     period = math.nan if failure else float(model.period(solution))
@@ -323,7 +323,7 @@ def run_scene(scene: Scene, problem, yes: bool = False) -> SceneResult:
     return SceneResult(
         scene=scene,
         label=model.label(),
-        parameters=dict(model.parameters_in_force()),
+        parameters=dict(model.case().values),
         epsilon=float(model.epsilon()),
         solution=solution,
         failure=failure,

@@ -8,8 +8,8 @@ Three ways, chosen on the driver (:class:`Derivation`):
     the swept parameters do not enter its derivation (the disk's ``r0``: only ε changes). Each
     point is then exactly what ``perturb validate`` computes there.
 ``symbolic``
-    The problem offers a symbolic derivation (:meth:`~perturb.validation.Model.symbolic_derivation`:
-    the rigid bodies above order 1) and a swept
+    The problem offers a symbolic derivation (it defines ``symbolic_derivation()``,
+    :class:`SymbolicDerivation`: the rigid bodies above order 1) and a swept
     parameter enters its specialised derivation: the solution symbolic in the body's parameters is
     derived once and every point evaluates it. ``perturb validate`` derives for the point's
     values instead; the two are the same exact series, evaluated in another form, so they agree
@@ -31,6 +31,7 @@ from __future__ import annotations
 import enum
 import math
 from collections.abc import Mapping
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 from attrs import frozen
@@ -40,7 +41,40 @@ from perturb.case import CasePoints
 from perturb.errors import InvalidParameterError, PerturbError
 from perturb.validation.model import Model
 
-__all__ = ["DeriveMode", "Derivation", "plan"]
+__all__ = ["DeriveMode", "Derivation", "SymbolicDerivation", "plan", "symbolic_derivation"]
+
+
+@runtime_checkable
+class SymbolicDerivation(Protocol):
+    """A model whose solution can be derived once, symbolic in its parameters, for every
+    parameter set of a sweep (the rigid bodies; a problem whose solution is symbolic already
+    does not need it): a capability the model declares by defining the method.
+
+    Examples
+    --------
+    >>> from perturb.sweep.derive import SymbolicDerivation
+    >>> from problems import get_problem
+    >>> isinstance(get_problem("disk").create(), SymbolicDerivation)
+    True
+    >>> isinstance(get_problem("duffing").create(), SymbolicDerivation)
+    False
+    """
+
+    def symbolic_derivation(self): ...
+
+
+def symbolic_derivation(model):
+    """The model with its solution derived symbolic in its parameters
+    (:class:`SymbolicDerivation`), or None: not offered.
+
+    Examples
+    --------
+    >>> from perturb.sweep.derive import symbolic_derivation
+    >>> from problems import get_problem
+    >>> symbolic_derivation(get_problem("duffing").create()) is None  # symbolic already
+    True
+    """
+    return model.symbolic_derivation() if isinstance(model, SymbolicDerivation) else None
 
 
 class DeriveMode(enum.Enum):
@@ -89,9 +123,9 @@ class Derivation:
 
 
 def _symbolic(model: Model) -> Model:
-    """The model's symbolic derivation (:meth:`Model.symbolic_derivation`; the plan chose this
-    mode only where it is offered)."""
-    symbolic = model.symbolic_derivation()
+    """The model's symbolic derivation (:func:`symbolic_derivation`; the plan chose this mode
+    only where it is offered)."""
+    symbolic = symbolic_derivation(model)
     if symbolic is None:
         raise InvalidParameterError(
             f"`problem` = {model.label()!r} offers no symbolic derivation: sweep it per point"
@@ -190,8 +224,9 @@ def plan(base: Model, axes, order: int, derive: str = "auto") -> tuple[Derivatio
             f"{points} points: each made once",
             tuple(entering),
         ), own
-    if base.symbolic_derivation() is not None:
-        solution = _symbolic(base).solve(order)
+    symbolic = symbolic_derivation(base)
+    if symbolic is not None:
+        solution = symbolic.solve(order)
         return Derivation(
             DeriveMode.SYMBOLIC,
             f"{names} enter the derivation: derived once, symbolic in them",

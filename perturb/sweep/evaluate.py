@@ -3,7 +3,7 @@
 Two routes, the same numbers to rounding:
 
 * **vectorised** — for models whose state and period are the solution's own at their parameter
-  values (:meth:`~perturb.validation.Model.evaluates_solution_directly`): the points sharing one
+  values (:attr:`perturb.case.Case.evaluates_directly`): the points sharing one
   solution are evaluated in one call of :meth:`perturb.PeriodicSolution.coefficients` and
   :meth:`~perturb.PeriodicSolution.evaluate` over arrays of parameter values;
 * **per point** — :meth:`Model.period` and :meth:`Model.state` (the disk's physical state goes
@@ -33,6 +33,7 @@ from perturb._lambdify import numpy_lambdify
 from perturb.domain import DomainCheck, next_terms, series_domain
 from perturb.solution import PeriodicSolution, SolutionFailed
 from perturb.system import Regime
+from perturb.validation.model import parameter_value_of
 
 __all__ = [
     "DomainScreen",
@@ -324,7 +325,7 @@ class DomainScreen:
 
 def group_arrays(points: Sequence) -> tuple[np.ndarray, dict[str, np.ndarray]]:
     """The parameter values of ``points`` (models) as arrays: (parameter_value, symbol_values)."""
-    pv = np.array([float(m.parameter_value()) for m in points])
+    pv = np.array([float(parameter_value_of(m)) for m in points])
     rows = [m.symbol_values() for m in points]
     names = dict.fromkeys(name for row in rows for name in row)
     columns = {

@@ -177,7 +177,7 @@ def _axes(problem, grid) -> list[tuple[str, np.ndarray]]:
         )
     check_names(
         axes, list(problem.values), problem.name,
-        advice=lambda name: problem.map().set_by(name, "sweep"),
+        advice=lambda name: problem.case().map.set_by(name, "sweep"),
     )  # fmt: skip
     out = []
     for axis in axes:

@@ -90,7 +90,7 @@ class SweepSpec:
     def fixed_parameters(self) -> dict[str, float]:
         """Every parameter in force that is not swept."""
         swept = set(self.grid.names)
-        return {k: v for k, v in self.model.parameters_in_force().items() if k not in swept}
+        return {k: v for k, v in self.model.case().values.items() if k not in swept}
 
     def settings(self) -> dict:
         """The settings that define the sweep's numbers (JSON-ready)."""
@@ -156,7 +156,7 @@ class SweepJob:
 
 def model_values(model: Model, grid: Grid) -> list[float]:
     """The model's own values of the swept parameters (a point it accepts, to probe with)."""
-    values = model.parameters_in_force()
+    values = model.case().values
     return [values[name] for name in grid.names]
 
 
@@ -208,7 +208,7 @@ def check_spec(
             "problem", model, "pass a problem instance (problems.get_problem(name).create(...))"
         )
     grid = axes if isinstance(axes, Grid) else Grid(tuple(axes))
-    known = list(model.parameters_in_force())
+    known = list(model.case().values)
     check_names(grid.axes, known, model.label())
     for name in grid.names:
         if name in RESERVED_DIMS:

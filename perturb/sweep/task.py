@@ -32,6 +32,7 @@ from perturb.sweep.evaluate import (
 from perturb.sweep.quantities import CHECK_CODES, LEGACY_NONE, check_names, variables
 from perturb.sweep.spec import SweepJob
 from perturb.sweep.status import NOT_COMPUTED, PointStatus, code_of
+from perturb.validation.model import parameter_value_of
 
 __all__ = ["ChunkResult", "run_chunk", "validate_point"]
 
@@ -201,7 +202,7 @@ def _evaluate_single(job, point: _Point, out, k: int):
     times = np.asarray(job.spec.times)
     model, solution = point.model, point.solution
     try:
-        pv = model.parameter_value()
+        pv = parameter_value_of(model)
         values = model.symbol_values()
         omega = _recorded(point, solution.coefficients, pv, values)[0]
         result = _recorded(point, evaluate_one, model, solution, times)
@@ -272,7 +273,7 @@ def _run_columns(job: SweepJob, indices: Sequence[int], out) -> list[PointStatus
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             try:
-                direct = model.evaluates_solution_directly()
+                direct = model.case().evaluates_directly
                 solution = model.solve(spec.order) if direct else None
             except Exception:  # noqa: BLE001 - the per-point route records it point by point
                 return None
@@ -410,10 +411,11 @@ def run_chunk(
     out = _empty(job, len(points), n_components)
     groups: dict[int, list[int]] = {}
     single: list[int] = []
+    direct = spec.model.case().evaluates_directly  # the class's: the same at every point
     for k, point in enumerate(points):
         if point.solution is None or not point.solution.success:
             continue
-        if point.model.evaluates_solution_directly():
+        if direct:
             groups.setdefault(id(point.solution), []).append(k)
         else:
             single.append(k)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 from attrs import field, frozen
@@ -19,7 +20,7 @@ from perturb.case import Case
 from perturb.errors import bad_value
 from perturb.oracle import Integrator, OrbitRoute, OrbitStatus, PeriodicOrbit, SymbolicRHS
 from perturb.solution import PeriodicSolution
-from perturb.system import QuasilinearSystem
+from perturb.system import QuasilinearSystem, Regime
 from perturb.validation._quasilinear import (
     conservative_energy,
     first_order_form,
@@ -34,6 +35,7 @@ __all__ = [
     "Model",
     "OrbitEstimate",
     "ShootingSetup",
+    "parameter_value_of",
 ]
 
 
@@ -238,24 +240,26 @@ class Model(ABC):
 
     1. implement :meth:`state_names`, :meth:`solve`, :meth:`state`, :meth:`period` and
        :meth:`epsilon` — the analytic solution and its physical state;
-    2. implement :meth:`system`, :meth:`symbol_values` and :meth:`parameter_value` — the
-       quasilinear system and the numbers for its symbols (the defaults below are derived from
-       them);
+    2. implement :meth:`system` and :meth:`symbol_values` — the quasilinear system and the
+       numbers for its symbols (the defaults below are derived from them); the value of the
+       system's own parameter is ε, or μ = 1/ε in the large-parameter regime
+       (:func:`parameter_value_of`), unless the model defines ``parameter_value()`` itself;
     3. optionally override :meth:`original_equations` (default: the quasilinear system itself,
        :math:`\\ddot x + \\omega^2 x = \\varepsilon f` written first order);
     4. optionally override :meth:`integrals_of_motion` (default: the system's declared first
        integrals, else its energy when the forces derive from a potential, else none);
     5. optionally override :meth:`with_epsilon` — the same model with its own small parameter
        rescaled, for the order check (default: None, the order is then undecided) — and
-       :meth:`with_parameters` (other parameter values: a sweep's points) and
-       :meth:`evaluates_solution_directly` (whether many points can be evaluated at once,
-       with the points of :meth:`case`);
-    6. optionally override :meth:`method_options`, :meth:`label` and
-       :meth:`parameters_in_force` (for reports);
+       :meth:`with_parameters` (other parameter values: a sweep's points); the model's
+       :meth:`case` holds its parameters in force, its other points and whether many of them
+       can be evaluated at once;
+    6. optionally override :meth:`method_options` and :meth:`label` (for reports);
     7. optionally declare a capability of :mod:`perturb.validation.capabilities` by defining its
        method: ``validity_estimates()``, ``true_orbit(solution)`` (a model-specific true-orbit
        finder for near-degenerate cases), ``shooting_setup()``, ``euler_angles(solution, t)``
        (rigid bodies), ``report_extras()`` (what a report adds); a model without one has none.
+       A sweep asks for ``symbolic_derivation()`` the same way
+       (:class:`perturb.sweep.derive.SymbolicDerivation`).
 
     Examples
     --------
@@ -305,18 +309,10 @@ class Model(ABC):
     def symbol_values(self) -> dict[str, float]:
         """Numbers for the system's parameters, by name."""
 
-    @abstractmethod
-    def parameter_value(self) -> float:
-        """The value of the system's own parameter (ε, or μ = 1/ε in the large-parameter regime)."""
-
     # ------------------------------------------------------------------ with defaults
     def label(self) -> str:
         """The name shown in reports."""
         return type(self).__name__
-
-    def parameters_in_force(self) -> dict[str, float]:
-        """Every parameter value in force, for reports."""
-        return dict(self.symbol_values())
 
     def method_options(self) -> dict:
         """Options of :class:`perturb.PoincareMethod` (amplitudes, phase coordinate, branch)."""
@@ -360,37 +356,74 @@ class Model(ABC):
         Default: the system's symbols and its own parameter as the parameters, each the
         symbol of the same name; the model at another point is :meth:`with_parameters`'s.
         """
-        values = {**self.symbol_values(), self.system().parameter.name: self.parameter_value()}
+        values = {**self.symbol_values(), self.system().parameter.name: parameter_value_of(self)}
         return identity_case(self, values)
 
     def with_parameters(self, **values: float) -> Model | None:
-        """The same model with some parameters (names of :meth:`parameters_in_force`) set to
+        """The same model with some parameters (names of its :meth:`case`'s values) set to
         ``values`` — a point of a sweep (default: None, the model cannot be re-created).
 
         Raises the model's own error for values it does not accept.
         """
         return None
 
-    def symbolic_derivation(self) -> Model | None:
-        """This model with its solution derived once, symbolic in its parameters, so that one
-        derivation serves every parameter set of a sweep (default: None, not offered: its own
-        solution serves, or each point is derived for its values)."""
-        return None
-
-    def evaluates_solution_directly(self) -> bool:
-        """Whether :meth:`state` and :meth:`period` are the solution's own ``evaluate`` and
-        ``period_at`` at :meth:`parameter_value` and :meth:`symbol_values` (default: False), so
-        that many parameter sets can be evaluated in one vectorised call (a sweep)."""
-        return False
-
     def _substitutions(self, y0) -> dict | None:
-        return substitutions(self.system(), self.symbol_values(), self.parameter_value(), y0)
+        return substitutions(self.system(), self.symbol_values(), parameter_value_of(self), y0)
 
 
-def identity_case(model: Model, values: Mapping[str, float], reads: Callable | None = None) -> Case:
+@runtime_checkable
+class OwnParameterValue(Protocol):
+    """A model that computes the value of its system's own parameter itself (a bare system's
+    given ``mu``, a problem file of earlier versions overriding ``parameter_value``)."""
+
+    def parameter_value(self) -> float: ...
+
+
+#: Whether a model class defines its own ``parameter_value()`` (:class:`OwnParameterValue`), by class.
+_OWN_PARAMETER_VALUE: dict[type, bool] = {}
+
+
+def parameter_value_of(model) -> float:
+    """The value the model's solution takes for its system's own parameter: ε, or μ = 1/ε in
+    the large-parameter regime — the model's own ``parameter_value()`` where it defines one
+    (:class:`OwnParameterValue`).
+
+    Parameters
+    ----------
+    model : Model
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> from perturb.validation.model import parameter_value_of
+    >>> from problems import get_problem
+    >>> parameter_value_of(get_problem("duffing").create(eps=0.1))
+    0.1
+    """
+    kind = type(model)
+    own = _OWN_PARAMETER_VALUE.get(kind)
+    if own is None:  # asked once per class: a protocol's isinstance costs tens of microseconds
+        own = _OWN_PARAMETER_VALUE[kind] = isinstance(model, OwnParameterValue)
+    if own:
+        return model.parameter_value()
+    eps = model.epsilon()
+    return 1.0 / eps if model.system().regime is Regime.LARGE else eps
+
+
+def identity_case(
+    model: Model,
+    values: Mapping[str, float],
+    reads: Callable | None = None,
+    *,
+    evaluates_directly: bool = False,
+) -> Case:
     """The case of a model whose parameters are its system's symbols (the adapter at the door:
     another point's model is the model's own :meth:`Model.with_parameters`; ``reads``: the
-    parameters its solution reads, None if unknown)."""
+    parameters its solution reads, None if unknown; ``evaluates_directly``: see
+    :attr:`perturb.case.Case.evaluates_directly`)."""
     system = model.system()
 
     def check(point):
@@ -408,5 +441,5 @@ def identity_case(model: Model, values: Mapping[str, float], reads: Callable | N
 
     return Case.of(
         system, values, check=check, model_of=lambda case: model.with_parameters(**case.values),
-        check_columns=check_columns, solution_reads=reads,
+        check_columns=check_columns, solution_reads=reads, evaluates_directly=evaluates_directly,
     )  # fmt: skip

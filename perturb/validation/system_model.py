@@ -59,9 +59,6 @@ class SystemModel(Model):
     def label(self) -> str:
         return self.name or self.quasilinear.name
 
-    def parameters_in_force(self) -> dict[str, float]:
-        return dict(self.values)
-
     def system(self) -> QuasilinearSystem:
         return self.quasilinear
 
@@ -100,10 +97,10 @@ class SystemModel(Model):
 
     def case(self) -> Case:
         """Its values as a :class:`~perturb.case.Case` (each symbol the value of its name)."""
-        return identity_case(self, self.values, reads=lambda values: frozenset())
-
-    def evaluates_solution_directly(self) -> bool:
-        return work_of(self.quasilinear).state_is_solution()  # a driven state adds the phase
+        direct = work_of(self.quasilinear).state_is_solution()  # a driven state adds the phase
+        return identity_case(
+            self, self.values, reads=lambda values: frozenset(), evaluates_directly=direct
+        )
 
     def with_epsilon(self, eps: float) -> SystemModel:
         value = 1.0 / eps if self.quasilinear.regime is Regime.LARGE else eps

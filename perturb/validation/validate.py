@@ -36,7 +36,7 @@ from perturb.validation.checks import (
     stiffness_indicator,
 )
 from perturb.validation.frames import work_of
-from perturb.validation.model import Model, ShootingSetup
+from perturb.validation.model import Model, ShootingSetup, parameter_value_of
 from perturb.validation.report import SlopeFit, ValidationReport, Verdict
 from perturb.validation.setup import (
     check_positive,
@@ -248,7 +248,7 @@ def validate(
     conditions = validity_estimates(model)
     base = dict(
         problem=model.label(),
-        parameters=model.parameters_in_force(),
+        parameters=model.case().values,
         order=int(order),
         epsilon=eps,
         conditions=conditions,
@@ -281,7 +281,7 @@ def validate(
     elif start_override is None:
         # the same domain check as ``perturb solve``: terms that do not decrease are no series
         if domain is None:
-            domain = series_domain(solution, model.parameter_value(), model.symbol_values())
+            domain = series_domain(solution, parameter_value_of(model), model.symbol_values())
         if not domain.ok:
             breakdown = "the series is outside its domain: " + "; ".join(domain.reasons)
     if not np.all(np.isfinite(y_analytic0)):

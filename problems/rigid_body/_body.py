@@ -203,7 +203,8 @@ class FastSpinBody(Problem):
 
     def symbolic_derivation(self) -> FastSpinBody:
         """This body with its solution derived symbolic in its parameters
-        (``solve(symbolic=True)``): a sweep derives once with it (the Model hook)."""
+        (``solve(symbolic=True)``): a sweep derives once with it (the capability
+        :class:`perturb.sweep.derive.SymbolicDerivation`)."""
         return attrs.evolve(self, symbolic=True)
 
     def exact_values(self) -> dict[sp.Symbol, sp.Rational]:
@@ -257,9 +258,9 @@ class FastSpinBody(Problem):
                 f"`symbolic` = {symbolic!r} is invalid: pass True (symbolic in the body's "
                 "parameters), False (for this body's values) or None (the default choice)"
             )
-        if self.family is not None:
-            return self._family_solution(order, self.family)
-        symbolic = self.symbolic if symbolic is None else symbolic
+        if self._family is not None:
+            return self._family_solution(order, self._family)
+        symbolic = self._symbolic if symbolic is None else symbolic
         reduction, system, options, values = self._frame(order, symbolic)
         key = (
             type(self).__module__,

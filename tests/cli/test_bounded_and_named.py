@@ -209,7 +209,7 @@ def test_a_step_in_a_parameter_map_has_a_rate(tmp_path):
     problem = load_problem(f"{tmp_path / 'step.py'}:Driven").create(Omega=1.05)
     rates, _ = problem.case().rate("Omega")
     assert rates["sigma"] == pytest.approx(1 / 0.05)  # off the jump: the derivative of the ramp
-    assert isinstance(problem.map(), ParameterMap)
+    assert isinstance(problem.case().map, ParameterMap)
 
 
 def test_a_problem_that_cannot_be_pickled_is_one_line(capsys, tmp_path, monkeypatch):

@@ -16,6 +16,7 @@ from perturb.cli import main
 from perturb.cli._parser import _build_parser
 from perturb.domain import series_domain
 from perturb.steady.measures import series_estimate
+from perturb.validation.model import parameter_value_of
 from problems import get_problem
 from tests.helpers import roundings
 
@@ -178,7 +179,7 @@ def test_the_forced_pair_is_inside_its_domain_with_the_names_of_order_1():
     tiny terms of its barely excited coordinate, none is ``beyond-series``, and each keeps the
     name of the order-1 orbit nearest it (the same orbit: within O(eps) of its amplitudes)."""
     problem = get_problem("coupled-duffings").create()
-    eps = problem.parameter_value()
+    eps = parameter_value_of(problem)
     first, third = problem.families(1), problem.families(3)
     for family in third:
         check = series_domain(family.solution, eps, problem.symbol_values())

@@ -11,6 +11,7 @@ import pytest
 from perturb._defaults import VALIDITY_ESTIMATE_LIMIT
 from perturb.cli import main
 from perturb.domain import next_term, series_domain
+from perturb.validation.model import parameter_value_of
 from problems import get_problem
 
 
@@ -70,12 +71,12 @@ def test_near_the_resonance_nothing_is_flagged(capsys):
 def test_the_estimate_is_the_extrapolated_next_term():
     duffing = get_problem("forced-duffing").create(eps=10)
     solution = duffing.solve(1)
-    check = series_domain(solution, duffing.parameter_value(), duffing.symbol_values())
+    check = series_domain(solution, parameter_value_of(duffing), duffing.symbol_values())
     expected = max(next_term(check.frequency_terms),
                    *(next_term(t) for t in check.coordinate_term_sizes.values()))  # fmt: skip
     assert check.estimate == expected > VALIDITY_ESTIMATE_LIMIT and check.beyond_validity
     near = get_problem("forced-duffing").create(Omega=1.05)
-    check = series_domain(near.solve(1), near.parameter_value(), near.symbol_values())
+    check = series_domain(near.solve(1), parameter_value_of(near), near.symbol_values())
     assert check.ok and not check.beyond_validity
 
 

@@ -16,6 +16,7 @@ import numpy as np
 from attrs import frozen
 
 from perturb.oracle import find_forced_orbit
+from perturb.validation.model import parameter_value_of
 
 #: Two true orbits are one when their initial states agree to this, relative to their size (the
 #: shooting converges to 1e-10; distinct steady states of the shipped problems differ by > 1e-3).
@@ -100,7 +101,7 @@ def seeded(problem, order: int = 1) -> list[tuple[str, object, object]]:
         y0 = [
             float(v[0])
             for v in state_along(
-                solution, [0.0], problem.parameter_value(), problem.symbol_values()
+                solution, [0.0], parameter_value_of(problem), problem.symbol_values()
             ).values()
         ][:-1]
         point = state.points[state.names.index(name)]

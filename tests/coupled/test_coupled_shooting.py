@@ -15,6 +15,7 @@ import pytest
 
 from perturb.oracle import heyoka_available
 from perturb.validation import state_along
+from perturb.validation.model import parameter_value_of
 from problems import get_problem
 from tests.coupled.census import add_orbit, census, seeded, shooting_setup
 
@@ -45,7 +46,7 @@ def _distinct_true_orbits(problem, order):
 def _initial_error(problem, order, name, orbit) -> float:
     state = problem.steady_state(order)
     values = state_along(
-        state.solution(name), [0.0], problem.parameter_value(), problem.symbol_values()
+        state.solution(name), [0.0], parameter_value_of(problem), problem.symbol_values()
     ).values()
     analytic = np.array([float(v[0]) for v in values][:-1])
     true = np.asarray(orbit.initial_state)

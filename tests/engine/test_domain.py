@@ -3,13 +3,14 @@
 import pytest
 
 from perturb.domain import series_domain
+from perturb.validation.model import parameter_value_of
 from problems import get_problem
 
 
 def _domain(name, order=1, **parameters):
     problem = get_problem(name).create(**parameters)
     solution = problem.solve(order)
-    return series_domain(solution, problem.parameter_value(), problem.symbol_values())
+    return series_domain(solution, parameter_value_of(problem), problem.symbol_values())
 
 
 @pytest.mark.parametrize(

@@ -23,6 +23,7 @@ from perturb import EPS, Excitation, QuasilinearSystem
 from perturb.case import Case, ParameterMap
 from perturb.cli import main
 from perturb.errors import InvalidSystemError
+from perturb.validation.model import parameter_value_of
 from problems import get_problem
 from problems.base import ParameterSpec, Problem
 
@@ -223,10 +224,10 @@ def test_the_response_does_not_depend_on_the_eps_bookkeeping(order):
         assert [f.name for f in one] == [f.name for f in other]
         for f, g in zip(one, other, strict=True):
             x = f.solution.evaluate(
-                [0.0, 1.0], by_force.parameter_value(), by_force.symbol_values()
+                [0.0, 1.0], parameter_value_of(by_force), by_force.symbol_values()
             )
             y = g.solution.evaluate(
-                [0.0, 1.0], by_stiffness.parameter_value(), by_stiffness.symbol_values()
+                [0.0, 1.0], parameter_value_of(by_stiffness), by_stiffness.symbol_values()
             )
             np.testing.assert_allclose(x, y, rtol=1e-9, atol=1e-12)
 

@@ -29,4 +29,4 @@ def test_a_problem_at_another_eps_keeps_its_family():
     (it followed the default one, so every family of a chain showed the same slope)."""
     problem = get_problem("resonant-chain-2").create(eps=0.05).with_family("anti-phase")
     moved = problem.with_epsilon(0.01)
-    assert moved.family == "anti-phase" and moved.values["eps"] == 0.01
+    assert moved.case().family == "anti-phase" and moved.values["eps"] == 0.01

@@ -6,6 +6,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from perturb import PoincareMethod
+from perturb.validation.model import parameter_value_of
 from problems import get_problem
 from tests.helpers import integrate
 
@@ -38,7 +39,7 @@ def truncation_bound(problem, order, eps):
         np.max(
             np.abs(
                 problem.solve(order).initial_state(
-                    problem.parameter_value(), problem.symbol_values()
+                    parameter_value_of(problem), problem.symbol_values()
                 )
             )
         )

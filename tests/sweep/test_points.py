@@ -16,6 +16,7 @@ from perturb.sweep.spec import SweepJob, check_spec
 from perturb.sweep.status import PointStatus, code_of
 from perturb.sweep.task import run_chunk
 from perturb.validation import SystemModel
+from perturb.validation.model import parameter_value_of
 from problems import get_problem
 from tests.helpers import roundings
 
@@ -133,7 +134,7 @@ def test_outside_the_domain_is_series_domains_verdict_and_reason():
     out = run_all(job)
     for k, value in enumerate(eps):
         point = model.with_parameters(eps=value)
-        domain = series_domain(point.solve(2), point.parameter_value(), point.symbol_values())
+        domain = series_domain(point.solve(2), parameter_value_of(point), point.symbol_values())
         expected = PointStatus.OK if domain.ok else PointStatus.OUTSIDE_DOMAIN
         assert out["status"][k] == code_of(expected)
         if not domain.ok:
@@ -176,7 +177,7 @@ def test_a_failing_point_does_not_stop_the_chunk(tmp_path):
     from problems.loading import load_problem
 
     model = load_problem(f"{source}:Flaky").create()
-    assert not model.evaluates_solution_directly()  # it maps the period itself
+    assert not model.case().evaluates_directly  # it maps the period itself
     job = job_of(model, ["amplitude=1.0,1.5"])
     out = run_all(job)
     assert out["status"].tolist() == [code_of(PointStatus.OK), code_of(PointStatus.FAILED)]
@@ -229,12 +230,12 @@ def test_the_domain_screen_is_series_domain(name, order, parameter, low, high):
         except ValueError:
             continue
     pv, arrays = group_arrays(models)
-    omega = np.array([float(np.asarray(solution.coefficients(m.parameter_value(), m.symbol_values())[0]))
-                      if np.isfinite(m.parameter_value()) else np.nan for m in models])  # fmt: skip
+    omega = np.array([float(np.asarray(solution.coefficients(parameter_value_of(m), m.symbol_values())[0]))
+                      if np.isfinite(parameter_value_of(m)) else np.nan for m in models])  # fmt: skip
     checks = DomainScreen(solution).check(pv, arrays, omega)
     cleared = 0
     for model, check in zip(models, checks, strict=True):
-        exact = series_domain(solution, model.parameter_value(), model.symbol_values())
+        exact = series_domain(solution, parameter_value_of(model), model.symbol_values())
         assert check.ok == exact.ok and tuple(check.reasons) == tuple(exact.reasons)
         cleared += check.ok
     assert 0 < cleared < len(models) or name == "resonant-pair"

@@ -249,7 +249,7 @@ def test_a_family_is_looked_for_along_the_grid():
         problem.families(1).get("upper")
     grid = Grid((parse_axis("Omega=1.0:1.2:5"),))
     following = check_family(problem, "upper", grid, 1)
-    assert following.family == "upper"
+    assert following.case().family == "upper"
     with pytest.raises(UnknownNameError, match="lower.*middle.*upper|upper"):
         check_family(problem, "bogus", grid, 1)
 

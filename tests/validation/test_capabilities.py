@@ -122,7 +122,7 @@ def test_the_frame_table_does_the_free_and_driven_work(name, work):
     assert isinstance(entry, work)
     # a free solution serves every point (no point in its key); a driven one is the point's own
     assert (entry.point_key(problem) == ()) is (work is FreeWork)
-    assert problem.evaluates_solution_directly() is (work is FreeWork)
+    assert problem.case().evaluates_directly is (work is FreeWork)
     assert entry.family_elsewhere("upper") is (work is DrivenWork)
     assert entry.family_elsewhere("no-such-branch") is False
 
@@ -131,7 +131,7 @@ def test_a_bare_driven_system_solves_its_branch_through_the_table():
     forced = get_problem("forced-duffing").create()
     values = {**forced.symbol_values(), "epsilon": forced.epsilon()}
     bare = SystemModel(forced.system(), values)
-    assert not bare.evaluates_solution_directly()
+    assert not bare.case().evaluates_directly
     ours, theirs = bare.solve(1), forced.solve(1)
     assert ours.success and theirs.success
     assert ours.frequency_series() == theirs.frequency_series()

@@ -10,7 +10,8 @@ import sympy as sp
 import perturb
 from perturb import EPS, QuasilinearSystem
 from perturb.errors import InvalidParameterError
-from perturb.validation import Model, ShootingSetup, SystemModel, Verdict, validate
+from perturb.validation import Model, ShootingSetup, SystemModel, Verdict, state_along, validate
+from perturb.validation.model import parameter_value_of
 from problems import get_problem
 from problems.base import ParameterSpec, Problem, positive
 
@@ -116,6 +117,74 @@ def test_shooting_setup_argument_accepts_the_typed_object():
     setup = ShootingSetup(section_index=1, fixed_indices=(0,), n_trivial=2)
     report = validate(SofteningOscillator.create(), periods=1, slope=False, shooting_setup=setup)
     assert report.periodic_orbit.success and report.check("existence").passed
+
+
+class UserModel(Model):
+    """A model written against the protocol table of docs/validation.md, not a problem: the
+    required members (the value of the system's own parameter is derived from ε), the method
+    options that fix its amplitude and ``with_epsilon`` for the order check."""
+
+    def __init__(self, eps: float):
+        self.eps = eps
+
+    def state_names(self):
+        return ("x", "xdot")
+
+    def method_options(self):
+        return {"amplitudes": {"x": 1}}
+
+    def solve(self, order=1):
+        return perturb.PoincareMethod(order=order, **self.method_options()).solve(_duffing_system())
+
+    def state(self, solution, t):
+        return state_along(solution, t, parameter_value_of(self), self.symbol_values())
+
+    def period(self, solution):
+        return float(solution.period_at(parameter_value_of(self), self.symbol_values()))
+
+    def epsilon(self):
+        return self.eps
+
+    def system(self):
+        return _duffing_system()
+
+    def symbol_values(self):
+        return {}
+
+    def with_epsilon(self, eps):
+        return type(self)(eps)
+
+
+class EarlierUserModel(UserModel):
+    """The same model as earlier versions of the protocol required it: its own
+    ``parameter_value()`` (here deliberately the value the derived one gives)."""
+
+    def parameter_value(self):
+        return self.eps
+
+
+@pytest.mark.parametrize("cls", [UserModel, EarlierUserModel])
+def test_a_users_model_validates_through_the_protocol(cls):
+    model = cls(0.05)
+    assert parameter_value_of(model) == 0.05
+    report = validate(model, periods=1)
+    assert report.outcome is Verdict.VALID, report.verdict
+    # the same figures as the bare system and the registered problem at the same numbers
+    bare = perturb.validate(
+        _duffing_system(), values={"epsilon": 0.05}, options={"amplitudes": {"x": 1}}, periods=1
+    )
+    assert report.check("orbit_error").value == pytest.approx(
+        bare.check("orbit_error").value, rel=1e-9
+    )
+    assert report.parameters == {"epsilon": 0.05}  # its case's values: ε, the one it has
+
+
+def test_a_models_own_parameter_value_is_the_one_its_solution_takes():
+    """A model that computes its own parameter's value (a bare large-parameter system given
+    mu) is read as it computes it, by every client (parameter_value_of)."""
+    large = QuasilinearSystem([X], [XDOT], [1], [EPS * (1 - X**2) * XDOT]).as_large_parameter()
+    model = SystemModel(large, {large.parameter.name: 7.0})
+    assert parameter_value_of(model) == 7.0 and model.epsilon() == pytest.approx(1 / 7.0)
 
 
 def _python_files(folder: pathlib.Path):

@@ -16,6 +16,7 @@ import warnings
 import numpy as np
 
 from perturb.errors import UnknownNameError
+from perturb.validation.model import parameter_value_of
 from problems.rigid_body.paper.data import PAPER_INPUTS, TABLE1_T_END
 
 __all__ = ["corrected_columns", "create_paper_disk"]
@@ -66,7 +67,7 @@ def corrected_columns(t: np.ndarray) -> dict:
             warnings.simplefilter("always")
             solution = problem.solve(1)
             r0 = PAPER_INPUTS["r0"]
-            z = solution.evaluate(r0 * t, problem.parameter_value(), problem.symbol_values())
+            z = solution.evaluate(r0 * t, parameter_value_of(problem), problem.symbol_values())
             period = problem.period(solution)
             extras = problem.report_extras()
     except Exception as exc:  # noqa: BLE001 - a colleague's module: report, do not crash
