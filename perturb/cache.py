@@ -41,6 +41,7 @@ import enum
 import functools
 import hashlib
 import hmac
+import io
 import json
 import os
 import pickle
@@ -65,8 +66,9 @@ T = TypeVar("T")
 CACHE_ENV = "PERTURB_CACHE_DIR"
 #: Environment variable naming the file of the secret signing key (tests point it elsewhere).
 KEY_ENV = "PERTURB_CACHE_KEY_FILE"
-#: Bump when the layout of an entry or of the pickled objects changes.  Format 1 was a bare pickle.
-CACHE_FORMAT = 2
+#: Bump when the layout of an entry or of the pickled objects changes.  Format 1 was a bare pickle;
+#: format 2 pickled sympy's sums, products and powers by their constructors (re-evaluated on read).
+CACHE_FORMAT = 3
 
 #: First bytes of every entry: tells a perturb entry from any other file before the tag is checked.
 _MAGIC = b"perturb-cache\n"
@@ -270,9 +272,53 @@ def _sign(secret: bytes, body: bytes) -> bytes:
     return hmac.new(secret, _MAGIC + body, hashlib.sha256).digest()
 
 
+def _rebuilt_assoc(cls: type, args: tuple, commutative: bool | None):
+    """A sympy sum or product from the arguments it held (already canonical): no re-evaluation."""
+    return cls._from_args(args, commutative)
+
+
+def _rebuilt_power(cls: type, base, exponent):
+    """A sympy power from the base and exponent it held (already canonical): no re-evaluation."""
+    return cls(base, exponent, evaluate=False)
+
+
+class _Pickler(pickle.Pickler):
+    """A pickler that writes sympy's ``Add``, ``Mul`` and ``Pow`` as their canonical arguments.
+
+    sympy pickles an expression by its constructor, so reading it back evaluates every sum and
+    product again (sorting and collecting its terms): most of the time of reading a large
+    expression.  The arguments of a stored expression are already in canonical form, so they are
+    put back as they were (``_from_args``, ``evaluate=False``): the same object, equal and with
+    the same ``srepr``, at a small fraction of the cost.  Only these exact classes are handled
+    (not subclasses, which may evaluate differently); everything else pickles as usual.
+    """
+
+    def __init__(self, file, assoc: tuple[type, ...], power: type) -> None:
+        super().__init__(file, protocol=pickle.HIGHEST_PROTOCOL)
+        self._assoc = assoc
+        self._power = power
+
+    def reducer_override(self, obj):
+        kind = type(obj)
+        if kind in self._assoc:
+            return _rebuilt_assoc, (kind, obj.args, obj.is_commutative)
+        if kind is self._power:
+            return _rebuilt_power, (kind, *obj.args)
+        return NotImplemented
+
+
+def _dumps(value: object) -> bytes:
+    """``pickle.dumps`` of ``value``, sympy's sums, products and powers as canonical arguments."""
+    from sympy import Add, Mul, Pow
+
+    buffer = io.BytesIO()
+    _Pickler(buffer, (Add, Mul), Pow).dump(value)
+    return buffer.getvalue()
+
+
 def encode(kind: str, key: str, value: object, secret: bytes) -> bytes:
     """The bytes of the entry holding ``value`` under ``key`` (raises if it cannot be pickled)."""
-    payload = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+    payload = _dumps(value)
     header = {
         **_environment(),
         "kind": kind,

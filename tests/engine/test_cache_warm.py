@@ -1,0 +1,138 @@
+"""A warm read of the cache gives what a cold derivation gives, and a changed input misses it.
+
+The cache keeps sympy's sums, products and powers as their canonical arguments (read back without
+evaluating them again) and a system's content digest with the system (its key is not printed
+again): both are shortcuts of the warm path, so here each is held against the long way.
+"""
+
+import pickle
+
+import sympy as sp
+
+import perturb.cache
+import perturb.method.poincare
+from perturb import EPS, PoincareMethod, QuasilinearSystem
+from perturb.cache import cached
+
+x, xd, A, k = sp.symbols("x xdot A k")
+SYSTEM = QuasilinearSystem([x], [xd], [1], [-EPS * x**3], parameters=[A])
+VDP = QuasilinearSystem([x], [xd], [1], [EPS * (1 - x**2) * xd])
+
+
+def _expressions():
+    """Sums, products and powers of every kind the engine stores, nested."""
+    a, b = sp.symbols("a b", positive=True)
+    p, q = sp.symbols("p q", commutative=False)
+    return [
+        sp.Rational(3, 8) * A**2 * EPS - sp.Rational(21, 256) * A**4 * EPS**2 + 1,
+        sp.cos(2 * x) * sp.sqrt(a + b) / (1 + x**2) ** sp.Rational(3, 2),
+        sp.exp(-x * a) * sp.sin(x) ** 3 - sp.I * sp.pi * b,
+        p * q - q * p + 2 * p**2,  # non-commutative products keep their order
+        sp.Float("0.1", 30) * x + sp.Float(2.5) * x**-1,
+        sp.Add(x, x, evaluate=False),  # stored unevaluated, read back as stored
+        sp.Pow(2, 3, evaluate=False) * sp.Mul(x, 1, evaluate=False),
+        sp.ImmutableMatrix([[x * a, x + b], [x**a, 1 / x]]),
+    ]
+
+
+def test_expressions_read_back_equal_and_identically_built(cache_folder):
+    stored = _expressions()
+    assert cached("demo", ("exprs",), lambda: stored) == stored  # written
+    read = cached("demo", ("exprs",), lambda: "not called")
+    assert read is not stored
+    for before, after in zip(stored, read, strict=True):
+        assert after == before
+        assert sp.srepr(after) == sp.srepr(before)
+        assert hash(after) == hash(before)
+        if isinstance(before, sp.MatrixBase):
+            assert (after - before).is_zero_matrix
+        else:
+            assert after.is_commutative == before.is_commutative
+            assert sp.expand(after - before) == 0  # usable: arithmetic still evaluates
+
+
+def test_sums_come_back_as_stored_not_evaluated_again(cache_folder):
+    """What the entry holds re-creates sums and products from their arguments, never by
+    evaluating them: a sum whose evaluation would change it comes back unchanged."""
+    unevaluated = sp.Add(x, x, evaluate=False)
+    assert pickle.loads(pickle.dumps(unevaluated)) == 2 * x  # sympy's own pickle evaluates
+    cached("demo", ("sum",), lambda: unevaluated)
+    read = cached("demo", ("sum",), lambda: "not called")
+    assert read.args == (x, x)
+
+
+def _solution_facts(solution):
+    return (
+        solution.status,
+        solution.frequency,
+        [sp.srepr(solution.coordinate(name)) for name in solution.system.state_names[:1]],
+        solution.frequency_series(),
+    )
+
+
+def test_a_warm_solution_is_the_cold_one(cache_folder):
+    for system, options in ((SYSTEM, {"amplitudes": {"x": A}}), (VDP, {})):
+        method = PoincareMethod(order=2, **options)
+        cold = method.solve(system)  # derived and written
+        warm = method.solve(system)  # read back
+        fresh = PoincareMethod(order=2, cache=False, **options).solve(system)
+        assert warm is not cold
+        assert _solution_facts(warm) == _solution_facts(cold) == _solution_facts(fresh)
+        assert warm.system == system
+        assert warm.system.content_digest == system.content_digest
+
+
+def test_the_content_digest_is_kept_through_a_pickle_and_follows_the_equations():
+    system = QuasilinearSystem([x], [xd], [1], [-EPS * k * x**3], parameters=[k])
+    digest = system.content_digest
+    read = pickle.loads(pickle.dumps(system))
+    assert read == system
+    assert object.__getattribute__(read, "content_digest") == digest  # carried, not recomputed
+    rebuilt = QuasilinearSystem([x], [xd], [1], [-EPS * k * x**3], parameters=[k])
+    assert rebuilt.content_digest == digest  # a function of the equations alone
+    changed = [
+        QuasilinearSystem([x], [xd], [1], [-EPS * k * x**5], parameters=[k]),
+        QuasilinearSystem([x], [xd], [2], [-EPS * k * x**3], parameters=[k]),
+        QuasilinearSystem([x], [xd], [1], [-EPS * k * x**3], parameters=[k], first_integrals=[x]),
+        QuasilinearSystem([x], [xd], [1], [-EPS * x**3], parameters=[k]),
+    ]
+    assert len({digest, *(s.content_digest for s in changed)}) == 1 + len(changed)
+
+
+def test_a_changed_system_or_option_misses_the_cache(cache_folder, monkeypatch):
+    derived = []
+    original = perturb.method.poincare._construct
+
+    def counting(method, system):
+        derived.append((method.order, system.rhs))
+        return original(method, system)
+
+    monkeypatch.setattr(perturb.method.poincare, "_construct", counting)
+    method = PoincareMethod(order=1, amplitudes={"x": A})
+    method.solve(SYSTEM)
+    method.solve(SYSTEM)
+    assert len(derived) == 1  # the second is read back
+    quintic = QuasilinearSystem([x], [xd], [1], [-EPS * x**5], parameters=[A])
+    solution = method.solve(quintic)
+    assert len(derived) == 2  # another right-hand side: derived, not read
+    assert solution.frequency[1] == sp.Rational(5, 16) * A**4
+    PoincareMethod(order=2, amplitudes={"x": A}).solve(SYSTEM)
+    assert len(derived) == 3  # another order
+    renamed = QuasilinearSystem([x], [xd], [1], [-EPS * x**3], parameters=[A], name="other")
+    PoincareMethod(order=1, amplitudes={"x": A}).solve(renamed)
+    assert len(derived) == 4  # another name (it is printed in the solution)
+
+
+def test_an_entry_of_the_previous_format_is_not_read(cache_folder, monkeypatch):
+    """Entries written before sums were kept as arguments are stale: recomputed, not misread."""
+    current = perturb.cache.CACHE_FORMAT
+    perturb.cache._environment.cache_clear()
+    monkeypatch.setattr(perturb.cache, "CACHE_FORMAT", current - 1)
+    try:
+        cached("demo", ("old",), lambda: "old format")
+    finally:
+        monkeypatch.setattr(perturb.cache, "CACHE_FORMAT", current)
+        perturb.cache._environment.cache_clear()
+    assert len(list(cache_folder.glob("demo-*.pkl"))) == 1
+    assert cached("demo", ("old",), lambda: "recomputed") == "recomputed"  # keyed apart: a miss
+    assert cached("demo", ("old",), lambda: "not called") == "recomputed"
