@@ -129,7 +129,7 @@ def _compiled_taylor(rhs: SymbolicRHS, fp_name: str, tol: float | None, compact_
     def key() -> tuple:
         import heyoka as hy
 
-        return (*rhs._cache_parts(), fp_name, repr(tol), compact_mode, hy.__version__, host)
+        return (*rhs.cache_parts(), fp_name, repr(tol), compact_mode, hy.__version__, host)
 
     return cached("taylor", key, build)
 

@@ -96,9 +96,15 @@ class SymbolicRHS:
     def _numeric(self) -> Callable[..., Any]:
         return _derived(self, "numeric")
 
-    def _cache_parts(self) -> tuple:
-        """The disk-cache key of what is derived from this field: its exact state and expressions
-        (built only when the cache is in use)."""
+    def cache_parts(self) -> tuple:
+        """The disk-cache key of what is derived from this field: its exact state and expressions.
+
+        Returns
+        -------
+        tuple
+            The ``srepr`` of the state symbols and of the expressions (build it only when the
+            cache is in use: :func:`perturb.cache.cached` takes this method itself).
+        """
         return (tuple(map(sp.srepr, self.state)), tuple(map(sp.srepr, self.expressions)))
 
     @cached_property
@@ -164,8 +170,8 @@ def _derive(rhs: SymbolicRHS, what: str):
     if what == "numeric":
         return numpy_lambdify(rhs.state, list(rhs.expressions), cse=True)
     if what == "jacobian_expressions":
-        return cached("jacobian", rhs._cache_parts, rhs._derive_jacobian)
+        return cached("jacobian", rhs.cache_parts, rhs._derive_jacobian)
     if what == "numeric_jacobian":
         return numpy_lambdify(rhs.state, rhs.jacobian_expressions, cse=True)
-    state, expressions = cached("variational", rhs._cache_parts, rhs._derive_variational)
+    state, expressions = cached("variational", rhs.cache_parts, rhs._derive_variational)
     return SymbolicRHS(state, expressions)
