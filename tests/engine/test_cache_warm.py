@@ -7,6 +7,7 @@ again): both are shortcuts of the warm path, so here each is held against the lo
 
 import pickle
 
+import pytest
 import sympy as sp
 
 import perturb.cache
@@ -136,3 +137,25 @@ def test_an_entry_of_the_previous_format_is_not_read(cache_folder, monkeypatch):
     assert len(list(cache_folder.glob("demo-*.pkl"))) == 1
     assert cached("demo", ("old",), lambda: "recomputed") == "recomputed"  # keyed apart: a miss
     assert cached("demo", ("old",), lambda: "not called") == "recomputed"
+
+
+def _forced_map(sigma_of: str = "(Omega - 1)/eps"):
+    from perturb.case import ParameterMap
+
+    sigma, zeta = sp.symbols("sigma zeta")
+    return ParameterMap.declare([sigma, zeta], ["eps", "zeta", "Omega"], {"sigma": sigma_of})
+
+
+def test_a_parameter_map_moves_epsilon_alike_warm_and_cold(cache_folder):
+    point = {"eps": 0.05, "zeta": 0.1, "Omega": 1.1}
+    with perturb.cache.bypassed():
+        expected = [_forced_map().with_epsilon(point, e) for e in (0.025, 0.1)]
+    cold = [_forced_map().with_epsilon(point, e) for e in (0.025, 0.1)]  # moves kept on disk
+    assert len(list(cache_folder.glob("parameter-moves-*.pkl"))) == 1
+    warm = [_forced_map().with_epsilon(point, e) for e in (0.025, 0.1)]  # a new map: read back
+    assert cold == warm == expected
+    assert expected[0] == {"eps": 0.025, "zeta": 0.1, "Omega": pytest.approx(1.05, rel=1e-12)}
+    # another expression of sigma: its own entry, and its own move (Omega = sigma * eps)
+    other = _forced_map("Omega/eps").with_epsilon(point, 0.025)
+    assert len(list(cache_folder.glob("parameter-moves-*.pkl"))) == 2
+    assert other["Omega"] == pytest.approx(point["Omega"] * 0.025 / 0.05, rel=1e-12)
