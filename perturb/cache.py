@@ -447,7 +447,34 @@ class Uncached:
         return value.value if isinstance(value, Uncached) else value
 
 
-def cached(kind: str, parts: tuple | Callable[[], tuple], compute: Callable[[], T]) -> T:
+def _mark_used(path: Path) -> None:
+    """Stamp the entry at ``path`` as used now (its modification time), for :func:`_prune`."""
+    with contextlib.suppress(OSError):
+        os.utime(path)
+
+
+def _prune(folder: Path, kind: str, keep: int) -> None:
+    """Remove the least recently used entries of ``kind`` beyond the ``keep`` newest.
+
+    Concurrent runs may prune together: an entry already gone is skipped.
+    """
+    entries = []
+    for path in folder.glob(f"{kind}-*.pkl"):
+        with contextlib.suppress(OSError):
+            entries.append((path.stat().st_mtime_ns, path))
+    entries.sort(reverse=True)
+    for _, path in entries[keep:]:
+        with contextlib.suppress(OSError):
+            path.unlink()
+
+
+def cached(
+    kind: str,
+    parts: tuple | Callable[[], tuple],
+    compute: Callable[[], T],
+    *,
+    keep: int | None = None,
+) -> T:
     """Return ``compute()``, reading it from / writing it to the disk cache when enabled.
 
     Parameters
@@ -460,6 +487,9 @@ def cached(kind: str, parts: tuple | Callable[[], tuple], compute: Callable[[], 
         with the cache off or bypassed does not pay for a costly key (``srepr`` of a large system).
     compute : callable
         Builds the object when it is not cached.
+    keep : int, optional
+        Keep at most this many entries of ``kind``, the most recently used (read or written):
+        for large entries made per point of a sweep.  Default: no bound.
 
     Returns
     -------
@@ -488,6 +518,8 @@ def cached(kind: str, parts: tuple | Callable[[], tuple], compute: Callable[[], 
     if isinstance(found, bytes):
         why, value = decode(found, kind, key, secret)
         if why is None:
+            if keep is not None:
+                _mark_used(path)
             return value
         found = why
     if isinstance(found, Rejection):
@@ -505,4 +537,7 @@ def cached(kind: str, parts: tuple | Callable[[], tuple], compute: Callable[[], 
         _warn_once(
             "unwritable", f"cannot write to `{folder}` ({exc.strerror}); results are not kept"
         )
+    else:
+        if keep is not None:
+            _prune(folder, kind, keep)
     return value

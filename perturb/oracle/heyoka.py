@@ -20,7 +20,12 @@ import numpy as np
 from attrs import frozen
 
 from perturb._checks import check_bool, check_count
-from perturb._defaults import DEFAULT_HEYOKA_TOL, HEYOKA_COMPACT_MODE_MIN_DIM, MAX_STEPS
+from perturb._defaults import (
+    DEFAULT_HEYOKA_TOL,
+    HEYOKA_COMPACT_MODE_MIN_DIM,
+    MAX_STEPS,
+    TAYLOR_CACHE_ENTRIES,
+)
 from perturb._install import install_hint
 from perturb.cache import cached
 from perturb.errors import bad_value
@@ -119,7 +124,8 @@ def _compiled_taylor(rhs: SymbolicRHS, fp_name: str, tol: float | None, compact_
     Kept on disk (:func:`perturb.cache.cached`, kind ``taylor``) with its machine code, keyed on
     the field, the options, heyoka's version and this processor (:func:`_host_cpu`): reading it
     back costs a few milliseconds where compiling costs a tenth of a second or more, and it is
-    the same code, so the same numbers.  Not kept where the processor cannot be identified.
+    the same code, so the same numbers.  Not kept where the processor cannot be identified; at
+    most :data:`~perturb._defaults.TAYLOR_CACHE_ENTRIES` are kept, the most recently used.
     """
     build = functools.partial(_build_taylor, rhs, fp_name, tol, compact_mode)
     host = _host_cpu()
@@ -131,7 +137,7 @@ def _compiled_taylor(rhs: SymbolicRHS, fp_name: str, tol: float | None, compact_
 
         return (*rhs.cache_parts(), fp_name, repr(tol), compact_mode, hy.__version__, host)
 
-    return cached("taylor", key, build)
+    return cached("taylor", key, build, keep=TAYLOR_CACHE_ENTRIES)
 
 
 def _build_taylor(rhs: SymbolicRHS, fp_name: str, tol: float | None, compact_mode: bool):

@@ -159,3 +159,25 @@ def test_a_parameter_map_moves_epsilon_alike_warm_and_cold(cache_folder):
     other = _forced_map("Omega/eps").with_epsilon(point, 0.025)
     assert len(list(cache_folder.glob("parameter-moves-*.pkl"))) == 2
     assert other["Omega"] == pytest.approx(point["Omega"] * 0.025 / 0.05, rel=1e-12)
+
+
+def test_a_bounded_kind_keeps_its_most_recently_used_entries(cache_folder):
+    import os
+
+    def entries():
+        return sorted(p.name for p in cache_folder.glob("bounded-*.pkl"))
+
+    cached("bounded", ("a",), lambda: "a", keep=2)
+    (first,) = entries()
+    cached("bounded", ("b",), lambda: "b", keep=2)
+    # age both, then read "a": used last, it outlives "b" when "c" comes
+    for path in cache_folder.glob("bounded-*.pkl"):
+        os.utime(path, ns=(1_000_000_000, 1_000_000_000))
+    assert cached("bounded", ("a",), lambda: "recomputed", keep=2) == "a"
+    cached("bounded", ("c",), lambda: "c", keep=2)
+    assert len(entries()) == 2
+    assert first in entries()  # "a" kept
+    assert cached("bounded", ("a",), lambda: "recomputed", keep=2) == "a"
+    assert cached("bounded", ("b",), lambda: "b again", keep=2) == "b again"  # "b" was dropped
+    cached("unbounded", ("x",), lambda: 1)
+    assert len(list(cache_folder.glob("unbounded-*.pkl"))) == 1  # other kinds untouched

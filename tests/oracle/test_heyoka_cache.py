@@ -114,3 +114,14 @@ def test_the_oracle_gives_the_same_trajectory_warm_and_cold(cache_folder):
     for run in runs[1:]:
         assert run.success
         assert np.array_equal(run.y, runs[0].y)
+
+
+def test_the_kept_integrators_are_bounded(cache_folder, builds, monkeypatch):
+    """A sweep integrates a new field at every point: only the most recent few are kept."""
+    monkeypatch.setattr(hy_oracle, "TAYLOR_CACHE_ENTRIES", 2)
+    fields = [SymbolicRHS((x, v), (v, -x - sp.Rational(1, n) * x**3)) for n in (7, 8, 9)]
+    for rhs in fields:
+        _compiled(rhs)
+    assert len(list(cache_folder.glob("taylor-*.pkl"))) == 2
+    _compiled(fields[-1])
+    assert len(builds) == 3  # the newest is read back
