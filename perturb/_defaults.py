@@ -644,6 +644,12 @@ SAME_READING = 1e-8
 #: precision, so the double returned is the correctly rounded value of the exact inverse.
 EVAL_DIGITS = 30
 
+# -- perturb._lambdify
+#: Generated numpy functions whose source is kept in the disk cache (kind ``lambdified``), the
+#: most recently used: a few kB each; a sweep makes new ones at every point (its fields hold the
+#: point's numbers).
+LAMBDIFIED_CACHE_ENTRIES = 512
+
 # -- perturb.oracle.heyoka
 #: Compiled heyoka integrators kept in the disk cache (kind ``taylor``), the most recently used:
 #: each holds its machine code (0.3-0.6 MB for the disk's fields), and a sweep integrates a new

@@ -10,10 +10,22 @@ the generated source, and hence every number it computes, is the one ``modules="
 
 from __future__ import annotations
 
+import builtins
 import functools
+import itertools
+import linecache
+import weakref
 from collections.abc import Callable
 
+from perturb._defaults import LAMBDIFIED_CACHE_ENTRIES
+from perturb.cache import active, cached
+
 __all__ = ["numpy_lambdify"]
+
+#: The name sympy gives the generated function in its source.
+_FUNCTION_NAME = "_lambdifygenerated"
+#: Numbers the file names of generated sources (as sympy does: tracebacks and ``inspect`` show them).
+_SOURCES = itertools.count()
 
 #: The largest integer numpy's functions take as a Python ``int`` (int64): a larger literal becomes
 #: an object array, on which ``sqrt``, ``exp``, ``cos`` ... fail ("no callable sqrt method").
@@ -108,9 +120,56 @@ def numpy_lambdify(args, expr, cse: bool = False) -> Callable:
     import sympy
 
     expr = _big_integers_as_floats(expr)
+    if not active():
+        return _lambdified(args, expr, cse)
+    source = cached(
+        "lambdified",
+        lambda: (sympy.srepr(args), sympy.srepr(expr), bool(cse)),
+        lambda: _portable_source(_lambdified(args, expr, cse)),
+        keep=LAMBDIFIED_CACHE_ENTRIES,
+    )
+    return _lambdified(args, expr, cse) if source is None else _from_source(source)
+
+
+def _lambdified(args, expr, cse: bool) -> Callable:
+    import sympy
+
     return sympy.lambdify(
         args, expr, modules=[_namespace()], printer=_printer(), cse=cse, **_no_docstring()
     )
+
+
+def _scope() -> dict:
+    """The globals of a generated function: the namespace, with what ``lambdify`` adds."""
+    return {**_namespace(), "builtins": builtins, "range": range}
+
+
+def _portable_source(function: Callable) -> str | None:
+    """The source of a function ``lambdify`` generated, when it needs no name beyond
+    :func:`_scope` (else None: an implemented function or an import the printer added)."""
+    scope = _scope()
+    names = {k: v for k, v in function.__globals__.items() if k != "__builtins__"}  # exec's own
+    if names.keys() != scope.keys() or any(names[k] is not v for k, v in scope.items()):
+        return None
+    lines = linecache.cache.get(function.__code__.co_filename)
+    return None if lines is None else "".join(lines[2])
+
+
+def _from_source(source: str) -> Callable:
+    """The function of a generated ``source``, built as ``lambdify`` builds it (the same code in
+    the same namespace, its source kept for tracebacks and :mod:`inspect`).
+
+    The source is kept in the disk cache (kind ``lambdified``, keyed on the arguments, the
+    expression and ``cse``): printing it, and pulling out the common subexpressions, is most of
+    the time of ``lambdify``.
+    """
+    filename = f"<lambdifygenerated-perturb-{next(_SOURCES)}>"
+    local: dict = {}
+    exec(compile(source, filename, "exec"), _scope(), local)  # a signed entry of ours
+    linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
+    function = local[_FUNCTION_NAME]
+    weakref.finalize(function, linecache.cache.pop, filename, None)
+    return function
 
 
 @functools.cache

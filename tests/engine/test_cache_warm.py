@@ -181,3 +181,45 @@ def test_a_bounded_kind_keeps_its_most_recently_used_entries(cache_folder):
     assert cached("bounded", ("b",), lambda: "b again", keep=2) == "b again"  # "b" was dropped
     cached("unbounded", ("x",), lambda: 1)
     assert len(list(cache_folder.glob("unbounded-*.pkl"))) == 1  # other kinds untouched
+
+
+def test_a_generated_function_read_back_is_the_one_lambdify_generates(cache_folder):
+    import inspect
+    import re
+
+    import numpy as np
+
+    from perturb._lambdify import numpy_lambdify
+
+    a, b = sp.symbols("a b")
+    expr = [sp.sin(a) ** 2 * b + sp.sqrt(a * b) / 3, sp.exp(-a) * sp.cos(b) + a**7]
+    point = (0.3, 1.7)
+    with perturb.cache.bypassed():
+        fresh = numpy_lambdify((a, b), expr, cse=True)
+    cold = numpy_lambdify((a, b), expr, cse=True)
+    warm = numpy_lambdify((a, b), expr, cse=True)
+    assert len(list(cache_folder.glob("lambdified-*.pkl"))) == 1
+    assert inspect.getsource(warm) == inspect.getsource(cold) == inspect.getsource(fresh)
+    assert {k for k in warm.__globals__ if k != "__builtins__"} == {
+        k for k in fresh.__globals__ if k != "__builtins__"
+    }
+    assert np.array_equal(warm(*point), fresh(*point))
+    # another expression, or the same without cse, is generated again
+    numpy_lambdify((a, b), expr[:1], cse=True)
+    plain = numpy_lambdify((a, b), expr)
+    assert len(list(cache_folder.glob("lambdified-*.pkl"))) == 3
+    assert re.search(r"\bsin\(a\)", inspect.getsource(plain))
+
+
+def test_a_generated_function_that_needs_more_names_is_generated_each_time(cache_folder):
+    """An implemented function adds its own name to the function's globals: such a function
+    is not rebuilt from its source (the name would be missing), it is generated again."""
+    from sympy.utilities.lambdify import implemented_function
+
+    from perturb._lambdify import numpy_lambdify
+
+    a = sp.Symbol("a")
+    twice = implemented_function("twice", lambda value: 2 * value)
+    first = numpy_lambdify(a, twice(a) + 1)
+    second = numpy_lambdify(a, twice(a) + 1)
+    assert first(1.5) == second(1.5) == 4.0
