@@ -125,3 +125,16 @@ def test_the_kept_integrators_are_bounded(cache_folder, builds, monkeypatch):
     assert len(list(cache_folder.glob("taylor-*.pkl"))) == 2
     _compiled(fields[-1])
     assert len(builds) == 3  # the newest is read back
+
+
+def test_the_variational_field_read_back_carries_its_own_key(cache_folder, builds):
+    """The variational field comes from the cache with the key of its expressions, so its
+    integrator is found again without printing them (and is the one compiled for them)."""
+    derived = SymbolicRHS(DUFFING.state, DUFFING.expressions).variational  # derived, kept
+    read = SymbolicRHS(DUFFING.state, DUFFING.expressions).variational  # read back
+    assert read == derived
+    printed = (tuple(map(sp.srepr, read.state)), tuple(map(sp.srepr, read.expressions)))
+    assert read.cache_parts() == derived.cache_parts() == printed
+    _compiled(derived)
+    _compiled(read)
+    assert len(builds) == 1
