@@ -33,6 +33,7 @@ def _expressions():
         sp.Add(x, x, evaluate=False),  # stored unevaluated, read back as stored
         sp.Pow(2, 3, evaluate=False) * sp.Mul(x, 1, evaluate=False),
         sp.ImmutableMatrix([[x * a, x + b], [x**a, 1 / x]]),
+        sp.Matrix([[x * a + b**2, sp.sin(x) / a], [x**-a, 3 * x * b]]),  # mutable: not hashed
     ]
 
 
@@ -44,7 +45,8 @@ def test_expressions_read_back_equal_and_identically_built(cache_folder):
     for before, after in zip(stored, read, strict=True):
         assert after == before
         assert sp.srepr(after) == sp.srepr(before)
-        assert hash(after) == hash(before)
+        if not isinstance(before, sp.MutableDenseMatrix):
+            assert hash(after) == hash(before)
         if isinstance(before, sp.MatrixBase):
             assert (after - before).is_zero_matrix
         else:
