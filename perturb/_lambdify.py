@@ -128,7 +128,7 @@ def numpy_lambdify(args, expr, cse: bool = False) -> Callable:
         lambda: _portable_source(_lambdified(args, expr, cse)),
         keep=LAMBDIFIED_CACHE_ENTRIES,
     )
-    return _lambdified(args, expr, cse) if source is None else _from_source(source)
+    return _lambdified(args, expr, cse) if source is None else _from_source(*source)
 
 
 def _lambdified(args, expr, cse: bool) -> Callable:
@@ -144,18 +144,25 @@ def _scope() -> dict:
     return {**_namespace(), "builtins": builtins, "range": range}
 
 
-def _portable_source(function: Callable) -> str | None:
-    """The source of a function ``lambdify`` generated, when it needs no name beyond
-    :func:`_scope` (else None: an implemented function or an import the printer added)."""
+def _portable_source(function: Callable) -> tuple[str, dict] | None:
+    """The source of a function ``lambdify`` generated and the names it added to
+    :func:`_scope` (the symbols of a sympy expression, each under its own name, as ``lambdify``
+    puts them), or None when it needs anything else (an implemented function, an import the
+    printer added)."""
+    import sympy
+
     scope = _scope()
     names = {k: v for k, v in function.__globals__.items() if k != "__builtins__"}  # exec's own
-    if names.keys() != scope.keys() or any(names[k] is not v for k, v in scope.items()):
+    added = {k: v for k, v in names.items() if k not in scope or scope[k] is not v}
+    if scope.keys() - names.keys() or not all(
+        isinstance(v, sympy.Symbol) and str(v) == k for k, v in added.items()
+    ):
         return None
     lines = linecache.cache.get(function.__code__.co_filename)
-    return None if lines is None else "".join(lines[2])
+    return None if lines is None else ("".join(lines[2]), added)
 
 
-def _from_source(source: str) -> Callable:
+def _from_source(source: str, added: dict) -> Callable:
     """The function of a generated ``source``, built as ``lambdify`` builds it (the same code in
     the same namespace, its source kept for tracebacks and :mod:`inspect`).
 
@@ -165,7 +172,7 @@ def _from_source(source: str) -> Callable:
     """
     filename = f"<lambdifygenerated-perturb-{next(_SOURCES)}>"
     local: dict = {}
-    exec(compile(source, filename, "exec"), _scope(), local)  # a signed entry of ours
+    exec(compile(source, filename, "exec"), {**_scope(), **added}, local)  # a signed entry of ours
     linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
     function = local[_FUNCTION_NAME]
     weakref.finalize(function, linecache.cache.pop, filename, None)

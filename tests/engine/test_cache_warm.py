@@ -225,3 +225,27 @@ def test_a_generated_function_that_needs_more_names_is_generated_each_time(cache
     first = numpy_lambdify(a, twice(a) + 1)
     second = numpy_lambdify(a, twice(a) + 1)
     assert first(1.5) == second(1.5) == 4.0
+
+
+def test_a_generated_function_of_a_matrix_keeps_the_symbols_lambdify_adds(cache_folder):
+    """Of a single sympy object (a Matrix) lambdify puts its symbols in the function's globals,
+    each under its name: the function read back has them too, the very same."""
+    import numpy as np
+
+    from perturb._lambdify import numpy_lambdify
+
+    a, b, gamma = sp.symbols("a b gamma")  # gamma also names a numpy function
+    matrix = sp.Matrix([[a * b, sp.sin(gamma)], [gamma**2, a - b]])
+    args = ((a, b), (gamma,))
+    with perturb.cache.bypassed():
+        fresh = numpy_lambdify(args, matrix, cse=True)
+    numpy_lambdify(args, matrix, cse=True)
+    warm = numpy_lambdify(args, matrix, cse=True)
+    entry = next(cache_folder.glob("lambdified-*.pkl"))
+    assert entry.stat().st_size > 400  # a source was kept, not a refusal
+    assert warm.__globals__["gamma"] is fresh.__globals__["gamma"] == gamma
+    assert {k for k in warm.__globals__ if k != "__builtins__"} == {
+        k for k in fresh.__globals__ if k != "__builtins__"
+    }
+    point = ((0.4, -1.2), (0.7,))
+    assert np.array_equal(warm(*point), fresh(*point))
