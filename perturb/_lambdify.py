@@ -18,7 +18,7 @@ import weakref
 from collections.abc import Callable
 
 from perturb._defaults import LAMBDIFIED_CACHE_ENTRIES
-from perturb.cache import active, cached
+from perturb.cache import UNPICKLABLE, active, cached, digest
 
 __all__ = ["numpy_lambdify"]
 
@@ -117,14 +117,17 @@ def numpy_lambdify(args, expr, cse: bool = False) -> Callable:
     >>> float(numpy_lambdify(x, sp.sin(x) ** 2 + sp.cos(x) ** 2)(0.3))
     1.0
     """
-    import sympy
 
     expr = _big_integers_as_floats(expr)
     if not active():
         return _lambdified(args, expr, cse)
+    try:
+        key = (digest((args, expr)), bool(cse))
+    except UNPICKLABLE:  # an implemented function's own code: not kept
+        return _lambdified(args, expr, cse)
     source = cached(
         "lambdified",
-        lambda: (sympy.srepr(args), sympy.srepr(expr), bool(cse)),
+        key,
         lambda: _portable_source(_lambdified(args, expr, cse)),
         keep=LAMBDIFIED_CACHE_ENTRIES,
     )
@@ -167,7 +170,7 @@ def _from_source(source: str, added: dict) -> Callable:
     the same namespace, its source kept for tracebacks and :mod:`inspect`).
 
     The source is kept in the disk cache (kind ``lambdified``, keyed on the arguments, the
-    expression and ``cse``): printing it, and pulling out the common subexpressions, is most of
+    expression (:func:`perturb.cache.digest`) and ``cse``): printing it, and pulling out the common subexpressions, is most of
     the time of ``lambdify``.
     """
     filename = f"<lambdifygenerated-perturb-{next(_SOURCES)}>"

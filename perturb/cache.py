@@ -58,7 +58,7 @@ from typing import TypeVar
 
 from perturb.errors import CacheWarning, bad_value
 
-__all__ = ["Uncached", "active", "bypassed", "cache_dir", "cached", "key_file"]
+__all__ = ["Uncached", "active", "bypassed", "cache_dir", "cached", "digest", "key_file"]
 
 T = TypeVar("T")
 
@@ -66,6 +66,8 @@ T = TypeVar("T")
 CACHE_ENV = "PERTURB_CACHE_DIR"
 #: Environment variable naming the file of the secret signing key (tests point it elsewhere).
 KEY_ENV = "PERTURB_CACHE_KEY_FILE"
+#: What pickling a value that cannot be pickled raises (a lambda, a module, a C object).
+UNPICKLABLE = (pickle.PicklingError, TypeError, AttributeError, RecursionError)
 #: Bump when the layout of an entry or of the pickled objects changes.  Format 1 was a bare pickle;
 #: format 2 pickled sympy's sums, products and powers by their constructors (re-evaluated on read).
 CACHE_FORMAT = 3
@@ -316,6 +318,25 @@ def _dumps(value: object) -> bytes:
     return buffer.getvalue()
 
 
+def digest(value: object) -> str:
+    """SHA-256 (hex) of ``value``'s pickle as the cache writes it: a key part for large sympy
+    objects, a fraction of the cost of their ``srepr``.
+
+    Raises one of :data:`UNPICKLABLE` for a value that cannot be pickled.  The bytes determine
+    the value they read back as, so two values with one digest are equal
+    and a key built on it never reads another value's entry; an equal value pickled in another
+    shape (its equal subexpressions shared or not) only misses.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> x = sp.Symbol("x")
+    >>> digest(x**2 + 1) == digest(x**2 + 1) != digest(x**2 + 2)
+    True
+    """
+    return hashlib.sha256(_dumps(value)).hexdigest()
+
+
 def encode(kind: str, key: str, value: object, secret: bytes) -> bytes:
     """The bytes of the entry holding ``value`` under ``key`` (raises if it cannot be pickled)."""
     payload = _dumps(value)
@@ -529,7 +550,7 @@ def cached(
         return value.value
     try:
         data = encode(kind, key, value, secret)
-    except (pickle.PicklingError, TypeError, AttributeError, RecursionError):
+    except UNPICKLABLE:
         return value  # not picklable: it simply is not cached
     try:
         _write(folder, path, data)
