@@ -646,12 +646,12 @@ EVAL_DIGITS = 30
 
 # -- perturb._lambdify
 #: Generated numpy functions whose source is kept in the disk cache (kind ``lambdified``), the
-#: most recently used: a few kB each; a sweep makes new ones at every point (its fields hold the
+#: most recently written: a few kB each; a sweep makes new ones at every point (its fields hold the
 #: point's numbers).
 LAMBDIFIED_CACHE_ENTRIES = 512
 
 # -- perturb.oracle.heyoka
-#: Compiled heyoka integrators kept in the disk cache (kind ``taylor``), the most recently used:
+#: Compiled heyoka integrators kept in the disk cache (kind ``taylor``), the most recently written:
 #: each holds its machine code (0.3-0.6 MB for the disk's fields), and a sweep integrates a new
 #: field at every point, so without a bound a validated 441-point map would leave ~0.4 GB.  The
 #: warm single commands reuse a handful; a re-run sweep compiles again past this many.

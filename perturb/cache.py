@@ -309,12 +309,16 @@ class _Pickler(pickle.Pickler):
         return NotImplemented
 
 
-def _dumps(value: object) -> bytes:
-    """``pickle.dumps`` of ``value``, sympy's sums, products and powers as canonical arguments."""
+def _dumps(value: object, tree: bool = False) -> bytes:
+    """``pickle.dumps`` of ``value``, sympy's sums, products and powers as canonical arguments;
+    with ``tree``, every repeated object written out again (pickle's memo off: the bytes are then
+    those of the value's tree, whichever of its equal parts are one object)."""
     from sympy import Add, Mul, Pow
 
     buffer = io.BytesIO()
-    _Pickler(buffer, (Add, Mul), Pow).dump(value)
+    pickler = _Pickler(buffer, (Add, Mul), Pow)
+    pickler.fast = tree
+    pickler.dump(value)
     return buffer.getvalue()
 
 
@@ -323,9 +327,10 @@ def digest(value: object) -> str:
     objects, a fraction of the cost of their ``srepr``.
 
     Raises one of :data:`UNPICKLABLE` for a value that cannot be pickled.  The bytes determine
-    the value they read back as, so two values with one digest are equal
-    and a key built on it never reads another value's entry; an equal value pickled in another
-    shape (its equal subexpressions shared or not) only misses.
+    the value they read back as, so two values with one digest are equal and a key built on it
+    never reads another value's entry.  The pickle is written as a tree (a repeated part written
+    out again, as ``srepr`` prints it), so whether equal parts are one object or several (built
+    afresh, or read back from the cache) does not change it.
 
     Examples
     --------
@@ -334,7 +339,7 @@ def digest(value: object) -> str:
     >>> digest(x**2 + 1) == digest(x**2 + 1) != digest(x**2 + 2)
     True
     """
-    return hashlib.sha256(_dumps(value)).hexdigest()
+    return hashlib.sha256(_dumps(value, tree=True)).hexdigest()
 
 
 def encode(kind: str, key: str, value: object, secret: bytes) -> bytes:
@@ -468,14 +473,10 @@ class Uncached:
         return value.value if isinstance(value, Uncached) else value
 
 
-def _mark_used(path: Path) -> None:
-    """Stamp the entry at ``path`` as used now (its modification time), for :func:`_prune`."""
-    with contextlib.suppress(OSError):
-        os.utime(path)
-
-
 def _prune(folder: Path, kind: str, keep: int) -> None:
-    """Remove the least recently used entries of ``kind`` beyond the ``keep`` newest.
+    """Remove the entries of ``kind`` beyond the ``keep`` most recently written.
+
+    By the time written, not read: a read leaves its entry as it is (a warm run writes nothing).
 
     Concurrent runs may prune together: an entry already gone is skipped.
     """
@@ -509,8 +510,8 @@ def cached(
     compute : callable
         Builds the object when it is not cached.
     keep : int, optional
-        Keep at most this many entries of ``kind``, the most recently used (read or written):
-        for large entries made per point of a sweep.  Default: no bound.
+        Keep at most this many entries of ``kind``, the most recently written: for entries made
+        anew at every point of a sweep.  Default: no bound.
 
     Returns
     -------
@@ -539,8 +540,6 @@ def cached(
     if isinstance(found, bytes):
         why, value = decode(found, kind, key, secret)
         if why is None:
-            if keep is not None:
-                _mark_used(path)
             return value
         found = why
     if isinstance(found, Rejection):

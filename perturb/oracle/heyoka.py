@@ -125,7 +125,7 @@ def _compiled_taylor(rhs: SymbolicRHS, fp_name: str, tol: float | None, compact_
     the field, the options, heyoka's version and this processor (:func:`_host_cpu`): reading it
     back costs a few milliseconds where compiling costs a tenth of a second or more, and it is
     the same code, so the same numbers.  Not kept where the processor cannot be identified; at
-    most :data:`~perturb._defaults.TAYLOR_CACHE_ENTRIES` are kept, the most recently used.
+    most :data:`~perturb._defaults.TAYLOR_CACHE_ENTRIES` are kept, the most recently written.
     """
     build = functools.partial(_build_taylor, rhs, fp_name, tol, compact_mode)
     host = _host_cpu()

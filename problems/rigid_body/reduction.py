@@ -111,7 +111,7 @@ __all__ = [
 MAX_REDUCTION_ORDER = 6
 #: Specialised reductions kept in memory (one per body and order; each is a few hundred kB).
 SPECIALISED_CACHE_SIZE = 32
-#: Inverse maps kept in the disk cache (kind ``inverse-map``), the most recently used: one per
+#: Inverse maps kept in the disk cache (kind ``inverse-map``), the most recently written: one per
 #: body, order, parameter values and ε (a validation needs five: its point and the order check's
 #: four), 10-50 kB each; a sweep makes new ones at every point.
 INVERSE_MAP_CACHE_ENTRIES = 256

@@ -163,24 +163,20 @@ def test_a_parameter_map_moves_epsilon_alike_warm_and_cold(cache_folder):
     assert other["Omega"] == pytest.approx(point["Omega"] * 0.025 / 0.05, rel=1e-12)
 
 
-def test_a_bounded_kind_keeps_its_most_recently_used_entries(cache_folder):
-    import os
-
+def test_a_bounded_kind_keeps_its_most_recently_written_entries(cache_folder):
     def entries():
-        return sorted(p.name for p in cache_folder.glob("bounded-*.pkl"))
+        return {p.name: p.stat().st_mtime_ns for p in cache_folder.glob("bounded-*.pkl")}
 
     cached("bounded", ("a",), lambda: "a", keep=2)
     (first,) = entries()
     cached("bounded", ("b",), lambda: "b", keep=2)
-    # age both, then read "a": used last, it outlives "b" when "c" comes
-    for path in cache_folder.glob("bounded-*.pkl"):
-        os.utime(path, ns=(1_000_000_000, 1_000_000_000))
+    before = entries()
     assert cached("bounded", ("a",), lambda: "recomputed", keep=2) == "a"
+    assert entries() == before  # a read leaves the entries as they are
     cached("bounded", ("c",), lambda: "c", keep=2)
-    assert len(entries()) == 2
-    assert first in entries()  # "a" kept
-    assert cached("bounded", ("a",), lambda: "recomputed", keep=2) == "a"
-    assert cached("bounded", ("b",), lambda: "b again", keep=2) == "b again"  # "b" was dropped
+    assert len(entries()) == 2 and first not in entries()  # the oldest written went
+    assert cached("bounded", ("a",), lambda: "a again", keep=2) == "a again"
+    assert cached("bounded", ("c",), lambda: "recomputed", keep=2) == "c"  # the newest stays
     cached("unbounded", ("x",), lambda: 1)
     assert len(list(cache_folder.glob("unbounded-*.pkl"))) == 1  # other kinds untouched
 
@@ -249,3 +245,15 @@ def test_a_generated_function_of_a_matrix_keeps_the_symbols_lambdify_adds(cache_
     }
     point = ((0.4, -1.2), (0.7,))
     assert np.array_equal(warm(*point), fresh(*point))
+
+
+def test_the_digest_is_the_trees_whichever_parts_are_one_object():
+    """A value built afresh shares its equal parts differently from one read back: one digest."""
+    from perturb.cache import digest
+
+    part = sp.sin(x) * A**2 + EPS * x**3
+    copy = pickle.loads(pickle.dumps(part))
+    assert copy == part and copy is not part
+    assert digest((part, part)) == digest((part, copy)) == digest((copy, copy))
+    assert digest((part, part)) != digest((part, part + 1))
+    assert digest([part]) != digest((part,))  # a list and a tuple are generated differently

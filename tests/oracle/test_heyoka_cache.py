@@ -117,7 +117,7 @@ def test_the_oracle_gives_the_same_trajectory_warm_and_cold(cache_folder):
 
 
 def test_the_kept_integrators_are_bounded(cache_folder, builds, monkeypatch):
-    """A sweep integrates a new field at every point: only the most recent few are kept."""
+    """A sweep integrates a new field at every point: only the most recently written are kept."""
     monkeypatch.setattr(hy_oracle, "TAYLOR_CACHE_ENTRIES", 2)
     fields = [SymbolicRHS((x, v), (v, -x - sp.Rational(1, n) * x**3)) for n in (7, 8, 9)]
     for rhs in fields:
