@@ -117,7 +117,6 @@ def numpy_lambdify(args, expr, cse: bool = False) -> Callable:
     >>> float(numpy_lambdify(x, sp.sin(x) ** 2 + sp.cos(x) ** 2)(0.3))
     1.0
     """
-
     expr = _big_integers_as_floats(expr)
     if not active():
         return _lambdified(args, expr, cse)
@@ -169,9 +168,9 @@ def _from_source(source: str, added: dict) -> Callable:
     """The function of a generated ``source``, built as ``lambdify`` builds it (the same code in
     the same namespace, its source kept for tracebacks and :mod:`inspect`).
 
-    The source is kept in the disk cache (kind ``lambdified``, keyed on the arguments, the
-    expression (:func:`perturb.cache.digest`) and ``cse``): printing it, and pulling out the common subexpressions, is most of
-    the time of ``lambdify``.
+    The source is kept in the disk cache (kind ``lambdified``, keyed on a digest of the
+    arguments and the expression, :func:`perturb.cache.digest`, and on ``cse``): printing it,
+    and pulling out the common subexpressions, is most of the time of ``lambdify``.
     """
     filename = f"<lambdifygenerated-perturb-{next(_SOURCES)}>"
     local: dict = {}
