@@ -24,7 +24,7 @@ __all__ = ["numpy_lambdify"]
 
 #: The name sympy gives the generated function in its source.
 _FUNCTION_NAME = "_lambdifygenerated"
-#: Numbers the file names of generated sources (as sympy does: tracebacks and ``inspect`` show them).
+#: Numbers the file names of generated sources (tracebacks and ``inspect`` show them, as sympy's).
 _SOURCES = itertools.count()
 
 #: The largest integer numpy's functions take as a Python ``int`` (int64): a larger literal becomes
