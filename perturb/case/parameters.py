@@ -476,6 +476,17 @@ def _inverse(expr: sp.Expr, unknown: sp.Symbol) -> tuple[sp.Expr, ...]:
 
 @functools.lru_cache(maxsize=256)
 def _solve_move_cached(mapping_key, moving) -> tuple:
+    """The solutions of a move, kept in memory and on disk (kind ``parameter-move``, keyed on
+    the map's expressions and the moved names): solving costs sympy arithmetic every run."""
+    rows, eps, user = mapping_key
+    return cached(
+        "parameter-move",
+        lambda: (user, sp.srepr(rows), sp.srepr(eps), moving),
+        lambda: _solve_move_exact(mapping_key, moving),
+    )
+
+
+def _solve_move_exact(mapping_key, moving) -> tuple:
     rows, eps, user = mapping_key
     symbols = {n: sp.Symbol(n, real=True) for n in user}
     unknowns = [symbols[n] for n in moving]

@@ -152,9 +152,15 @@ def test_a_parameter_map_moves_epsilon_alike_warm_and_cold(cache_folder):
     point = {"eps": 0.05, "zeta": 0.1, "Omega": 1.1}
     with perturb.cache.bypassed():
         expected = [_forced_map().with_epsilon(point, e) for e in (0.025, 0.1)]
+    from perturb.case import parameters
+
+    parameters._solve_move_cached.cache_clear()
     cold = [_forced_map().with_epsilon(point, e) for e in (0.025, 0.1)]  # moves kept on disk
     assert len(list(cache_folder.glob("parameter-moves-*.pkl"))) == 1
+    assert len(list(cache_folder.glob("parameter-move-*.pkl"))) == 1  # the move solved, kept
+    parameters._solve_move_cached.cache_clear()  # as in a new process
     warm = [_forced_map().with_epsilon(point, e) for e in (0.025, 0.1)]  # a new map: read back
+    assert len(list(cache_folder.glob("parameter-move-*.pkl"))) == 1
     assert cold == warm == expected
     assert expected[0] == {"eps": 0.025, "zeta": 0.1, "Omega": pytest.approx(1.05, rel=1e-12)}
     # another expression of sigma: its own entry, and its own move (Omega = sigma * eps)
