@@ -644,6 +644,19 @@ SAME_READING = 1e-8
 #: precision, so the double returned is the correctly rounded value of the exact inverse.
 EVAL_DIGITS = 30
 
+# -- perturb._lambdify
+#: Generated numpy functions whose source is kept in the disk cache (kind ``lambdified``), the
+#: most recently written: a few kB each; a sweep makes new ones at every point (its fields hold the
+#: point's numbers).
+LAMBDIFIED_CACHE_ENTRIES = 512
+
+# -- perturb.oracle.heyoka
+#: Compiled heyoka integrators kept in the disk cache (kind ``taylor``), the most recently written:
+#: each holds its machine code (0.3-0.6 MB for the disk's fields), and a sweep integrates a new
+#: field at every point, so without a bound a validated 441-point map would leave ~0.4 GB.  The
+#: warm single commands reuse a handful; a re-run sweep compiles again past this many.
+TAYLOR_CACHE_ENTRIES = 32
+
 # -- perturb.oracle.symbolic
 #: Fields whose numeric functions are kept by value (:func:`_derived`): a sweep builds an equal
 #: field at every point, and a validation asks each for its numeric functions.

@@ -10,10 +10,22 @@ the generated source, and hence every number it computes, is the one ``modules="
 
 from __future__ import annotations
 
+import builtins
 import functools
+import itertools
+import linecache
+import weakref
 from collections.abc import Callable
 
+from perturb._defaults import LAMBDIFIED_CACHE_ENTRIES
+from perturb.cache import UNPICKLABLE, active, cached, digest
+
 __all__ = ["numpy_lambdify"]
+
+#: The name sympy gives the generated function in its source.
+_FUNCTION_NAME = "_lambdifygenerated"
+#: Numbers the file names of generated sources (tracebacks and ``inspect`` show them, as sympy's).
+_SOURCES = itertools.count()
 
 #: The largest integer numpy's functions take as a Python ``int`` (int64): a larger literal becomes
 #: an object array, on which ``sqrt``, ``exp``, ``cos`` ... fail ("no callable sqrt method").
@@ -105,7 +117,78 @@ def numpy_lambdify(args, expr, cse: bool = False) -> Callable:
     >>> float(numpy_lambdify(x, sp.sin(x) ** 2 + sp.cos(x) ** 2)(0.3))
     1.0
     """
+    expr = _big_integers_as_floats(expr)
+    if not active():
+        return _lambdified(args, expr, cse)
+    try:
+        key = (digest((args, expr)), bool(cse))
+    except UNPICKLABLE:  # an implemented function's own code: not kept
+        return _lambdified(args, expr, cse)
+    source = cached(
+        "lambdified",
+        key,
+        lambda: _portable_source(_lambdified(args, expr, cse)),
+        keep=LAMBDIFIED_CACHE_ENTRIES,
+    )
+    return _lambdified(args, expr, cse) if source is None else _from_source(*source)
+
+
+def _lambdified(args, expr, cse: bool) -> Callable:
     import sympy
 
-    expr = _big_integers_as_floats(expr)
-    return sympy.lambdify(args, expr, modules=[_namespace()], printer=_printer(), cse=cse)
+    return sympy.lambdify(
+        args, expr, modules=[_namespace()], printer=_printer(), cse=cse, **_no_docstring()
+    )
+
+
+def _scope() -> dict:
+    """The globals of a generated function: the namespace, with what ``lambdify`` adds."""
+    return {**_namespace(), "builtins": builtins, "range": range}
+
+
+def _portable_source(function: Callable) -> tuple[str, dict] | None:
+    """The source of a function ``lambdify`` generated and the names it added to
+    :func:`_scope` (the symbols of a sympy expression, each under its own name, as ``lambdify``
+    puts them), or None when it needs anything else (an implemented function, an import the
+    printer added)."""
+    import sympy
+
+    scope = _scope()
+    names = {k: v for k, v in function.__globals__.items() if k != "__builtins__"}  # exec's own
+    added = {k: v for k, v in names.items() if k not in scope or scope[k] is not v}
+    if scope.keys() - names.keys() or not all(
+        isinstance(v, sympy.Symbol) and str(v) == k for k, v in added.items()
+    ):
+        return None
+    lines = linecache.cache.get(function.__code__.co_filename)
+    return None if lines is None else ("".join(lines[2]), added)
+
+
+def _from_source(source: str, added: dict) -> Callable:
+    """The function of a generated ``source``, built as ``lambdify`` builds it (the same code in
+    the same namespace, its source kept for tracebacks and :mod:`inspect`).
+
+    The source is kept in the disk cache (kind ``lambdified``, keyed on a digest of the
+    arguments and the expression, :func:`perturb.cache.digest`, and on ``cse``): printing it,
+    and pulling out the common subexpressions, is most of the time of ``lambdify``.
+    """
+    filename = f"<lambdifygenerated-perturb-{next(_SOURCES)}>"
+    local: dict = {}
+    exec(compile(source, filename, "exec"), {**_scope(), **added}, local)  # a signed entry of ours
+    linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
+    function = local[_FUNCTION_NAME]
+    weakref.finalize(function, linecache.cache.pop, filename, None)
+    return function
+
+
+@functools.cache
+def _no_docstring() -> dict:
+    """``docstring_limit=0`` where sympy's ``lambdify`` takes it: the generated function's
+    docstring then names no expression, where printing it (``str``) is a third of the cost of
+    ``lambdify`` on the expressions a validation compiles.  The generated code is the same."""
+    import inspect
+
+    import sympy
+
+    supported = "docstring_limit" in inspect.signature(sympy.lambdify).parameters
+    return {"docstring_limit": 0} if supported else {}

@@ -41,6 +41,7 @@ import enum
 import functools
 import hashlib
 import hmac
+import io
 import json
 import os
 import pickle
@@ -57,7 +58,7 @@ from typing import TypeVar
 
 from perturb.errors import CacheWarning, bad_value
 
-__all__ = ["Uncached", "active", "bypassed", "cache_dir", "cached", "key_file"]
+__all__ = ["Uncached", "active", "bypassed", "cache_dir", "cached", "digest", "key_file"]
 
 T = TypeVar("T")
 
@@ -65,8 +66,11 @@ T = TypeVar("T")
 CACHE_ENV = "PERTURB_CACHE_DIR"
 #: Environment variable naming the file of the secret signing key (tests point it elsewhere).
 KEY_ENV = "PERTURB_CACHE_KEY_FILE"
-#: Bump when the layout of an entry or of the pickled objects changes.  Format 1 was a bare pickle.
-CACHE_FORMAT = 2
+#: What pickling a value that cannot be pickled raises (a lambda, a module, a C object).
+UNPICKLABLE = (pickle.PicklingError, TypeError, AttributeError, RecursionError)
+#: Bump when the layout of an entry or of the pickled objects changes.  Format 1 was a bare pickle;
+#: format 2 pickled sympy's sums, products and powers by their constructors (re-evaluated on read).
+CACHE_FORMAT = 3
 
 #: First bytes of every entry: tells a perturb entry from any other file before the tag is checked.
 _MAGIC = b"perturb-cache\n"
@@ -270,9 +274,77 @@ def _sign(secret: bytes, body: bytes) -> bytes:
     return hmac.new(secret, _MAGIC + body, hashlib.sha256).digest()
 
 
+def _rebuilt_assoc(cls: type, args: tuple, commutative: bool | None):
+    """A sympy sum or product from the arguments it held (already canonical): no re-evaluation."""
+    return cls._from_args(args, commutative)
+
+
+def _rebuilt_power(cls: type, base, exponent):
+    """A sympy power from the base and exponent it held (already canonical): no re-evaluation."""
+    return cls(base, exponent, evaluate=False)
+
+
+class _Pickler(pickle.Pickler):
+    """A pickler that writes sympy's ``Add``, ``Mul`` and ``Pow`` as their canonical arguments.
+
+    sympy pickles an expression by its constructor, so reading it back evaluates every sum and
+    product again (sorting and collecting its terms): most of the time of reading a large
+    expression.  The arguments of a stored expression are already in canonical form, so they are
+    put back as they were (``_from_args``, ``evaluate=False``): the same object, equal and with
+    the same ``srepr``, at a small fraction of the cost.  Only these exact classes are handled
+    (not subclasses, which may evaluate differently); everything else pickles as usual.
+    """
+
+    def __init__(self, file, assoc: tuple[type, ...], power: type) -> None:
+        super().__init__(file, protocol=pickle.HIGHEST_PROTOCOL)
+        self._assoc = assoc
+        self._power = power
+
+    def reducer_override(self, obj):
+        kind = type(obj)
+        if kind in self._assoc:
+            return _rebuilt_assoc, (kind, obj.args, obj.is_commutative)
+        if kind is self._power:
+            return _rebuilt_power, (kind, *obj.args)
+        return NotImplemented
+
+
+def _dumps(value: object, tree: bool = False) -> bytes:
+    """``pickle.dumps`` of ``value``, sympy's sums, products and powers as canonical arguments;
+    with ``tree``, every repeated object written out again (pickle's memo off: the bytes are then
+    those of the value's tree, whichever of its equal parts are one object)."""
+    from sympy import Add, Mul, Pow
+
+    buffer = io.BytesIO()
+    pickler = _Pickler(buffer, (Add, Mul), Pow)
+    pickler.fast = tree
+    pickler.dump(value)
+    return buffer.getvalue()
+
+
+def digest(value: object) -> str:
+    """SHA-256 (hex) of ``value``'s pickle as the cache writes it: a key part for large sympy
+    objects, a fraction of the cost of their ``srepr``.
+
+    Raises one of :data:`UNPICKLABLE` for a value that cannot be pickled.  The bytes determine
+    the value they read back as, so two values with one digest are equal and a key built on it
+    never reads another value's entry.  The pickle is written as a tree (a repeated part written
+    out again, as ``srepr`` prints it), so whether equal parts are one object or several (built
+    afresh, or read back from the cache) does not change it.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> x = sp.Symbol("x")
+    >>> digest(x**2 + 1) == digest(x**2 + 1) != digest(x**2 + 2)
+    True
+    """
+    return hashlib.sha256(_dumps(value, tree=True)).hexdigest()
+
+
 def encode(kind: str, key: str, value: object, secret: bytes) -> bytes:
     """The bytes of the entry holding ``value`` under ``key`` (raises if it cannot be pickled)."""
-    payload = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+    payload = _dumps(value)
     header = {
         **_environment(),
         "kind": kind,
@@ -401,7 +473,30 @@ class Uncached:
         return value.value if isinstance(value, Uncached) else value
 
 
-def cached(kind: str, parts: tuple | Callable[[], tuple], compute: Callable[[], T]) -> T:
+def _prune(folder: Path, kind: str, keep: int) -> None:
+    """Remove the entries of ``kind`` beyond the ``keep`` most recently written.
+
+    By the time written, not read: a read leaves its entry as it is (a warm run writes nothing).
+
+    Concurrent runs may prune together: an entry already gone is skipped.
+    """
+    entries = []
+    for path in folder.glob(f"{kind}-*.pkl"):
+        with contextlib.suppress(OSError):
+            entries.append((path.stat().st_mtime_ns, path))
+    entries.sort(reverse=True)
+    for _, path in entries[keep:]:
+        with contextlib.suppress(OSError):
+            path.unlink()
+
+
+def cached(
+    kind: str,
+    parts: tuple | Callable[[], tuple],
+    compute: Callable[[], T],
+    *,
+    keep: int | None = None,
+) -> T:
     """Return ``compute()``, reading it from / writing it to the disk cache when enabled.
 
     Parameters
@@ -414,6 +509,9 @@ def cached(kind: str, parts: tuple | Callable[[], tuple], compute: Callable[[], 
         with the cache off or bypassed does not pay for a costly key (``srepr`` of a large system).
     compute : callable
         Builds the object when it is not cached.
+    keep : int, optional
+        Keep at most this many entries of ``kind``, the most recently written: for entries made
+        anew at every point of a sweep.  Default: no bound.
 
     Returns
     -------
@@ -451,7 +549,7 @@ def cached(kind: str, parts: tuple | Callable[[], tuple], compute: Callable[[], 
         return value.value
     try:
         data = encode(kind, key, value, secret)
-    except (pickle.PicklingError, TypeError, AttributeError, RecursionError):
+    except UNPICKLABLE:
         return value  # not picklable: it simply is not cached
     try:
         _write(folder, path, data)
@@ -459,4 +557,7 @@ def cached(kind: str, parts: tuple | Callable[[], tuple], compute: Callable[[], 
         _warn_once(
             "unwritable", f"cannot write to `{folder}` ({exc.strerror}); results are not kept"
         )
+    else:
+        if keep is not None:
+            _prune(folder, kind, keep)
     return value

@@ -11,6 +11,7 @@ In the large-parameter regime the right-hand side is written in a symbol :math:`
 from __future__ import annotations
 
 import enum
+import hashlib
 from collections.abc import Mapping, Sequence
 from functools import cached_property
 
@@ -51,6 +52,10 @@ class Regime(enum.Enum):
 
     SMALL = "small"  #: expansion in powers of the parameter itself, epsilon -> 0
     LARGE = "large"  #: expansion in powers of 1/mu, mu -> infinity (epsilon = 1/mu)
+
+
+#: The memoised digest a pickled system carries with its fields (:attr:`content_digest`).
+_DIGEST = "content_digest"
 
 
 def _canonical(expr: sp.Expr) -> sp.Expr:
@@ -285,6 +290,40 @@ class QuasilinearSystem:
         """:class:`~perturb.frame.FreeFrame`, or :class:`~perturb.frame.DrivenFrame` with an
         excitation: what free vs driven decides (the one place that tests ``excitation``)."""
         return FreeFrame() if self.excitation is None else DrivenFrame(self.excitation)
+
+    @cached_property
+    def content_digest(self) -> str:
+        """SHA-256 (hex) of the ``srepr`` of the system's symbols and expressions (coordinates,
+        velocities, frequencies, right-hand sides, parameter, parameters, initial values, first
+        integrals): what a cache keys a result of these equations on.
+
+        Computed once and kept when the system is pickled, so a system read back from the disk
+        cache (:mod:`perturb.cache`, whose entries are signed) is not printed again to key what is
+        derived from it.
+        """
+        parts = (
+            self.coordinates,
+            self.velocities,
+            self.frequencies,
+            self.rhs,
+            self.parameter,
+            self.parameters,
+            self.initial_values,
+            self.first_integrals,
+        )
+        text = repr(tuple(sp.srepr(part) for part in parts))
+        return hashlib.sha256(text.encode()).hexdigest()
+
+    def __getstate__(self) -> dict:
+        """The fields and the :attr:`content_digest` (computed now if it was not)."""
+        state = {a.name: getattr(self, a.name) for a in attrs.fields(type(self))}
+        state[_DIGEST] = self.content_digest
+        return state
+
+    def __setstate__(self, state: dict) -> None:
+        for name in (*(a.name for a in attrs.fields(type(self))), _DIGEST):
+            if name in state:
+                object.__setattr__(self, name, state[name])
 
     @property
     def reference_index(self) -> int:

@@ -25,6 +25,7 @@ import sympy as sp
 from attrs import field, frozen
 
 from perturb._defaults import EVAL_DIGITS, REAL_ROOT_TOL
+from perturb.cache import cached
 from perturb.errors import InvalidSystemError
 
 __all__ = ["EPSILON_KEY", "ParameterMap"]
@@ -374,7 +375,21 @@ class ParameterMap:
         return abs(abs(float(exponent)) - 1) if exponent.is_number else math.inf
 
     def _moves(self) -> list[tuple[str, ...]]:
-        """Candidate sets of user parameters to move for :meth:`with_epsilon`, fewest first."""
+        """Candidate sets of user parameters to move for :meth:`with_epsilon`, fewest first.
+
+        Found once per map (the order check moves ε several times) and kept on disk (kind
+        ``parameter-moves``, keyed on the map's expressions): finding them differentiates ε
+        by each parameter it depends on.
+        """
+        if "moves" not in self._compiled:
+            self._compiled["moves"] = cached(
+                "parameter-moves",
+                lambda: (self.user, sp.srepr(self.symbols), sp.srepr(self.epsilon)),
+                self._find_moves,
+            )
+        return list(self._compiled["moves"])
+
+    def _find_moves(self) -> list[tuple[str, ...]]:
         eps_free = self.epsilon.free_symbols
         movers = [n for n in self.user if self.user_symbols[n] in eps_free]
         out = []
@@ -461,6 +476,17 @@ def _inverse(expr: sp.Expr, unknown: sp.Symbol) -> tuple[sp.Expr, ...]:
 
 @functools.lru_cache(maxsize=256)
 def _solve_move_cached(mapping_key, moving) -> tuple:
+    """The solutions of a move, kept in memory and on disk (kind ``parameter-move``, keyed on
+    the map's expressions and the moved names): solving costs sympy arithmetic every run."""
+    rows, eps, user = mapping_key
+    return cached(
+        "parameter-move",
+        lambda: (user, sp.srepr(rows), sp.srepr(eps), moving),
+        lambda: _solve_move_exact(mapping_key, moving),
+    )
+
+
+def _solve_move_exact(mapping_key, moving) -> tuple:
     rows, eps, user = mapping_key
     symbols = {n: sp.Symbol(n, real=True) for n in user}
     unknowns = [symbols[n] for n in moving]

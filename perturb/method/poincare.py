@@ -182,16 +182,6 @@ class PoincareMethod:
                 else repr(value)
             )
 
-        fields = (
-            system.coordinates,
-            system.velocities,
-            system.frequencies,
-            system.rhs,
-            system.parameter,
-            system.parameters,
-            system.initial_values,
-            system.first_integrals,
-        )
         amplitudes = sorted((k, text(v)) for k, v in self.amplitudes.items())
         branch = (
             sorted((str(k), text(v)) for k, v in self.branch.items())
@@ -200,7 +190,7 @@ class PoincareMethod:
         )
         drive = system.frame.cache_tag()
         return (
-            tuple(sp.srepr(f) for f in fields) + drive,
+            (system.content_digest, *drive),
             system.regime.value,
             system.name,
             system.truncation,

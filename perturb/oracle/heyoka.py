@@ -9,7 +9,9 @@ from __future__ import annotations
 
 import copy
 import functools
+import hashlib
 import math
+import platform
 import threading
 from typing import Any
 
@@ -18,8 +20,14 @@ import numpy as np
 from attrs import frozen
 
 from perturb._checks import check_bool, check_count
-from perturb._defaults import DEFAULT_HEYOKA_TOL, HEYOKA_COMPACT_MODE_MIN_DIM, MAX_STEPS
+from perturb._defaults import (
+    DEFAULT_HEYOKA_TOL,
+    HEYOKA_COMPACT_MODE_MIN_DIM,
+    MAX_STEPS,
+    TAYLOR_CACHE_ENTRIES,
+)
 from perturb._install import install_hint
+from perturb.cache import cached
 from perturb.errors import bad_value
 from perturb.oracle.base import IntegratorBase, Run, TrajectoryStatus, check_positive
 from perturb.oracle.symbolic import SymbolicRHS
@@ -74,9 +82,66 @@ def _to_fp(values, fp: type) -> np.ndarray:
     return np.array([v if isinstance(v, fp) else fp(str(v)) for v in values])
 
 
+#: The fields of ``/proc/cpuinfo`` that say which instructions the processor has (x86 and ARM):
+#: compiled code is kept on disk only for the processor it was compiled for.
+_CPU_FIELDS = frozenset(
+    (
+        "vendor_id", "cpu family", "model", "model name", "stepping", "flags",
+        "CPU implementer", "CPU architecture", "CPU variant", "CPU part", "CPU revision",
+        "Features",
+    )
+)  # fmt: skip
+
+
+@functools.cache
+def _host_cpu() -> str | None:
+    """SHA-256 (hex) of the machine and its first processor's model and instruction sets, or
+    ``None`` where they cannot be read (then compiled integrators are not kept on disk).
+
+    heyoka compiles for the processor it runs on, so an integrator read back from a cache folder
+    that another machine shares (a network home) must have been compiled for this processor.
+    """
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8", errors="replace") as fh:
+            text = fh.read()
+    except OSError:
+        return None
+    first = text.split("\n\n", 1)[0]
+    fields = sorted(
+        (name.strip(), value.strip())
+        for name, _, value in (line.partition(":") for line in first.splitlines())
+        if name.strip() in _CPU_FIELDS
+    )
+    if not fields:
+        return None
+    return hashlib.sha256(repr((platform.machine(), fields)).encode()).hexdigest()
+
+
 @functools.lru_cache(maxsize=64)
 def _compiled_taylor(rhs: SymbolicRHS, fp_name: str, tol: float | None, compact_mode: bool):
-    """JIT-compile (once per rhs, precision and tolerance) a heyoka integrator for ``rhs``."""
+    """A heyoka integrator for ``rhs``, JIT-compiled once per rhs, precision and tolerance.
+
+    Kept on disk (:func:`perturb.cache.cached`, kind ``taylor``) with its machine code, keyed on
+    the field, the options, heyoka's version and this processor (:func:`_host_cpu`): reading it
+    back costs a few milliseconds where compiling costs a tenth of a second or more, and it is
+    the same code, so the same numbers.  Not kept where the processor cannot be identified; at
+    most :data:`~perturb._defaults.TAYLOR_CACHE_ENTRIES` are kept, the most recently written.
+    """
+    build = functools.partial(_build_taylor, rhs, fp_name, tol, compact_mode)
+    host = _host_cpu()
+    if host is None:
+        return build()
+
+    def key() -> tuple:
+        import heyoka as hy
+
+        return (*rhs.cache_parts(), fp_name, repr(tol), compact_mode, hy.__version__, host)
+
+    return cached("taylor", key, build, keep=TAYLOR_CACHE_ENTRIES)
+
+
+def _build_taylor(rhs: SymbolicRHS, fp_name: str, tol: float | None, compact_mode: bool):
+    """JIT-compile a heyoka integrator for ``rhs`` (its state zero, at time zero)."""
     import heyoka as hy
 
     fp_type = _fp_types()[fp_name]

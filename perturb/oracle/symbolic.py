@@ -96,9 +96,20 @@ class SymbolicRHS:
     def _numeric(self) -> Callable[..., Any]:
         return _derived(self, "numeric")
 
-    def _cache_parts(self) -> tuple:
-        """The disk-cache key of what is derived from this field: its exact state and expressions
-        (built only when the cache is in use)."""
+    def cache_parts(self) -> tuple:
+        """The disk-cache key of what is derived from this field: its exact state and expressions.
+
+        Returns
+        -------
+        tuple
+            The ``srepr`` of the state symbols and of the expressions (build it only when the
+            cache is in use: :func:`perturb.cache.cached` takes this method itself).  Built once
+            per field; the variational field read back from the cache carries it.
+        """
+        return self._parts
+
+    @cached_property
+    def _parts(self) -> tuple:
         return (tuple(map(sp.srepr, self.state)), tuple(map(sp.srepr, self.expressions)))
 
     @cached_property
@@ -135,11 +146,14 @@ class SymbolicRHS:
         """
         return _derived(self, "variational")
 
-    def _derive_variational(self) -> tuple[tuple, tuple]:
+    def _derive_variational(self) -> tuple[tuple, tuple, tuple]:
+        """The variational field's state, expressions and :meth:`cache_parts` (kept with them:
+        its own derivations, the compiled integrator among them, are keyed on them)."""
         n = self.n
         phi = sp.Matrix(n, n, lambda i, j: sp.Dummy(f"Phi{i}_{j}"))
         phi_dot = self.jacobian_expressions * phi
-        return self.state + tuple(phi), self.expressions + tuple(phi_dot)
+        derived = SymbolicRHS(self.state + tuple(phi), self.expressions + tuple(phi_dot))
+        return derived.state, derived.expressions, derived.cache_parts()
 
 
 @functools.lru_cache(maxsize=DERIVED_CACHE_SIZE)
@@ -164,8 +178,10 @@ def _derive(rhs: SymbolicRHS, what: str):
     if what == "numeric":
         return numpy_lambdify(rhs.state, list(rhs.expressions), cse=True)
     if what == "jacobian_expressions":
-        return cached("jacobian", rhs._cache_parts, rhs._derive_jacobian)
+        return cached("jacobian", rhs.cache_parts, rhs._derive_jacobian)
     if what == "numeric_jacobian":
         return numpy_lambdify(rhs.state, rhs.jacobian_expressions, cse=True)
-    state, expressions = cached("variational", rhs._cache_parts, rhs._derive_variational)
-    return SymbolicRHS(state, expressions)
+    state, expressions, parts = cached("variational", rhs.cache_parts, rhs._derive_variational)
+    derived = SymbolicRHS(state, expressions)
+    object.__setattr__(derived, "_parts", parts)  # its key, computed where it was derived
+    return derived

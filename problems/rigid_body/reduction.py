@@ -111,6 +111,10 @@ __all__ = [
 MAX_REDUCTION_ORDER = 6
 #: Specialised reductions kept in memory (one per body and order; each is a few hundred kB).
 SPECIALISED_CACHE_SIZE = 32
+#: Inverse maps kept in the disk cache (kind ``inverse-map``), the most recently written: one per
+#: body, order, parameter values and ε (a validation needs five: its point and the order check's
+#: four), 10-50 kB each; a sweep makes new ones at every point.
+INVERSE_MAP_CACHE_ENTRIES = 256
 
 
 # ---------------------------------------------------------------------------- result
@@ -306,10 +310,27 @@ class Reduction:
             polys = [self._series[f"state:{s.name}"] for s in NONDIMENSIONAL_STATE]
             if len(cache_) >= SPECIALISED_CACHE_SIZE:
                 cache_.clear()
-            cache_[key] = compile_polynomials(
-                self._ring, polys, numbers, REDUCED_STATE, INITIAL_VALUES
+            cache_[key] = cached(
+                "inverse-map",
+                lambda: self._inverse_key(numbers),
+                lambda: compile_polynomials(
+                    self._ring, polys, numbers, REDUCED_STATE, INITIAL_VALUES
+                ),
+                keep=INVERSE_MAP_CACHE_ENTRIES,
             )
         return cache_[key]
+
+    def _inverse_key(self, numbers: Mapping[sp.Symbol, Fraction]) -> tuple:
+        """What the inverse map at ``numbers`` is kept on disk under: the reduction (kind, order,
+        values, the sources that derive its series and compile them) and the exact numbers."""
+        return (
+            self.kind,
+            self.order,
+            tuple((s.name, sp.srepr(v)) for s, v in self.values),
+            _source_fingerprint(),
+            _inverse_map_fingerprint(),
+            tuple((s.name, n.numerator, n.denominator) for s, n in numbers.items()),
+        )
 
     def inverse_function(self, values: Mapping, eps: float) -> Callable[..., np.ndarray]:
         """Numeric inverse map ``(Z, Z0) -> (p1, q1, r1, gamma1, gamma2, gamma3)``.
@@ -351,6 +372,13 @@ class Reduction:
         f = self._rhs_lambda
         args = (*(checked[s.name] for s in self.parameters), eps)
         return lambda z, z0: np.array(np.broadcast_arrays(*f(tuple(z), tuple(z0), args)))
+
+
+@cache
+def _inverse_map_fingerprint() -> str:
+    """Hash of the source that compiles the inverse map's polynomials to numbers."""
+    source = (Path(__file__).parent / "_inverse_map.py").read_bytes()
+    return hashlib.sha256(source).hexdigest()[:16]
 
 
 @cache
