@@ -150,14 +150,34 @@ class OwnIntegrals(Protocol):
 
 @runtime_checkable
 class OwnLabel(Protocol):
-    """The name a model is shown by in reports, computed by the model (a bare system's)."""
+    """The name a model is shown by in reports, computed by the model (a bare system's).
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from perturb import EPS, QuasilinearSystem
+    >>> from perturb.validation import as_model
+    >>> from perturb.validation.capabilities import OwnLabel
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> system = QuasilinearSystem([x], [xdot], [1], [EPS * (1 - x**2) * xdot])
+    >>> isinstance(as_model(system, values={"epsilon": 0.1}), OwnLabel)
+    True
+    """
 
     def label(self) -> str: ...
 
 
 @runtime_checkable
 class Named(Protocol):
-    """A model with a ``name`` (a problem's registry key): the name reports show."""
+    """A model with a ``name`` (a problem's registry key): the name reports show.
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import Named
+    >>> from problems import get_problem
+    >>> isinstance(get_problem("duffing").create(), Named)
+    True
+    """
 
     name: str
 

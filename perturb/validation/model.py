@@ -360,8 +360,27 @@ def system_integrals(model, y0: np.ndarray | None = None) -> Integrals | None:
     """The first integrals of ``model``'s quasilinear system, named: its declared ones
     (``I0, I1, ...``), else its energy when the forces derive from a potential, else None —
     what :func:`perturb.validation.capabilities.integrals_of_motion` gives a model without
-    integrals of its own (``y0``: the initial state, for systems whose equations contain
-    initial values)."""
+    integrals of its own.
+
+    Parameters
+    ----------
+    model : Model
+    y0 : array_like, optional
+        The initial state, needed only by systems whose equations contain initial values.
+
+    Returns
+    -------
+    Integrals or None
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from perturb.validation.model import system_integrals
+    >>> from problems import get_problem
+    >>> energy = system_integrals(get_problem("duffing").create(eps=0.1))
+    >>> energy.names, energy.function(np.array([1.0, 0.0]))  # x²/2 + eps x⁴/4
+    (('energy',), array([0.525]))
+    """
     subs = _substitutions(model, y0)
     if subs is None:
         return None
