@@ -31,6 +31,7 @@ from perturb.validation.model import system_integrals
 __all__ = [
     "checked_columns",
     "declared_hooks",
+    "declared_map",
     "older_hooks",
     "solution_reads",
     "traced_declarations",
@@ -53,6 +54,15 @@ OWN_METHODS = (
     "_family_options",
     "__attrs_post_init__",
 )
+
+
+def declared_map(cls: type):
+    """The ``parameter_map`` the class declares, or the nearest parent's ({} if none does): a
+    declaration of the subclass contract with no value on the base class, as ``name``."""
+    for klass in cls.__mro__:
+        if "parameter_map" in vars(klass):
+            return vars(klass)["parameter_map"]
+    return {}
 
 
 def _overrides(cls: type, base: type, name: str) -> bool:
@@ -184,7 +194,7 @@ def solution_reads(cls: type, root: type, base: ParameterMap, values: dict) -> f
 def checked_columns(problem, root: type, values: dict, grid: dict, size: int):
     """``(errors, notes)``: what :meth:`~problems.Problem.create` says at each point of ``grid``
     (the rest ``values``) — the first invalid parameter in the specs' order, then the whole-set
-    :meth:`~problems.Problem.check_values` and its warnings — each spec's check run once per
+    ``check_values`` the class defines and its warnings — each spec's check run once per
     distinct value. None where a check raised anything but a refusal of bad values."""
     cls = type(problem)
     errors = [""] * size

@@ -75,6 +75,7 @@ from perturb.validation.model import parameter_value_of
 from problems._declared import (
     checked_columns,
     declared_hooks,
+    declared_map,
     older_hooks,
     solution_reads,
     traced_declarations,
@@ -254,7 +255,8 @@ class Problem(Model, ABC):
     #: How the parameters become the system's symbols and ε: ``{symbol name: expression in the
     #: parameters}`` and, under ``"epsilon"``, ε's (strings or sympy expressions). A symbol not
     #: declared is the parameter of the same name; ε is the parameter ``eps`` unless declared.
-    parameter_map: ClassVar[Mapping[str, object]] = {}
+    #: Optional, as a declaration of the class (none: every symbol its parameter's).
+    parameter_map: ClassVar[Mapping[str, object]]
     #: The older duck-typed hooks the class defines (``original_symbolic``,
     #: ``first_integrals_function``, ...), read once when the class is made
     #: (:func:`problems._declared.older_hooks`).
@@ -334,7 +336,7 @@ class Problem(Model, ABC):
         if key not in _MAP_CACHE:
             parameters = cls.system().parameters
             user = [s.name for s in cls.parameter_specs]
-            declared = dict(cls.parameter_map)
+            declared = dict(declared_map(cls))
             try:
                 base = ParameterMap.declare(parameters, user, declared)
             except InvalidSystemError:

@@ -1,11 +1,11 @@
 """Hooks a problem defines, with no member on every problem: whole-set checks, first integrals,
-the name reports show.
+the name reports show, the parameter map.
 
-``Problem`` has no ``check_values``, ``integrals_of_motion`` or ``label``: a class that defines
-one is asked it (the checks when it is created, the others through
+``Problem`` has no ``check_values``, ``integrals_of_motion``, ``label`` or ``parameter_map``: a
+class that defines one is asked it (the checks when it is created, the others through
 :func:`perturb.validation.capabilities.integrals_of_motion` and
 :func:`~perturb.validation.capabilities.label_of`), and a class that defines none gets the
-generic answer (no checks, the system's energy, its ``name``). The problem files are written into
+generic answer (no checks, the system's energy, its ``name``, each symbol its parameter's). The problem files are written into
 ``tmp_path`` and loaded as a user's are (``file.py:Class``).
 """
 
@@ -122,7 +122,7 @@ def loaded(path, cls):
 
 def test_the_base_class_has_none_of_the_hooks():
     public = {n for n in dir(Problem) if not n.startswith("_")}
-    assert not public & {"check_values", "integrals_of_motion", "label"}
+    assert not public & {"check_values", "integrals_of_motion", "label", "parameter_map"}
 
 
 def test_a_problem_defining_none_gets_the_generic_answers(user_file):
