@@ -324,6 +324,11 @@ def integrals_of_motion(model, y0=None) -> Integrals | None:
     return system_integrals(model, y0)
 
 
+#: How :func:`label_of` names a model of each class (:class:`OwnLabel`, :class:`Named` or None:
+#: its class's name), by class: a driven problem's families ask it at each of its points.
+_LABEL_ROUTE: dict[type, type | None] = {}
+
+
 def label_of(model) -> str:
     """The name ``model`` is shown by in reports: its own ``label()`` (:class:`OwnLabel`), else
     its ``name`` (:class:`Named`: a problem's registry key), else its class's name.
@@ -343,8 +348,14 @@ def label_of(model) -> str:
     >>> label_of(get_problem("duffing").create())
     'duffing'
     """
-    if isinstance(model, OwnLabel):
+    kind = type(model)
+    route = _LABEL_ROUTE.get(kind)
+    if route is None:  # asked once per class: a protocol's isinstance costs tens of microseconds
+        route = _LABEL_ROUTE[kind] = (
+            OwnLabel if isinstance(model, OwnLabel) else Named if isinstance(model, Named) else None
+        )
+    if route is OwnLabel:
         return str(model.label())
-    if isinstance(model, Named):
+    if route is Named:
         return str(model.name)
-    return type(model).__name__
+    return kind.__name__
