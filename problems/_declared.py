@@ -194,7 +194,7 @@ def solution_reads(cls: type, root: type, base: ParameterMap, values: dict) -> f
 def checked_columns(problem, root: type, values: dict, grid: dict, size: int):
     """``(errors, notes)``: what :meth:`~problems.Problem.create` says at each point of ``grid``
     (the rest ``values``) — the first invalid parameter in the specs' order, then the whole-set
-    ``check_values`` the class defines and its warnings — each spec's check run once per
+    :meth:`~problems.Problem.check_values` and its warnings — each spec's check run once per
     distinct value. None where a check raised anything but a refusal of bad values."""
     cls = type(problem)
     errors = [""] * size
@@ -287,9 +287,8 @@ _TYPED = {
 }
 
 #: The hooks of the subclass contract whose definition by a class is read once per class:
-#: ``check_values`` (whole-set checks: no default on the base, a class that defines it is asked
-#: it) and ``original_rhs`` (equations of its own: the system's integrals do not hold).
-OWN_HOOKS = ("check_values", "original_rhs")
+#: ``original_rhs`` (equations of its own: the system's integrals do not hold there).
+OWN_HOOKS = ("original_rhs",)
 
 
 def _declare(cls: type, root: type, typed: str) -> None:

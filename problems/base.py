@@ -18,9 +18,7 @@ Subclass contract (as scipy's ``OdeSolver`` states its own):
    symbols, and the map's inverse re-creates the problem at another ε;
 3a. optionally override :meth:`Problem.method_options`,
    :meth:`Problem.state` (to map the quasilinear state back to physical variables) and
-   :meth:`Problem.original_rhs` (the unreduced equations for validation), and define
-   ``check_values(values)``: whole-set checks beyond single parameters (the triangle
-   inequality), raising on failure, run by :meth:`create` (the base has none to run);
+   :meth:`Problem.original_rhs` (the unreduced equations for validation);
 4. optionally override the validation hooks of :class:`perturb.validation.Model` (typed:
    ``original_equations``, ``with_epsilon``), and declare optional physics by defining its
    method (:mod:`perturb.validation.capabilities`: ``integrals_of_motion`` — default: the
@@ -261,8 +259,8 @@ class Problem(Model, ABC):
     #: ``first_integrals_function``, ...), read once when the class is made
     #: (:func:`problems._declared.older_hooks`).
     _older: ClassVar[frozenset] = frozenset()
-    #: The hooks of :data:`problems._declared.OWN_HOOKS` the class defines (``check_values``,
-    #: ``original_rhs``), read once when the class is made (:func:`problems._declared.declared_hooks`).
+    #: The hooks of :data:`problems._declared.OWN_HOOKS` the class defines (``original_rhs``),
+    #: read once when the class is made (:func:`problems._declared.declared_hooks`).
     _own: ClassVar[frozenset] = frozenset()
 
     values: dict = field(converter=dict)
@@ -279,8 +277,7 @@ class Problem(Model, ABC):
     _case: Case | None = field(default=None, init=False, eq=False, repr=False)
 
     def __attrs_post_init__(self):
-        if "check_values" in self._own:  # the class's whole-set checks (the triangle inequality)
-            self.check_values(self.values)
+        self.check_values(self.values)
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -302,6 +299,10 @@ class Problem(Model, ABC):
         values = {s.name: overrides.get(s.name, s.default) for s in cls.parameter_specs}
         values = {s.name: s.validate(values[s.name]) for s in cls.parameter_specs}
         return cls(values)
+
+    def check_values(self, values: Mapping[str, float]) -> None:
+        """Whole-set checks beyond single parameters (e.g. the triangle inequality); raise on failure."""
+        return None
 
     # ------------------------------------------------------------------ to override
     @classmethod

@@ -34,6 +34,7 @@ class DrivenProblem(Problem):
     """A driven problem with ``eps`` and ``Omega`` among its parameters (see the module notes)."""
 
     def check_values(self, values) -> None:
+        super().check_values(values)
         if not values["eps"] > 0:
             raise InvalidParameterError(
                 f"`eps` = {values['eps']:g} is invalid: the scale of the small terms must be > 0"

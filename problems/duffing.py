@@ -39,6 +39,7 @@ class Duffing(Problem):
         inside its separatrix: the potential x²/2 + eps x⁴/4 peaks at x² = -1/eps, so
         eps amplitude² must stay above -1 (at -1 the motion takes for ever to reach the peak;
         below, it escapes)."""
+        super().check_values(values)
         stiffness = values["eps"] * values["amplitude"] ** 2
         if stiffness <= -1:
             raise InvalidParameterError(

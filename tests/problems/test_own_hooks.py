@@ -1,11 +1,12 @@
-"""Hooks a problem defines, with no member on every problem: whole-set checks, first integrals,
-the name reports show, the parameter map.
+"""Hooks a problem defines, with no member on every problem: first integrals, the name reports
+show, the parameter map; and the whole-set checks beside them.
 
-``Problem`` has no ``check_values``, ``integrals_of_motion``, ``label`` or ``parameter_map``: a
-class that defines one is asked it (the checks when it is created, the others through
-:func:`perturb.validation.capabilities.integrals_of_motion` and
-:func:`~perturb.validation.capabilities.label_of`), and a class that defines none gets the
-generic answer (no checks, the system's energy, its ``name``, each symbol its parameter's). The problem files are written into
+``Problem`` has no ``integrals_of_motion``, ``label`` or ``parameter_map``: a class that defines
+one is asked it (through :func:`perturb.validation.capabilities.integrals_of_motion` and
+:func:`~perturb.validation.capabilities.label_of`, or when its map is read), and a class that
+defines none gets the generic answer (the system's energy, its ``name``, each symbol its
+parameter's). ``check_values`` stays a no-op on the base: a user's file calls
+``super().check_values(values)`` (the shipped Duffing did). The problem files are written into
 ``tmp_path`` and loaded as a user's are (``file.py:Class``).
 """
 
@@ -71,6 +72,13 @@ class Stricter(Checked):
             raise InvalidParameterError("`amplitude` is invalid: give amplitude <= 5")
 
 
+class CallsTheBase(Plain):
+    def check_values(self, values):
+        super().check_values(values)  # Problem's, as the shipped Duffing wrote it
+        if values["amplitude"] > 5:
+            raise InvalidParameterError("`amplitude` is invalid: give amplitude <= 5")
+
+
 class OwnIntegrals(Plain):
     def integrals_of_motion(self, y0=None):
         def twice_energy(y):
@@ -122,7 +130,7 @@ def loaded(path, cls):
 
 def test_the_base_class_has_none_of_the_hooks():
     public = {n for n in dir(Problem) if not n.startswith("_")}
-    assert not public & {"check_values", "integrals_of_motion", "label", "parameter_map"}
+    assert not public & {"integrals_of_motion", "label", "parameter_map"}
 
 
 def test_a_problem_defining_none_gets_the_generic_answers(user_file):
@@ -147,6 +155,8 @@ def test_own_whole_set_checks_run_from_python_and_the_cli(user_file, capsys):
         stricter.create(eps=0.1, amplitude=4.0)
     with pytest.raises(InvalidParameterError, match="amplitude <= 5"):  # its own
         stricter.create(eps=0.01, amplitude=6.0)
+    with pytest.raises(InvalidParameterError, match="amplitude <= 5"):
+        loaded(user_file, "CallsTheBase").create(amplitude=6.0)
     capsys.readouterr()
     code = main(["validate", f"{user_file}:Checked", "--set", "amplitude=4"])
     err = capsys.readouterr().err
