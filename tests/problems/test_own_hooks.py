@@ -114,6 +114,14 @@ class OlderIntegrals(Plain):
 class Labelled(Plain):
     def label(self):
         return "my oscillator"
+
+
+class Halved(Plain):
+    parameter_map = {"epsilon": "eps / 2"}
+
+
+class HalvedChild(Halved):
+    pass
 """
 
 
@@ -197,3 +205,11 @@ def test_older_integrals_and_own_label(user_file):
     labelled = loaded(user_file, "Labelled").create(eps=0.05)
     assert label_of(labelled) == "my oscillator"
     assert validate(labelled, periods=2, slope=False, shoot=False).problem == "my oscillator"
+
+
+def test_a_declared_map_is_read_and_inherited(user_file):
+    assert loaded(user_file, "Plain").create(eps=0.1).epsilon() == 0.1  # none: eps is ε
+    for name in ("Halved", "HalvedChild"):
+        problem = loaded(user_file, name).create(eps=0.1)
+        assert problem.epsilon() == pytest.approx(0.05, rel=1e-15)
+        assert problem.with_epsilon(0.02).values["eps"] == pytest.approx(0.04, rel=1e-12)
