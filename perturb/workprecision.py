@@ -47,6 +47,7 @@ from perturb.validation import (
     SAMPLES_PER_PERIOD,
     as_model,
 )
+from perturb.validation.capabilities import label_of
 
 __all__ = ["WorkPoint", "WorkPrecision", "work_precision"]
 
@@ -290,7 +291,7 @@ def work_precision(
         error = _relative_error(np.asarray(traj.y, dtype=float), ref) if traj.success else math.nan
         points.append(WorkPoint(method, setting, error, seconds))
     return WorkPrecision(
-        problem=problem.label(),
+        problem=label_of(problem),
         periods=float(periods),
         horizon=horizon,
         reference=reference.name,

@@ -25,9 +25,17 @@ from perturb.case import EPSILON_KEY, ParameterMap
 from perturb.case.points import checked_point, message_of
 from perturb.errors import InvalidSystemError
 from perturb.oracle import PeriodicOrbit
-from perturb.validation import Condition, OrbitEstimate
+from perturb.validation import Condition, Integrals, OrbitEstimate
+from perturb.validation.model import system_integrals
 
-__all__ = ["checked_columns", "older_hooks", "solution_reads", "traced_declarations"]
+__all__ = [
+    "checked_columns",
+    "declared_hooks",
+    "declared_map",
+    "older_hooks",
+    "solution_reads",
+    "traced_declarations",
+]
 
 #: The methods through which a subclass may compute its numbers itself (the subclass contract
 #: allows it): the map reads them off the class as expressions (:func:`traced_declarations`).
@@ -46,6 +54,15 @@ OWN_METHODS = (
     "_family_options",
     "__attrs_post_init__",
 )
+
+
+def declared_map(cls: type):
+    """The ``parameter_map`` the class declares, or the nearest parent's ({} if none does): a
+    declaration of the subclass contract with no value on the base class, as ``name``."""
+    for klass in cls.__mro__:
+        if "parameter_map" in vars(klass):
+            return vars(klass)["parameter_map"]
+    return {}
 
 
 def _overrides(cls: type, base: type, name: str) -> bool:
@@ -216,8 +233,8 @@ def checked_columns(problem, root: type, values: dict, grid: dict, size: int):
 #: The duck-typed hooks of earlier versions that a subclass may still define (docs/validation.md);
 #: the typed hook each one stands for, where it is a capability of its own.
 OLDER_HOOKS = {
-    "original_symbolic": None,  # read by Problem.original_equations / integrals_of_motion
-    "first_integrals_function": None,  # read by Problem.integrals_of_motion
+    "original_symbolic": None,  # read by Problem.original_equations and the integrals below
+    "first_integrals_function": None,  # read by the integrals below
     "validity_conditions": "validity_estimates",
     "true_periodic_orbit": "true_orbit",
 }
@@ -248,7 +265,38 @@ def _true_orbit(self, solution) -> OrbitEstimate | None:
     )
 
 
-_TYPED = {"validity_estimates": _validity_estimates, "true_orbit": _true_orbit}
+def _integrals_of_motion(self, y0=None) -> Integrals | None:
+    """``first_integrals_function()`` (names from its ``names``, else ``I0, I1, ...``), else
+    the system's own when the equations are the system's (no ``original_symbolic()`` giving
+    them, no own ``original_rhs``), else none: the capability
+    :class:`~perturb.validation.capabilities.OwnIntegrals` of a class that defines those."""
+    older = self._older
+    function = self.first_integrals_function() if "first_integrals_function" in older else None
+    if function is not None:
+        return Integrals(function, tuple(getattr(function, "names", ())))
+    own = "original_symbolic" in older and self.original_symbolic() is not None
+    if not own and "original_rhs" not in self._own:
+        return system_integrals(self, y0)
+    return None
+
+
+_TYPED = {
+    "validity_estimates": _validity_estimates,
+    "true_orbit": _true_orbit,
+    "integrals_of_motion": _integrals_of_motion,
+}
+
+#: The hooks of the subclass contract whose definition by a class is read once per class:
+#: ``original_rhs`` (equations of its own: the system's integrals do not hold there).
+OWN_HOOKS = ("original_rhs",)
+
+
+def _declare(cls: type, root: type, typed: str) -> None:
+    """Give ``cls`` the typed hook ``typed`` read from an older one, unless the class or a parent
+    below ``root`` defines the typed hook itself."""
+    defined = [k for k in cls.__mro__[: cls.__mro__.index(root)] if typed in vars(k)]
+    if not defined or all(vars(k)[typed] is _TYPED[typed] for k in defined):
+        setattr(cls, typed, _TYPED[typed])
 
 
 def older_hooks(cls: type, root: type) -> None:
@@ -260,8 +308,18 @@ def older_hooks(cls: type, root: type) -> None:
     cls._older = frozenset(cls._older | own)
     for name in own:
         typed = OLDER_HOOKS[name]
-        if typed is None:
-            continue
-        defined = [k for k in cls.__mro__[: cls.__mro__.index(root)] if typed in vars(k)]
-        if not defined or all(vars(k)[typed] is _TYPED[typed] for k in defined):
-            setattr(cls, typed, _TYPED[typed])
+        if typed is not None:
+            _declare(cls, root, typed)
+
+
+def declared_hooks(cls: type, root: type) -> None:
+    """Read, once when the class is made, which hooks of :data:`OWN_HOOKS` a new subclass of
+    ``root`` defines (into ``cls._own``), and give a class whose equations or integrals are its
+    own (``first_integrals_function``, ``original_symbolic``, ``original_rhs``) the integrals
+    that follow from them, unless it defines ``integrals_of_motion`` itself."""
+    cls._own = frozenset(name for name in OWN_HOOKS if _overrides(cls, root, name))
+    if cls._own & {"original_rhs"} or cls._older & {
+        "first_integrals_function",
+        "original_symbolic",
+    }:
+        _declare(cls, root, "integrals_of_motion")

@@ -29,6 +29,7 @@ from collections.abc import Iterator, Mapping, MutableMapping
 from pathlib import Path
 
 from perturb.errors import ProblemLoadError, UnknownNameError
+from problems._declared import declared_map
 from problems.base import ParameterSpec, Problem
 
 __all__ = [
@@ -98,7 +99,8 @@ def check_problem_class(cls: type, label: str | None = None) -> None:
             raise ProblemLoadError(
                 f"`{label}.parameter_specs` = {specs!r} is invalid: give a tuple of ParameterSpec"
             )
-        declared = isinstance(cls.parameter_map, Mapping) and "epsilon" in cls.parameter_map
+        mapping = declared_map(cls)
+        declared = isinstance(mapping, Mapping) and "epsilon" in mapping
         if cls.epsilon is Problem.epsilon and not declared and "eps" not in {s.name for s in specs}:
             missing.append("epsilon (or a parameter named eps, or 'epsilon' in parameter_map)")
     if missing:

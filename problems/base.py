@@ -20,8 +20,9 @@ Subclass contract (as scipy's ``OdeSolver`` states its own):
    :meth:`Problem.state` (to map the quasilinear state back to physical variables) and
    :meth:`Problem.original_rhs` (the unreduced equations for validation);
 4. optionally override the validation hooks of :class:`perturb.validation.Model` (typed:
-   ``original_equations``, ``integrals_of_motion``, ``with_epsilon``), and declare optional
-   physics by defining its method (:mod:`perturb.validation.capabilities`:
+   ``original_equations``, ``with_epsilon``), and declare optional physics by defining its
+   method (:mod:`perturb.validation.capabilities`: ``integrals_of_motion`` — default: the
+   system's own, unless the equations are the class's —, ``label`` — default: the ``name`` —,
    ``validity_estimates``, ``true_orbit``, ``shooting_setup``, ``euler_angles``,
    ``report_extras``); the older duck-typed hooks still work, read once when the class is made
    (``original_symbolic()``, ``first_integrals_function()``, ``validity_conditions()``,
@@ -63,7 +64,6 @@ from perturb.errors import (
 from perturb.oracle import SymbolicRHS
 from perturb.validation import (
     Equations,
-    Integrals,
     Model,
     quasilinear_state_names,
     state_along,
@@ -72,6 +72,8 @@ from perturb.validation.frames import steady_states, work_of
 from perturb.validation.model import parameter_value_of
 from problems._declared import (
     checked_columns,
+    declared_hooks,
+    declared_map,
     older_hooks,
     solution_reads,
     traced_declarations,
@@ -251,11 +253,15 @@ class Problem(Model, ABC):
     #: How the parameters become the system's symbols and ε: ``{symbol name: expression in the
     #: parameters}`` and, under ``"epsilon"``, ε's (strings or sympy expressions). A symbol not
     #: declared is the parameter of the same name; ε is the parameter ``eps`` unless declared.
-    parameter_map: ClassVar[Mapping[str, object]] = {}
+    #: Optional, as a declaration of the class (none: every symbol its parameter's).
+    parameter_map: ClassVar[Mapping[str, object]]
     #: The older duck-typed hooks the class defines (``original_symbolic``,
     #: ``first_integrals_function``, ...), read once when the class is made
     #: (:func:`problems._declared.older_hooks`).
     _older: ClassVar[frozenset] = frozenset()
+    #: The hooks of :data:`problems._declared.OWN_HOOKS` the class defines (``original_rhs``),
+    #: read once when the class is made (:func:`problems._declared.declared_hooks`).
+    _own: ClassVar[frozenset] = frozenset()
 
     values: dict = field(converter=dict)
     #: The family of periodic solutions :meth:`solve` follows, by its name in :meth:`families`
@@ -276,6 +282,7 @@ class Problem(Model, ABC):
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         older_hooks(cls, Problem)
+        declared_hooks(cls, Problem)
 
     @classmethod
     def create(cls, **overrides) -> Problem:
@@ -330,7 +337,7 @@ class Problem(Model, ABC):
         if key not in _MAP_CACHE:
             parameters = cls.system().parameters
             user = [s.name for s in cls.parameter_specs]
-            declared = dict(cls.parameter_map)
+            declared = dict(declared_map(cls))
             try:
                 base = ParameterMap.declare(parameters, user, declared)
             except InvalidSystemError:
@@ -486,9 +493,6 @@ class Problem(Model, ABC):
         return self.system().vector_field(parameter_value_of(self), self.symbol_values())
 
     # ------------------------------------------------------------------ validation (Model)
-    def label(self) -> str:
-        return self.name
-
     def original_equations(self, y0: np.ndarray | None = None) -> Equations:
         """The unreduced equations: ``original_symbolic()`` if the class defines it (the older
         hook) and it gives them, else a user ``original_rhs`` override, else the quasilinear
@@ -496,23 +500,11 @@ class Problem(Model, ABC):
         symbolic = self.original_symbolic() if "original_symbolic" in self._older else None
         if symbolic is not None:
             return Equations(SymbolicRHS(*symbolic))
-        if type(self).original_rhs is not Problem.original_rhs:
+        if "original_rhs" in self._own:
             return Equations.from_time_rhs(self.original_rhs())
         if self.system().initial_values and y0 is None:
             return Equations.from_time_rhs(self.original_rhs(), quasilinear=True)
         return super().original_equations(y0)
-
-    def integrals_of_motion(self, y0: np.ndarray | None = None) -> Integrals | None:
-        """``first_integrals_function()`` (names from its ``names``, else ``I0, I1, ...``), else
-        the system's own (for unreduced problems only)."""
-        older = self._older
-        function = self.first_integrals_function() if "first_integrals_function" in older else None
-        if function is not None:
-            return Integrals(function, tuple(getattr(function, "names", ())))
-        own = "original_symbolic" in older and self.original_symbolic() is not None
-        if not own and type(self).original_rhs is Problem.original_rhs:
-            return super().integrals_of_motion(y0)
-        return None
 
     def with_epsilon(self, eps: float) -> Problem | None:
         """The problem at expansion parameter ``eps`` with every system symbol kept, solved from

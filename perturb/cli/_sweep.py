@@ -15,6 +15,7 @@ from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _UsageError, p
 from perturb.cli._order import order_of
 from perturb.cli._values import _parse_positive, _parse_sets, _parse_times
 from perturb.errors import MissingDependencyError, SweepError
+from perturb.validation.capabilities import label_of
 
 #: Exit code of an interrupted run (128 + SIGINT, as shells report it).
 EXIT_INTERRUPTED = 130
@@ -127,7 +128,7 @@ def _cmd_sweep(args) -> int:
     from perturb.report.formats import write
     from perturb.report.sweep import SweepOutput
 
-    text = write("sweep", args.format, SweepOutput(ds, problem.label(), store))
+    text = write("sweep", args.format, SweepOutput(ds, label_of(problem), store))
     if store is not None:  # the points are in the store: the text is its summary
         print(text, end="")
         return EXIT_OK

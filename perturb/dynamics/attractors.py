@@ -30,6 +30,7 @@ from perturb._defaults import (
     SHOOTING_ITERATIONS,
 )
 from perturb.errors import InvalidParameterError, bad_value
+from perturb.validation.capabilities import label_of
 
 __all__ = [
     "Catalogue",
@@ -283,7 +284,7 @@ def catalogue(problem, order: int = 1, phase: float = 0.0, motion=None) -> Catal
     saddles = [s for s in out if s.kind is StateKind.SADDLE]
     status = CatalogueStatus.OK if attractors else CatalogueStatus.NO_STABLE_STATE
     return Catalogue(
-        problem=problem.label(), values=dict(problem.case().values), order=order,
+        problem=label_of(problem), values=dict(problem.case().values), order=order,
         phase=float(phase), omega=motion.omega, names=motion.names,
         states=(*attractors, *saddles), status=status, notes=tuple(notes),
     )  # fmt: skip

@@ -19,6 +19,7 @@ from attrs import field, frozen
 
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.oracle import SymbolicRHS
+from perturb.validation.capabilities import label_of
 
 __all__ = ["DrivenMotion", "heyoka_equations", "motion_of"]
 
@@ -148,22 +149,22 @@ def motion_of(problem) -> DrivenMotion:
     """
     system = problem.system()
     system.frame.require_driven(
-        "problem", problem.label(), "its system has no excitation: basins, transients and ramps "
+        "problem", label_of(problem), "its system has no excitation: basins, transients and ramps "
         "are studies of a driven system (give one with excitation=...)",
     )  # fmt: skip
     rhs = problem.original_equations().rhs
     if not isinstance(rhs, SymbolicRHS):
         raise bad_value(
-            "problem", problem.label(), "its equations are a numeric function; these studies "
+            "problem", label_of(problem), "its equations are a numeric function; these studies "
             "compile symbolic equations (give original_symbolic, or no original_rhs)",
             InvalidParameterError,
         )  # fmt: skip
     phase = rhs.expressions[-1]
     if rhs.state[-1] != system.excitation.phase or phase.free_symbols:
         raise bad_value(
-            "problem", problem.label(), "its equations do not end with the phase theta' = Omega",
+            "problem", label_of(problem), "its equations do not end with the phase theta' = Omega",
             InvalidParameterError,
         )  # fmt: skip
     omega = float(sp.sympify(phase))
     names = tuple(str(s) for s in rhs.state[:-1])
-    return DrivenMotion(rhs, names, omega, int(system.excitation.p), problem.label())
+    return DrivenMotion(rhs, names, omega, int(system.excitation.p), label_of(problem))

@@ -26,6 +26,7 @@ from perturb._defaults import (
     SETTLE_PERIODS,
 )
 from perturb.errors import InvalidParameterError, bad_value
+from perturb.validation.capabilities import label_of
 
 __all__ = ["Ramp", "RampRun", "ramp"]
 
@@ -182,10 +183,10 @@ def ramp(
         raise bad_value("--sweep", f"{parameter}={start}:{stop}", "the ramp does not move: give "
                         "two different values START:STOP", InvalidParameterError)  # fmt: skip
     system = problem.system()
-    system.frame.require_driven("problem", problem.label(), "a ramp drives a driven problem")
+    system.frame.require_driven("problem", label_of(problem), "a ramp drives a driven problem")
     case = problem.case()
     if parameter not in case.map.user:
-        raise bad_value("--sweep", parameter, f"not a parameter of {problem.label()}; give one "
+        raise bad_value("--sweep", parameter, f"not a parameter of {label_of(problem)}; give one "
                         f"of {', '.join(case.map.user)}", InvalidParameterError)  # fmt: skip
     ends = [case.at(**{parameter: float(v)}) for v in (start, stop)]  # checked by its rules
     symbols = [e.symbol_values for e in ends]
@@ -239,7 +240,7 @@ def ramp(
             delay = (jump - fold) * (1 if b > a else -1)
             runs.append(RampRun("up" if b > a else "down", r, along, run.envelope, jump, size,
                                 fold, delay))  # fmt: skip
-    return Ramp(problem.label(), parameter, float(start), float(stop), order, folds, runs,
+    return Ramp(label_of(problem), parameter, float(start), float(stop), order, folds, runs,
                 coordinate)  # fmt: skip
 
 

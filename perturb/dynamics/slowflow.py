@@ -34,6 +34,7 @@ from attrs import field, frozen
 
 from perturb._defaults import SEPARATRIX_MARGIN, SEPARATRIX_OFFSET, SEPARATRIX_SPAN, SLOW_FLOW_ZERO
 from perturb.errors import InvalidParameterError, bad_value
+from perturb.validation.capabilities import label_of
 
 __all__ = ["Equilibrium", "SlowFlow", "slow_flow_of"]
 
@@ -256,7 +257,7 @@ def slow_flow_of(problem, order: int = 1) -> SlowFlow:
     if isinstance(order, bool) or not isinstance(order, int) or order < 1:
         raise bad_value("order", order, "give an integer >= 1", InvalidParameterError)
     system = problem.system()
-    system.frame.require_driven("problem", problem.label(), "give a driven problem")
+    system.frame.require_driven("problem", label_of(problem), "give a driven problem")
     values = problem.symbol_values()
     eps = float(problem.epsilon())
     equations = amplitude_equations(system, order - 1)

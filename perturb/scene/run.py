@@ -33,7 +33,7 @@ from perturb.domain import series_domain
 from perturb.progress import track
 from perturb.scene.spec import Scene
 from perturb.solution import PeriodicSolution
-from perturb.validation.capabilities import has_euler_angles
+from perturb.validation.capabilities import has_euler_angles, label_of
 from perturb.validation.model import Model, parameter_value_of
 from perturb.validation.system_model import as_model
 
@@ -198,7 +198,7 @@ def check_scene(scene: Scene, problem, yes: bool = False) -> None:
         asked = ["euler = true"] if outputs.euler else []
         asked += [f"plot {p!r}" for p in outputs.plots if p in ("euler", "orientation")]
         raise scene.error(
-            f"[outputs] {' and '.join(asked)}: problem {model.label()!r} has no Euler angles "
+            f"[outputs] {' and '.join(asked)}: problem {label_of(model)!r} has no Euler angles "
             "(rigid bodies only); remove it from [outputs]"
         )
     if scene.integrator is not None and (
@@ -312,7 +312,7 @@ def run_scene(scene: Scene, problem, yes: bool = False) -> SceneResult:
         todo.append(("sweep", lambda: _sweep(scene, model, yes)))
     if scene.response is not None and outputs.needs_response:  # failures are in the result
         todo.append(("response", lambda: _response(scene, problem)))
-    for name, work in track(todo, label=f"report {model.label()}"):
+    for name, work in track(todo, label=f"report {label_of(model)}"):
         step(name, work)
 
     truth, truth_integrator = None, ""
@@ -322,7 +322,7 @@ def run_scene(scene: Scene, problem, yes: bool = False) -> SceneResult:
             state["notes"].append(note)
     return SceneResult(
         scene=scene,
-        label=model.label(),
+        label=label_of(model),
         parameters=dict(model.case().values),
         epsilon=float(model.epsilon()),
         solution=solution,

@@ -39,6 +39,7 @@ from attrs import frozen
 from perturb._defaults import SWEEP_POINTS_PER_DERIVATION
 from perturb.case import CasePoints
 from perturb.errors import InvalidParameterError, PerturbError
+from perturb.validation.capabilities import label_of
 from perturb.validation.model import Model
 
 __all__ = ["DeriveMode", "Derivation", "SymbolicDerivation", "plan", "symbolic_derivation"]
@@ -110,7 +111,7 @@ class Derivation:
         model = base.case().at(**values).model
         if model is None:
             raise InvalidParameterError(
-                f"`problem` = {base.label()!r} cannot be re-created at other parameter values "
+                f"`problem` = {label_of(base)!r} cannot be re-created at other parameter values "
                 "(its with_parameters gives none): it cannot be swept"
             )
         return _symbolic(model) if self.mode is DeriveMode.SYMBOLIC else model
@@ -128,7 +129,7 @@ def _symbolic(model: Model) -> Model:
     symbolic = symbolic_derivation(model)
     if symbolic is None:
         raise InvalidParameterError(
-            f"`problem` = {model.label()!r} offers no symbolic derivation: sweep it per point"
+            f"`problem` = {label_of(model)!r} offers no symbolic derivation: sweep it per point"
         )
     return symbolic
 

@@ -28,6 +28,7 @@ from perturb.cost import check_cost, sweep_cost
 from perturb.errors import InvalidParameterError, PerturbError, bad_value
 from perturb.sweep.derive import Derivation
 from perturb.sweep.grid import Grid, check_names, check_size
+from perturb.validation.capabilities import label_of
 from perturb.validation.model import Model
 
 __all__ = [
@@ -85,7 +86,7 @@ class SweepSpec:
 
     @property
     def label(self) -> str:
-        return self.model.label()
+        return label_of(self.model)
 
     def fixed_parameters(self) -> dict[str, float]:
         """Every parameter in force that is not swept."""
@@ -209,7 +210,7 @@ def check_spec(
         )
     grid = axes if isinstance(axes, Grid) else Grid(tuple(axes))
     known = list(model.case().values)
-    check_names(grid.axes, known, model.label())
+    check_names(grid.axes, known, label_of(model))
     for name in grid.names:
         if name in RESERVED_DIMS:
             raise InvalidParameterError(
@@ -225,7 +226,7 @@ def check_spec(
         sweepable = True  # it can be re-created; these values it refuses (each point says so)
     if sweepable is None:
         raise InvalidParameterError(
-            f"`problem` = {model.label()!r} cannot be re-created at other parameter values (its "
+            f"`problem` = {label_of(model)!r} cannot be re-created at other parameter values (its "
             "with_parameters gives none): it cannot be swept"
         )
     order = _order(order)

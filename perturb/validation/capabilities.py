@@ -14,19 +14,31 @@ capability                  the method a model defines             asked through
 :class:`OwnShootingSetup`   ``shooting_setup()``                   :func:`own_shooting_setup`
 :class:`ValidityEstimates`  ``validity_estimates()``               :func:`validity_estimates`
 :class:`ReportExtras`       ``report_extras()``                    :func:`report_extras`
+:class:`OwnIntegrals`       ``integrals_of_motion(y0)``            :func:`integrals_of_motion`
+:class:`OwnLabel`           ``label()`` (else a ``name``)          :func:`label_of`
 ==========================  =====================================  ==========================
+
+The last two have a generic answer a model without the method gets: the system's own first
+integrals (or its energy), and the model's ``name`` or its class's.
 """
 
 from __future__ import annotations
 
 from typing import Protocol, runtime_checkable
 
+from perturb.validation.model import Integrals, system_integrals
+
 __all__ = [
     "EulerAngles",
+    "Named",
+    "OwnIntegrals",
+    "OwnLabel",
     "OwnShootingSetup",
     "OwnTrueOrbit",
     "ReportExtras",
     "ValidityEstimates",
+    "integrals_of_motion",
+    "label_of",
     "own_shooting_setup",
     "own_true_orbit",
     "report_extras",
@@ -116,6 +128,58 @@ class ReportExtras(Protocol):
     """
 
     def report_extras(self) -> dict: ...
+
+
+@runtime_checkable
+class OwnIntegrals(Protocol):
+    """The model's own first integrals along its original equations (an
+    :class:`~perturb.validation.Integrals`, or None: it has none to check): a model whose
+    equations are not the quasilinear system's (a rigid body's Euler-Poisson equations) names
+    the integrals of those.
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import OwnIntegrals
+    >>> from problems import get_problem
+    >>> [isinstance(get_problem(n).create(), OwnIntegrals) for n in ("disk", "duffing")]
+    [True, False]
+    """
+
+    def integrals_of_motion(self, y0=None): ...
+
+
+@runtime_checkable
+class OwnLabel(Protocol):
+    """The name a model is shown by in reports, computed by the model (a bare system's).
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from perturb import EPS, QuasilinearSystem
+    >>> from perturb.validation import as_model
+    >>> from perturb.validation.capabilities import OwnLabel
+    >>> x, xdot = sp.symbols("x xdot")
+    >>> system = QuasilinearSystem([x], [xdot], [1], [EPS * (1 - x**2) * xdot])
+    >>> isinstance(as_model(system, values={"epsilon": 0.1}), OwnLabel)
+    True
+    """
+
+    def label(self) -> str: ...
+
+
+@runtime_checkable
+class Named(Protocol):
+    """A model with a ``name`` (a problem's registry key): the name reports show.
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import Named
+    >>> from problems import get_problem
+    >>> isinstance(get_problem("duffing").create(), Named)
+    True
+    """
+
+    name: str
 
 
 def has_euler_angles(model) -> bool:
@@ -229,3 +293,69 @@ def report_extras(model) -> dict:
     ['mu', 'regime']
     """
     return dict(model.report_extras()) if isinstance(model, ReportExtras) else {}
+
+
+def integrals_of_motion(model, y0=None) -> Integrals | None:
+    """The model's first integrals with their names: its own (:class:`OwnIntegrals`), else the
+    system's declared first integrals, else its energy when the forces derive from a potential,
+    else None.
+
+    Parameters
+    ----------
+    model : Model
+    y0 : array_like, optional
+        The initial state, needed only by systems whose equations contain initial values.
+
+    Returns
+    -------
+    Integrals or None
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import integrals_of_motion
+    >>> from problems import get_problem
+    >>> integrals_of_motion(get_problem("duffing").create()).names
+    ('energy',)
+    >>> integrals_of_motion(get_problem("van-der-pol").create()) is None
+    True
+    """
+    if isinstance(model, OwnIntegrals):
+        return model.integrals_of_motion(y0)
+    return system_integrals(model, y0)
+
+
+#: How :func:`label_of` names a model of each class (:class:`OwnLabel`, :class:`Named` or None:
+#: its class's name), by class: a driven problem's families ask it at each of its points.
+_LABEL_ROUTE: dict[type, type | None] = {}
+
+
+def label_of(model) -> str:
+    """The name ``model`` is shown by in reports: its own ``label()`` (:class:`OwnLabel`), else
+    its ``name`` (:class:`Named`: a problem's registry key), else its class's name.
+
+    Parameters
+    ----------
+    model : Model
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import label_of
+    >>> from problems import get_problem
+    >>> label_of(get_problem("duffing").create())
+    'duffing'
+    """
+    kind = type(model)
+    route = _LABEL_ROUTE.get(kind)
+    if route is None:  # asked once per class: a protocol's isinstance costs tens of microseconds
+        route = _LABEL_ROUTE[kind] = (
+            OwnLabel if isinstance(model, OwnLabel) else Named if isinstance(model, Named) else None
+        )
+    if route is OwnLabel:
+        return str(model.label())
+    if route is Named:
+        return str(model.name)
+    return kind.__name__

@@ -33,6 +33,7 @@ from collections.abc import Callable, Mapping
 
 from perturb._defaults import DRIVEN_ORDER, FREE_ORDER
 from perturb.frame import DrivenFrame, FreeFrame
+from perturb.validation.capabilities import label_of
 from perturb.validation.forced import analytic_stability, forced_orbit_check, stability_check
 from perturb.validation.orbit import orbit_check, with_model_true_orbit
 
@@ -169,7 +170,7 @@ class DrivenWork(FrameWork):
         return self._state(model, order).solution(family)
 
     def families(self, model, system, order, options):
-        return self._state(model, order).families(model.label(), order)
+        return self._state(model, order).families(label_of(model), order)
 
     def state_is_solution(self) -> bool:
         return False  # the state carries the drive's phase

@@ -36,6 +36,7 @@ __all__ = [
     "OrbitEstimate",
     "ShootingSetup",
     "parameter_value_of",
+    "system_integrals",
 ]
 
 
@@ -246,18 +247,20 @@ class Model(ABC):
        (:func:`parameter_value_of`), unless the model defines ``parameter_value()`` itself;
     3. optionally override :meth:`original_equations` (default: the quasilinear system itself,
        :math:`\\ddot x + \\omega^2 x = \\varepsilon f` written first order);
-    4. optionally override :meth:`integrals_of_motion` (default: the system's declared first
-       integrals, else its energy when the forces derive from a potential, else none);
-    5. optionally override :meth:`with_epsilon` — the same model with its own small parameter
+    4. optionally override :meth:`with_epsilon` — the same model with its own small parameter
        rescaled, for the order check (default: None, the order is then undecided) — and
        :meth:`with_parameters` (other parameter values: a sweep's points); the model's
        :meth:`case` holds its parameters in force, its other points and whether many of them
        can be evaluated at once;
-    6. optionally override :meth:`method_options` and :meth:`label` (for reports);
-    7. optionally declare a capability of :mod:`perturb.validation.capabilities` by defining its
-       method: ``validity_estimates()``, ``true_orbit(solution)`` (a model-specific true-orbit
-       finder for near-degenerate cases), ``shooting_setup()``, ``euler_angles(solution, t)``
-       (rigid bodies), ``report_extras()`` (what a report adds); a model without one has none.
+    5. optionally override :meth:`method_options`;
+    6. optionally define a method of :mod:`perturb.validation.capabilities`, each asked through
+       one function there: ``integrals_of_motion(y0)`` (default: the system's declared
+       first integrals, else its energy when the forces derive from a potential, else none),
+       ``label()`` (default: the model's ``name``, else its class's: for reports), and the
+       optional physics ``validity_estimates()``, ``true_orbit(solution)`` (a model-specific
+       true-orbit finder for near-degenerate cases), ``shooting_setup()``,
+       ``euler_angles(solution, t)`` (rigid bodies), ``report_extras()`` (what a report adds);
+       a model without one has none.
        A sweep asks for ``symbolic_derivation()`` the same way
        (:class:`perturb.sweep.derive.SymbolicDerivation`).
 
@@ -310,10 +313,6 @@ class Model(ABC):
         """Numbers for the system's parameters, by name."""
 
     # ------------------------------------------------------------------ with defaults
-    def label(self) -> str:
-        """The name shown in reports."""
-        return type(self).__name__
-
     def method_options(self) -> dict:
         """Options of :class:`perturb.PoincareMethod` (amplitudes, phase coordinate, branch)."""
         return {}
@@ -323,25 +322,10 @@ class Model(ABC):
 
         ``y0``, the initial state, is needed only by systems whose equations contain initial values.
         """
-        subs = self._substitutions(y0)
+        subs = _substitutions(self, y0)
         if subs is None:
             raise bad_value("y0", y0, "this system's equations contain initial values: give y0")
         return Equations(first_order_form(self.system(), subs), quasilinear=True)
-
-    def integrals_of_motion(self, y0: np.ndarray | None = None) -> Integrals | None:
-        """Named first integrals (default: the declared ones, else the conservative energy)."""
-        subs = self._substitutions(y0)
-        if subs is None:
-            return None
-        system = self.system()
-        exprs = [h.subs(subs) for h in system.first_integrals]
-        names = tuple(f"I{i}" for i in range(len(exprs)))
-        if not exprs:
-            energy = conservative_energy(system, subs)
-            if energy is None:
-                return None
-            exprs, names = [energy], ("energy",)
-        return Integrals(lambdify_integrals(system.state_symbols, exprs), names)
 
     def with_epsilon(self, eps: float) -> Model | None:
         """The same model with ε replaced by ``eps`` (default: None, not rescalable)."""
@@ -367,8 +351,48 @@ class Model(ABC):
         """
         return None
 
-    def _substitutions(self, y0) -> dict | None:
-        return substitutions(self.system(), self.symbol_values(), parameter_value_of(self), y0)
+
+def _substitutions(model, y0) -> dict | None:
+    return substitutions(model.system(), model.symbol_values(), parameter_value_of(model), y0)
+
+
+def system_integrals(model, y0: np.ndarray | None = None) -> Integrals | None:
+    """The first integrals of ``model``'s quasilinear system, named: its declared ones
+    (``I0, I1, ...``), else its energy when the forces derive from a potential, else None —
+    what :func:`perturb.validation.capabilities.integrals_of_motion` gives a model without
+    integrals of its own.
+
+    Parameters
+    ----------
+    model : Model
+    y0 : array_like, optional
+        The initial state, needed only by systems whose equations contain initial values.
+
+    Returns
+    -------
+    Integrals or None
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from perturb.validation.model import system_integrals
+    >>> from problems import get_problem
+    >>> energy = system_integrals(get_problem("duffing").create(eps=0.1))
+    >>> energy.names, energy.function(np.array([1.0, 0.0]))  # x²/2 + eps x⁴/4
+    (('energy',), array([0.525]))
+    """
+    subs = _substitutions(model, y0)
+    if subs is None:
+        return None
+    system = model.system()
+    exprs = [h.subs(subs) for h in system.first_integrals]
+    names = tuple(f"I{i}" for i in range(len(exprs)))
+    if not exprs:
+        energy = conservative_energy(system, subs)
+        if energy is None:
+            return None
+        exprs, names = [energy], ("energy",)
+    return Integrals(lambdify_integrals(system.state_symbols, exprs), names)
 
 
 @runtime_checkable

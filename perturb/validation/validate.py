@@ -26,7 +26,12 @@ from perturb.domain import DomainCheck, series_domain
 from perturb.errors import PerturbError, bad_value
 from perturb.oracle import Integrator, Trajectory
 from perturb.progress import stage, track
-from perturb.validation.capabilities import own_shooting_setup, validity_estimates
+from perturb.validation.capabilities import (
+    integrals_of_motion,
+    label_of,
+    own_shooting_setup,
+    validity_estimates,
+)
 from perturb.validation.checks import (
     analytic_states,
     component_errors,
@@ -134,7 +139,7 @@ def _report(base: dict, outcome: Verdict, sentence: str, **fields) -> Validation
 def _scan(model, eps, order, integrator, rtol, stiff, budget) -> tuple[SlopeFit | None, str]:
     """The one-period error along ε × SLOPE_FACTORS (the problem's own small parameter rescaled)."""
     eps_grid, err_grid = [], []
-    for factor in track(SLOPE_FACTORS, label=f"validate {model.label()}: order check"):
+    for factor in track(SLOPE_FACTORS, label=f"validate {label_of(model)}: order check"):
         try:
             variant = model.with_epsilon(eps * factor)
         except (PerturbError, ValueError):
@@ -247,7 +252,7 @@ def validate(
     clock = time.perf_counter()
     conditions = validity_estimates(model)
     base = dict(
-        problem=model.label(),
+        problem=label_of(model),
         parameters=model.case().values,
         order=int(order),
         epsilon=eps,
@@ -294,7 +299,7 @@ def validate(
             )  # fmt: skip
     y0 = y_analytic0 if start_override is None else start_override
     equations = model.original_equations(y0)
-    integrals = model.integrals_of_motion(y0)
+    integrals = integrals_of_motion(model, y0)
 
     # stiffness, from the Jacobian along one analytic period
     clock = time.perf_counter()
@@ -311,7 +316,7 @@ def validate(
     # trajectory information over the horizon
     clock = time.perf_counter()
     t = np.linspace(0.0, periods * period, int(math.ceil(periods * samples_per_period)) + 1)
-    with stage(f"validate {model.label()}: integrating the true motion over {periods:g} periods"):
+    with stage(f"validate {label_of(model)}: integrating the true motion over {periods:g} periods"):
         traj: Trajectory = solver.integrate(equations.rhs, (0.0, t[-1]), y0, t_eval=t)
     timings["integrate"] = time.perf_counter() - clock
     numeric = np.asarray(traj.y, dtype=float)
@@ -349,7 +354,7 @@ def validate(
         def setup():
             return _setup(model, shooting_setup, equations, y_analytic0, len(invariants), samples)
 
-        with stage(f"validate {model.label()}: shooting the true periodic orbit"):
+        with stage(f"validate {label_of(model)}: shooting the true periodic orbit"):
             orbit = work.measure_orbit(
                 model, solution, equations, y_analytic0, period, integrator, rtol,
                 stiffness.stiff, setup, budget,
