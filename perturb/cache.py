@@ -58,7 +58,16 @@ from typing import TypeVar
 
 from perturb.errors import CacheWarning, bad_value
 
-__all__ = ["Uncached", "active", "bypassed", "cache_dir", "cached", "digest", "key_file"]
+__all__ = [
+    "Uncached",
+    "active",
+    "bypassed",
+    "cache_dir",
+    "cached",
+    "digest",
+    "held_warnings",
+    "key_file",
+]
 
 T = TypeVar("T")
 
@@ -66,6 +75,10 @@ T = TypeVar("T")
 CACHE_ENV = "PERTURB_CACHE_DIR"
 #: Environment variable naming the file of the secret signing key (tests point it elsewhere).
 KEY_ENV = "PERTURB_CACHE_KEY_FILE"
+#: Environment variable set (to ``1``) for the worker processes of a sweep's own local cluster: they
+#: share its folder and key, whose trouble the sweep's process reports, so theirs is not reported
+#: again (once per worker, in their own format); an entry they repair is still repaired.
+QUIET_ENV = "PERTURB_CACHE_QUIET"
 #: What pickling a value that cannot be pickled raises (a lambda, a module, a C object).
 UNPICKLABLE = (pickle.PicklingError, TypeError, AttributeError, RecursionError)
 #: Bump when the layout of an entry or of the pickled objects changes.  Format 1 was a bare pickle;
@@ -136,10 +149,57 @@ def _uid() -> int | None:
 _WARNED: set[str] = set()
 
 
+#: Inside :func:`held_warnings`: the cache's warnings given in the block, given when it ends.
+_HELD: contextvars.ContextVar[list[str] | None] = contextvars.ContextVar(
+    "perturb_cache_held", default=None
+)
+
+
+def _give(text: str, stacklevel: int) -> None:
+    """Warn ``text`` now, or hold it for the innermost :func:`held_warnings` block."""
+    held = _HELD.get()
+    if held is not None:
+        held.append(text)
+    else:
+        warnings.warn(text, CacheWarning, stacklevel=stacklevel + 1)
+
+
 def _warn_once(topic: str, message: str) -> None:
     if topic not in _WARNED:
         _WARNED.add(topic)
-        warnings.warn(f"perturb cache: {message}", CacheWarning, stacklevel=4)
+        if os.environ.get(QUIET_ENV) == "1":
+            return
+        _give(f"perturb cache: {message}", stacklevel=4)
+
+
+@contextlib.contextmanager
+def held_warnings():
+    """Hold the cache's warnings given inside the block and give them when it ends.
+
+    A block that records the warnings of a computation as its result's own (a point's notes, a
+    JSON's ``warnings``), or ignores them, holds the cache's: they concern the machine (a full
+    or read-only folder, a damaged entry), not the result, and are given once per process, so a
+    block that recorded or ignored one would change the result or lose the warning.  Put it
+    before the recording ``warnings.catch_warnings`` in the same ``with``; nested blocks give
+    their warnings to the outermost.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with held_warnings(), warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     value = cached("solution", ("demo",), lambda: 42)
+    >>> caught
+    []
+    """
+    held: list[str] = []
+    token = _HELD.set(held)
+    try:
+        yield
+    finally:
+        _HELD.reset(token)
+        for text in held:
+            _give(text, stacklevel=4)
 
 
 class _Unusable(Exception):

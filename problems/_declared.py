@@ -21,6 +21,7 @@ import sympy as sp
 from attrs import frozen
 
 from perturb import PerturbError
+from perturb.cache import held_warnings
 from perturb.case import EPSILON_KEY, ParameterMap
 from perturb.case.points import checked_point, message_of
 from perturb.errors import InvalidSystemError
@@ -112,7 +113,7 @@ def traced_declarations(cls: type, root: type, base: ParameterMap | None) -> dic
     symbols = {s.name: sp.Symbol(s.name, real=True) for s in cls.parameter_specs}
     probe = _probe(cls, base, symbols)
     out = {}
-    with warnings.catch_warnings():
+    with held_warnings(), warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for name in own:
             try:
@@ -171,7 +172,7 @@ def _reads(cls: type, base: ParameterMap, values: dict, name: str) -> bool:
     probe = _probe(cls, base, numbers)
     found: set = set()
     try:
-        with warnings.catch_warnings():
+        with held_warnings(), warnings.catch_warnings():
             warnings.simplefilter("ignore")
             options = probe.method_options()
             plain = _free(options, found)

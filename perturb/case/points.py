@@ -25,6 +25,7 @@ from collections.abc import Mapping
 import numpy as np
 from attrs import field, frozen
 
+from perturb.cache import held_warnings
 from perturb.errors import PerturbError
 
 __all__ = ["CasePoints", "checked_point", "each_checked", "reciprocal"]
@@ -108,7 +109,7 @@ def checked_point(check, point: Mapping) -> tuple[str, str] | None:
     not) and the warnings it gives ("; "-joined); None where it raised anything but a refusal
     of bad values (the per-point route records that as a failure)."""
     error = ""
-    with warnings.catch_warnings(record=True) as caught:
+    with held_warnings(), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
             check(point)

@@ -9,6 +9,7 @@ import warnings
 import numpy as np
 
 from perturb._defaults import DEFAULT_SAMPLES
+from perturb.cache import held_warnings
 from perturb.cli._errors import EXIT_FAILED, EXIT_OK, _RunFailed, _tell, _UsageError
 from perturb.cli._order import order_of
 from perturb.cli._output import _emit
@@ -56,7 +57,7 @@ def _cmd_solve(args) -> int:
         raise _UsageError(
             f"--euler: problem {args.problem!r} has no Euler angles (rigid bodies only)"
         )
-    with warnings.catch_warnings(record=True) as caught:
+    with held_warnings(), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         solution = problem.solve(order)
         domain = None
@@ -76,7 +77,7 @@ def _cmd_solve(args) -> int:
     period = problem.period(solution)
     if times is None:
         times = np.linspace(0.0, period, DEFAULT_SAMPLES)
-    with warnings.catch_warnings(record=True) as caught:
+    with held_warnings(), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         state = problem.state(solution, times)
         extras = {"euler": problem.euler_angles(solution, times)} if args.euler else {}
@@ -284,7 +285,7 @@ def _family_domain(problem, family) -> tuple[str, str]:
         p.name not in own for p in family.solution.system.parameters
     ):  # a continuum in an amplitude the problem does not fix: no values to check it at
         return "", ""
-    with warnings.catch_warnings(), np.errstate(all="ignore"):
+    with held_warnings(), warnings.catch_warnings(), np.errstate(all="ignore"):
         warnings.simplefilter("ignore")
         try:
             check = series_domain(

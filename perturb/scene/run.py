@@ -29,6 +29,7 @@ import attrs
 import numpy as np
 from attrs import field, frozen
 
+from perturb.cache import held_warnings
 from perturb.domain import series_domain
 from perturb.progress import track
 from perturb.scene.spec import Scene
@@ -273,7 +274,7 @@ def run_scene(scene: Scene, problem, yes: bool = False) -> SceneResult:
 
     def step(name: str, work: Callable[[], object]) -> None:
         clock = time.perf_counter()
-        with warnings.catch_warnings(record=True) as caught:
+        with held_warnings(), warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             values[name] = work()
         state["seconds"][name] = time.perf_counter() - clock

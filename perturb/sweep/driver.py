@@ -41,6 +41,7 @@ from perturb._defaults import (
     SWEEP_TASK_SECONDS,
     SWEEP_WORKERS_PER_CORE,
 )
+from perturb.cache import CACHE_ENV, KEY_ENV, QUIET_ENV
 from perturb.errors import InvalidParameterError
 from perturb.progress import notify, stage
 from perturb.sweep.grid import Chunking
@@ -402,11 +403,14 @@ def _environment_kept(name: str):
 
 def _worker_environment() -> dict[str, str]:
     """Variables for the workers: single-threaded BLAS (as the ``perturb`` command sets them),
-    and this process's disk cache folder (so that they read what the driver derived)."""
+    this process's disk cache folder (so that they read what the driver derived), and its
+    warnings left to this process (:data:`perturb.cache.QUIET_ENV`: the folder's trouble is
+    reported once, here, and never becomes a point's warning)."""
     env = {name: os.environ.get(name, "1") for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS")}
-    for name in ("PERTURB_CACHE_DIR", "PERTURB_CACHE_KEY_FILE"):
+    for name in (CACHE_ENV, KEY_ENV):
         if name in os.environ:
             env[name] = os.environ[name]
+    env[QUIET_ENV] = "1"
     return env
 
 

@@ -20,6 +20,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from perturb._defaults import VALIDITY_ESTIMATE_LIMIT
+from perturb.cache import held_warnings
 from perturb.domain import DomainCheck, series_domain
 from perturb.errors import PerturbError
 from perturb.sweep.evaluate import (
@@ -102,7 +103,7 @@ class _Point:
 
 def _recorded(point: _Point, function, *args):
     """``function(*args)``, its warnings noted on ``point``."""
-    with warnings.catch_warnings(record=True) as caught:
+    with held_warnings(), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
             return function(*args)
@@ -150,7 +151,7 @@ def _points(job: SweepJob, indices: Sequence[int]) -> list[_Point]:
     grid = job.spec.grid
     columns = [column.tolist() for column in grid.columns(indices).values()]
     names = grid.names
-    with _collection_paused(), warnings.catch_warnings(record=True) as caught:
+    with _collection_paused(), held_warnings(), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         return [
             _build(job, dict(zip(names, row, strict=True)), caught)
@@ -181,7 +182,7 @@ def _evaluate_vectorised(job, points: list[_Point], where: list[int], out) -> li
     solution = points[where[0]].solution
     try:
         pv, values = group_arrays(models)
-        with warnings.catch_warnings(record=True) as caught:
+        with held_warnings(), warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             result = evaluate_group(solution, pv, values, np.asarray(job.spec.times))
             domains = _screen(solution).check(pv, values, result["omega"])
@@ -233,7 +234,7 @@ def _check_domains(points: list[_Point], pending: dict[int, tuple]) -> None:
         values = {n: np.array([pending[k][1].get(n, np.nan) for k in where]) for n in names}
         omega = np.array([pending[k][2] for k in where])
         try:
-            with warnings.catch_warnings(record=True) as caught:
+            with held_warnings(), warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
                 checks = _screen(solution).check(pv, values, omega)
         except Exception as exc:  # noqa: BLE001 - recorded, the sweep goes on
@@ -249,7 +250,7 @@ def _columns(job: SweepJob, indices: Sequence[int]):
     """The chunk's points as :class:`~perturb.case.CasePoints` (None: not offered,
     or its making warned: the per-point route says to which point a warning belongs)."""
     columns = job.spec.grid.columns(indices)
-    with warnings.catch_warnings(record=True) as caught:
+    with held_warnings(), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
             found = job.derivation.columns_at(job.spec.model, columns)
@@ -270,7 +271,7 @@ def _run_columns(job: SweepJob, indices: Sequence[int], out) -> list[PointStatus
     statuses = [PointStatus.OK if not e else PointStatus.INVALID_PARAMETERS for e in found.errors]
     if found.model is not None:
         model = found.model
-        with warnings.catch_warnings(record=True) as caught:
+        with held_warnings(), warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             try:
                 direct = model.case().evaluates_directly
@@ -300,7 +301,7 @@ def _columns_evaluated(job, solution, found, valid, statuses, out) -> bool:
     route (a warning, an error or a value that is not finite)."""
     pv = found.parameter_value[valid]
     values = {name: column[valid] for name, column in found.symbol_values.items()}
-    with warnings.catch_warnings(record=True) as caught:
+    with held_warnings(), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
             result = evaluate_group(solution, pv, values, np.asarray(job.spec.times))
@@ -318,7 +319,7 @@ def _columns_evaluated(job, solution, found, valid, statuses, out) -> bool:
         out["warnings"][valid[i]] = check.validity_note()  # inside, beyond its validity
     for i in np.flatnonzero(~clear):
         point = {name: float(column[i]) for name, column in values.items()}
-        with warnings.catch_warnings(record=True) as caught:
+        with held_warnings(), warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             check = series_domain(solution, float(pv[i]), point)
         k = valid[i]

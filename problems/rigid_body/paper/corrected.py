@@ -15,6 +15,7 @@ import warnings
 
 import numpy as np
 
+from perturb.cache import held_warnings
 from perturb.errors import UnknownNameError
 from perturb.validation.model import parameter_value_of
 from problems.rigid_body.paper.data import PAPER_INPUTS, TABLE1_T_END
@@ -63,7 +64,7 @@ def corrected_columns(t: np.ndarray) -> dict:
         return {"description": description, "p2a": None, "unavailable": str(exc)}
     try:
         problem = create_paper_disk(cls)
-        with warnings.catch_warnings(record=True) as caught:
+        with held_warnings(), warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             solution = problem.solve(1)
             r0 = PAPER_INPUTS["r0"]
