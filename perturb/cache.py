@@ -99,6 +99,9 @@ _OTHERS_WRITE = stat.S_IWGRP | stat.S_IWOTH
 _OTHERS_ANY = stat.S_IRWXG | stat.S_IRWXO
 #: A kind is a plain label: it becomes a file-name prefix, so no separators or dots.
 _KIND = re.compile(r"[A-Za-z0-9_-]{1,40}")
+#: Hex digits of an entry's key in its file name (SHA-256), and the pattern of one of them.
+_KEY_DIGITS = 2 * hashlib.sha256().digest_size
+_HEX = "[0-9a-f]"
 
 
 class Rejection(enum.Enum):
@@ -399,7 +402,11 @@ def digest(value: object) -> str:
     >>> digest(x**2 + 1) == digest(x**2 + 1) != digest(x**2 + 2)
     True
     """
-    return hashlib.sha256(_dumps(value, tree=True)).hexdigest()
+    try:
+        data = _dumps(value, tree=True)
+    except ValueError as exc:  # pickle's memo-less mode refuses a value that holds itself
+        raise pickle.PicklingError(str(exc)) from exc
+    return hashlib.sha256(data).hexdigest()
 
 
 def encode(kind: str, key: str, value: object, secret: bytes) -> bytes:
@@ -541,7 +548,7 @@ def _prune(folder: Path, kind: str, keep: int) -> None:
     Concurrent runs may prune together: an entry already gone is skipped.
     """
     entries = []
-    for path in folder.glob(f"{kind}-*.pkl"):
+    for path in folder.glob(f"{kind}-{_HEX * _KEY_DIGITS}.pkl"):  # not another kind's ("kind-x")
         with contextlib.suppress(OSError):
             entries.append((path.stat().st_mtime_ns, path))
     entries.sort(reverse=True)
