@@ -2,6 +2,11 @@
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
+import textwrap
+
 import pytest
 
 from perturb.cache import UNPICKLABLE, cached, digest
@@ -29,3 +34,42 @@ def test_a_cyclic_value_has_no_digest_and_says_so_as_documented():
     loop.append(loop)
     with pytest.raises(UNPICKLABLE):
         digest(loop)
+
+
+#: A process that writes and reads entries of a bounded kind, many more than the bound, while
+#: another does the same in the same folder: each prunes entries the other may have removed first.
+_WRITER = textwrap.dedent(
+    """
+    import sys
+    from perturb.cache import cached
+
+    name, rounds, keep = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+    wrong = 0
+    for n in range(rounds):
+        for key in (n, n // 2):  # the second reads an entry that may have been pruned meanwhile
+            value = cached("bounded", (key,), lambda key=key: ("value", key), keep=keep)
+            wrong += value != ("value", key)
+    print(wrong)
+    """
+)
+
+
+def test_two_processes_writing_past_the_bound_keep_it_and_read_only_their_keys(cache_folder):
+    rounds, keep = 60, 5
+    env = {**os.environ, "PERTURB_CACHE_DIR": str(cache_folder)}
+    runs = [
+        subprocess.Popen(
+            [sys.executable, "-c", _WRITER, name, str(rounds), str(keep)],
+            env=env,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        for name in ("a", "b")
+    ]
+    outputs = [run.communicate(timeout=300) for run in runs]
+    assert [run.returncode for run in runs] == [0, 0], [err for _, err in outputs]
+    assert [out.strip() for out, _ in outputs] == ["0", "0"]
+    assert all("Traceback" not in err and "perturb cache" not in err for _, err in outputs)
+    assert len(list(cache_folder.glob("bounded-*.pkl"))) <= keep
+    assert not list(cache_folder.glob("*.tmp"))
