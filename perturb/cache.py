@@ -127,7 +127,8 @@ def cache_dir() -> Path | None:
     """The cache folder, or ``None`` when caching on disk is disabled."""
     value = os.environ.get(CACHE_ENV)
     if value is not None:
-        return None if value.strip().lower() in ("off", "0", "none", "") else Path(value)
+        off = value.strip().lower() in ("off", "0", "none", "")
+        return None if off else Path(value).expanduser()  # "~/..." quoted: the home folder
     base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
     return Path(base) / "perturb"
 
@@ -136,7 +137,7 @@ def key_file() -> Path:
     """The file holding this user's secret signing key (outside the cache folder)."""
     value = os.environ.get(KEY_ENV, "").strip()
     if value:
-        return Path(value)
+        return Path(value).expanduser()
     base = os.environ.get("XDG_CONFIG_HOME") or os.path.join(os.path.expanduser("~"), ".config")
     return Path(base) / "perturb" / "cache.key"
 

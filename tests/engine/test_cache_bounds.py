@@ -73,3 +73,15 @@ def test_two_processes_writing_past_the_bound_keep_it_and_read_only_their_keys(c
     assert all("Traceback" not in err and "perturb cache" not in err for _, err in outputs)
     assert len(list(cache_folder.glob("bounded-*.pkl"))) <= keep
     assert not list(cache_folder.glob("*.tmp"))
+
+
+def test_a_folder_and_key_named_from_the_home_folder_are_there(tmp_path, monkeypatch):
+    """``PERTURB_CACHE_DIR="~/cache"`` (quoted, so the shell leaves the tilde) is in the home
+    folder, not a folder named ``~`` in the current one; so is the key file."""
+    from perturb.cache import cache_dir, key_file
+
+    monkeypatch.setenv("HOME", str(tmp_path))
+    monkeypatch.setenv("PERTURB_CACHE_DIR", "~/cache")
+    monkeypatch.setenv("PERTURB_CACHE_KEY_FILE", "~/config/cache.key")
+    assert cache_dir() == tmp_path / "cache"
+    assert key_file() == tmp_path / "config" / "cache.key"
