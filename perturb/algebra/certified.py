@@ -290,7 +290,7 @@ def _on(leaf: Piece, root: tuple) -> bool:
     ]
     if values is exact:
         return all(sp.simplify(r) == 0 for r in residuals)
-    scale = max(1, *(abs(float(v)) for v in approx.values()))
+    scale = max([1, *(abs(float(v)) for v in approx.values())])
     return all(abs(float(r)) <= 10.0**-ON_DIGITS * scale**3 for r in residuals)
 
 

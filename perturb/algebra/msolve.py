@@ -131,7 +131,7 @@ def _refined(polys: list, unknowns: list, box: list, midpoint: dict) -> dict:
     """
     import mpmath
 
-    scale = max(1.0, *(abs(float(v)) for v in midpoint.values()))
+    scale = max([1.0, *(abs(float(v)) for v in midpoint.values())])
     degree = max(sp.Poly(p, *unknowns).total_degree() for p in polys)
     digits = NUMBER_DIGITS + GUARD_DIGITS + int(degree * math.log10(scale))
     if digits <= NUMBER_DIGITS + GUARD_DIGITS:

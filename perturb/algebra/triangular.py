@@ -99,7 +99,7 @@ def _growth(polys: list, index: int, var, value) -> int:
             after = max(after, p.total_degree())
             continue
         k = symbols.index(var)
-        after = max(after, *(sum(m) - m[k] + m[k] * value_degree for m in p.monoms()))
+        after = max([after, *(sum(m) - m[k] + m[k] * value_degree for m in p.monoms())])
     return after - before
 
 

@@ -455,7 +455,7 @@ def groebner_real_roots(eqs, unknowns) -> list[dict]:
             if abs(z.imag) > ROOT_RESIDUAL * max(1.0, abs(z)):
                 continue
             value = exact_if_close(z.real)
-            scale = lambda q: max(1.0, *(abs(complex(c)) for c in q.all_coeffs()))  # noqa: E731
+            scale = lambda q: max([1.0, *(abs(complex(c)) for c in q.all_coeffs())])  # noqa: E731
             if all(abs(complex(q.eval(value))) <= ROOT_RESIDUAL * scale(q) for q in candidates):
                 assignment[var] = value
                 descend(index - 1, assignment)

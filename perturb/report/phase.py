@@ -63,7 +63,7 @@ def _grid(dataset, name: str) -> list[str]:
     x_name, y_name = _axes(dataset)
     xs, ys = dataset[x_name].values, dataset[y_name].values
     values = np.asarray(dataset[name].values)
-    width = max(4, *(len(f"{v:.5g}") for v in xs))
+    width = max([4, *(len(f"{v:.5g}") for v in xs)])
     corner = f"{y_name} | {x_name}"
     lines = [f"{corner:>14s} " + " ".join(f"{v:>{width}.5g}" for v in xs)]
     for i in range(len(ys) - 1, -1, -1):

@@ -136,6 +136,6 @@ def _nearest(mine, theirs, points, below, partner, claimed, harmonics, group) ->
             for k in range(len(theirs))
             if k != j
         ]
-        if gap[a, b] < min(ORDER_NEAREST, *(0.5 * d for d in others)):
+        if gap[a, b] < min([ORDER_NEAREST, *(0.5 * d for d in others)]):  # one branch below: none
             partner[i] = j
             claimed.add(j)

@@ -148,3 +148,25 @@ def test_forced_chain_names_follow_their_orbits_across_orders():
     second = problem.steady_state(2)
     ranked = branch_names(list(second.points), second.equations.harmonics)
     assert sum(a != b for a, b in zip(ranked, second.names, strict=True)) >= 5  # it mattered here
+
+
+def test_a_lone_branch_below_is_a_candidate_for_its_name():
+    """One branch at every order (the forced Duffing at ε = 10, far outside the series' domain):
+    the nearest-branch rule has a single order-(N−1) branch to weigh, and no other to compare
+    it with. It named nothing there and failed (``min`` of one number) — every command on that
+    point ended in an internal error."""
+    problem = get_problem("forced-duffing").create(eps=10)
+    names = [problem.steady_state(order=order).names for order in ORDERS]
+    assert all(len(n) == 1 and n[0] for n in names), names
+
+
+def test_a_lone_branch_outside_the_domain_is_one_line_from_the_cli():
+    import subprocess
+    import sys
+
+    out = subprocess.run(
+        [sys.executable, "-m", "perturb", "solve", "forced-duffing", "--set", "eps=10"],
+        capture_output=True, text=True, timeout=600,
+    )  # fmt: skip
+    assert out.returncode == 1, out.stderr
+    assert "internal error" not in out.stderr and "outside its domain" in out.stderr, out.stderr
