@@ -72,6 +72,7 @@ from perturb.validation.frames import steady_states, work_of
 from perturb.validation.model import parameter_value_of
 from problems._declared import (
     checked_columns,
+    checks_of,
     declared_hooks,
     declared_map,
     older_hooks,
@@ -277,7 +278,7 @@ class Problem(Model, ABC):
     _case: Case | None = field(default=None, init=False, eq=False, repr=False)
 
     def __attrs_post_init__(self):
-        self.check_values(self.values)
+        checks_of(self, self.values)  # a refusal returned counts as raised
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)

@@ -24,8 +24,10 @@ integrals (or its energy), and the model's ``name`` or its class's.
 
 from __future__ import annotations
 
+import inspect
 from typing import Protocol, runtime_checkable
 
+from perturb.errors import InvalidSystemError, defined_at
 from perturb.validation.model import Integrals, system_integrals
 
 __all__ = [
@@ -319,9 +321,28 @@ def integrals_of_motion(model, y0=None) -> Integrals | None:
     >>> integrals_of_motion(get_problem("van-der-pol").create()) is None
     True
     """
-    if isinstance(model, OwnIntegrals):
-        return model.integrals_of_motion(y0)
-    return system_integrals(model, y0)
+    if not isinstance(model, OwnIntegrals):
+        return system_integrals(model, y0)
+    hook = model.integrals_of_motion
+    try:
+        inspect.signature(hook).bind(y0)
+    except TypeError:
+        raise InvalidSystemError(
+            f"{defined_at(type(model), 'integrals_of_motion')}: `integrals_of_motion"
+            f"{inspect.signature(hook)}` cannot be given the initial state: define it as "
+            "integrals_of_motion(self, y0=None)"
+        ) from None
+    except ValueError:  # no signature to read (a builtin): called as it is
+        pass
+    found = hook(y0)
+    if found is None or isinstance(found, Integrals):
+        return found
+    raise InvalidSystemError(
+        f"{defined_at(type(model), 'integrals_of_motion')}: `integrals_of_motion(y0)` returned "
+        f"{_shown(found)} ({type(found).__name__}): return Integrals(function, names) "
+        "(perturb.validation.Integrals: the function of the state and one name per integral), "
+        "or None when there are none"
+    )
 
 
 #: How :func:`label_of` names a model of each class (:class:`OwnLabel`, :class:`Named` or None:
@@ -355,7 +376,24 @@ def label_of(model) -> str:
             OwnLabel if isinstance(model, OwnLabel) else Named if isinstance(model, Named) else None
         )
     if route is OwnLabel:
-        return str(model.label())
+        label = model.label  # a method, or the label itself (a string attribute, a property)
+        label = label if isinstance(label, str) else label()
+        if not isinstance(label, str):
+            raise InvalidSystemError(
+                f"{defined_at(kind, 'label')}: `label` of {kind.__qualname__} gives "
+                f"{_shown(label)} ({type(label).__name__}), not a str: return the name reports "
+                "show as a str (or leave label out: the problem's name is shown)"
+            )
+        return label
     if route is Named:
         return str(model.name)
     return kind.__name__
+
+
+#: How many characters of a value a message shows.
+_SHOWN = 60
+
+
+def _shown(value) -> str:
+    text = " ".join(repr(value).split())
+    return text if len(text) <= _SHOWN else text[: _SHOWN - 3] + "..."

@@ -1,0 +1,247 @@
+"""A user's problem file with its hooks in odd but legal shapes, or wrong ones: each gives the
+right answer or one line naming where the class defines the hook, the value and the fix (from
+Python a ValueError subclass, from the CLI exit 2 and no traceback), never an internal error or
+a silently ignored answer.
+
+The shapes: ``label`` a string attribute or a property instead of a method, ``label()``
+returning a non-string; ``parameter_map`` None, a list of pairs, a string; ``integrals_of_motion``
+without the ``y0`` argument, returning a bare function (the older hook's form) or a number,
+values of the wrong shape, more names than integrals; ``check_values`` returning its refusal (a fix, as a
+``ParameterSpec`` check does, or False) instead of raising it, or returning other values. The
+files are written into ``tmp_path`` and loaded as a user's are (``file.py:Class``).
+"""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from perturb import validate
+from perturb.cli import main
+from perturb.errors import InvalidParameterError, InvalidSystemError, ProblemLoadError
+from perturb.validation.capabilities import integrals_of_motion, label_of
+from problems import load_problem
+
+SOURCE = """
+import numpy as np
+import sympy as sp
+
+from perturb import EPS, QuasilinearSystem
+from perturb.validation import Integrals
+from problems.base import ParameterSpec, Problem, positive
+
+X, XDOT, A = sp.symbols("x xdot amplitude")
+
+
+def energy_of(eps):
+    def energy(y):
+        y = np.asarray(y, dtype=float)
+        return np.array([(y[0] ** 2 + y[1] ** 2) / 2 + eps * y[0] ** 4 / 4])
+
+    return energy
+
+
+class Plain(Problem):
+    name = "plain"
+    summary = "x'' + x = -eps x^3"
+    parameter_specs = (
+        ParameterSpec("eps", 0.1, "small parameter"),
+        ParameterSpec("amplitude", 1.0, "x(0), at rest", positive),
+    )
+
+    @classmethod
+    def build_system(cls):
+        return QuasilinearSystem([X], [XDOT], [1], [-EPS * X**3], parameters=[A], name="plain")
+
+    def method_options(self):
+        return {"amplitudes": {"x": A}}
+
+
+class LabelAttribute(Plain):
+    label = "my oscillator"
+
+
+class LabelProperty(Plain):
+    @property
+    def label(self):
+        return "my property"
+
+
+class LabelNumber(Plain):
+    def label(self):
+        return 42
+
+
+class MapNone(Plain):
+    parameter_map = None
+
+
+class MapPairs(Plain):
+    parameter_map = [("epsilon", "eps / 2")]
+
+
+class MapString(Plain):
+    parameter_map = "eps / 2"
+
+
+class IntegralsNoState(Plain):
+    def integrals_of_motion(self):
+        return Integrals(energy_of(self.values["eps"]), ("E",))
+
+
+class IntegralsBareFunction(Plain):
+    def integrals_of_motion(self, y0=None):
+        function = energy_of(self.values["eps"])
+        function.names = ("H",)
+        return function
+
+
+class IntegralsNotAFunction(Plain):
+    def integrals_of_motion(self, y0=None):
+        return 0.5
+
+
+class IntegralsWrongShape(Plain):
+    def integrals_of_motion(self, y0=None):
+        return Integrals(lambda y: np.ones((3, 3)), ("E",))
+
+
+class IntegralsTooManyNames(Plain):
+    def integrals_of_motion(self, y0=None):
+        return Integrals(energy_of(self.values["eps"]), ("E", "F"))
+
+
+class ReturnsFix(Plain):
+    def check_values(self, values):
+        if values["amplitude"] > 5:
+            return "give amplitude <= 5"
+
+
+class ReturnsFalse(Plain):
+    def check_values(self, values):
+        return values["amplitude"] <= 5
+
+
+class ReturnsItsValues(Plain):
+    def check_values(self, values):
+        return values
+
+
+class ReturnsOtherValues(Plain):
+    def check_values(self, values):
+        return {**values, "amplitude": min(values["amplitude"], 1.0)}  # meant to clip it
+"""
+
+
+@pytest.fixture
+def user_file(tmp_path):
+    path = tmp_path / "odd_oscillators.py"
+    path.write_text(SOURCE)
+    return path
+
+
+def loaded(path, cls):
+    return load_problem(f"{path}:{cls}")
+
+
+def run(capsys, *argv):
+    capsys.readouterr()
+    code = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def one_line_error(code, err):
+    assert code == 2, err
+    assert "Traceback" not in err and "internal error" not in err
+    assert len(err.strip().splitlines()) == 1, err
+
+
+# ------------------------------------------------------------------ label
+@pytest.mark.parametrize(
+    ("cls", "label"), [("LabelAttribute", "my oscillator"), ("LabelProperty", "my property")]
+)
+def test_a_label_declared_as_a_string_is_the_label(user_file, capsys, cls, label):
+    problem = loaded(user_file, cls).create(eps=0.05)
+    assert label_of(problem) == label
+    assert validate(problem, periods=2, slope=False, shoot=False).problem == label
+    code, out, _ = run(capsys, "validate", f"{user_file}:{cls}", "--periods", 2, "--format", "json")
+    assert code == 0
+    assert json.loads(out)["problem"] == label
+
+
+def test_a_label_that_is_not_a_string_is_refused_in_one_line(user_file, capsys):
+    problem = loaded(user_file, "LabelNumber").create()
+    with pytest.raises(InvalidSystemError, match=r"odd_oscillators\.py:\d+.*label.*42.*str"):
+        label_of(problem)
+    code, _, err = run(capsys, "validate", f"{user_file}:LabelNumber", "--periods", 2)
+    one_line_error(code, err)
+    assert "odd_oscillators.py:" in err and "42" in err
+
+
+# ------------------------------------------------------------------ parameter_map
+def test_a_map_of_none_is_no_map_and_pairs_are_a_map(user_file):
+    assert loaded(user_file, "MapNone").create(eps=0.1).epsilon() == 0.1
+    halved = loaded(user_file, "MapPairs").create(eps=0.1)
+    assert halved.epsilon() == pytest.approx(0.05, rel=1e-15)
+
+
+def test_a_map_that_is_not_a_mapping_is_refused_in_one_line(user_file, capsys):
+    with pytest.raises(ProblemLoadError, match=r"parameter_map.*'eps / 2'.*dict"):
+        loaded(user_file, "MapString")
+    code, _, err = run(capsys, "solve", f"{user_file}:MapString")
+    one_line_error(code, err)
+    assert "odd_oscillators.py" in err and "parameter_map" in err
+
+
+# ------------------------------------------------------------------ integrals_of_motion
+def test_integrals_without_the_state_argument_are_refused_in_one_line(user_file, capsys):
+    problem = loaded(user_file, "IntegralsNoState").create()
+    with pytest.raises(InvalidSystemError, match=r"odd_oscillators\.py:\d+.*y0=None"):
+        integrals_of_motion(problem)
+    code, _, err = run(capsys, "validate", f"{user_file}:IntegralsNoState", "--periods", 2)
+    one_line_error(code, err)
+    assert "integrals_of_motion" in err
+
+
+@pytest.mark.parametrize(
+    ("cls", "what"),
+    [
+        ("IntegralsNotAFunction", r"0\.5.*Integrals\(function, names\)"),
+        ("IntegralsBareFunction", r"function energy.*Integrals\(function, names\)"),
+        ("IntegralsWrongShape", r"shape \(3, 3\)"),
+        ("IntegralsTooManyNames", r"2 names.*1 integral"),
+    ],
+)
+def test_integrals_of_the_wrong_kind_are_refused_in_one_line(user_file, capsys, cls, what):
+    problem = loaded(user_file, cls).create(eps=0.05)
+    with pytest.raises(InvalidSystemError, match=what):
+        validate(problem, periods=2, slope=False, shoot=False)
+    code, _, err = run(capsys, "validate", f"{user_file}:{cls}", "--periods", 2)
+    one_line_error(code, err)
+    assert "integrals_of_motion" in err and "odd_oscillators.py:" in err
+
+
+# ------------------------------------------------------------------ check_values
+@pytest.mark.parametrize(("cls", "what"), [("ReturnsFix", "give amplitude <= 5"),
+                                           ("ReturnsFalse", "check_values")])  # fmt: skip
+def test_a_refusal_returned_by_check_values_refuses(user_file, capsys, cls, what):
+    checked = loaded(user_file, cls)
+    assert checked.create(amplitude=4.0).values["amplitude"] == 4.0
+    with pytest.raises(InvalidParameterError, match=what):
+        checked.create(amplitude=6.0)
+    code, _, err = run(capsys, "validate", f"{user_file}:{cls}", "--set", "amplitude=6")
+    one_line_error(code, err)
+    assert what in err and "amplitude" in err
+    pytest.importorskip("distributed")
+    code, out, err = run(capsys, "sweep", f"{user_file}:{cls}", "--grid", "amplitude=4,6",
+                         "--format", "json", "--workers", 1, "--quiet")  # fmt: skip
+    assert code == 0, err
+    assert what in out  # the refused point says why
+
+
+def test_check_values_returning_its_values_passes_and_other_values_are_refused(user_file):
+    assert loaded(user_file, "ReturnsItsValues").create(amplitude=2.0).values["amplitude"] == 2.0
+    with pytest.raises(InvalidSystemError, match=r"odd_oscillators\.py:\d+.*check_values"):
+        loaded(user_file, "ReturnsOtherValues").create(amplitude=2.0)
