@@ -302,7 +302,9 @@ class Problem(Model, ABC):
         return cls(values)
 
     def check_values(self, values: Mapping[str, float]) -> None:
-        """Whole-set checks beyond single parameters (e.g. the triangle inequality); raise on failure."""
+        """Whole-set checks beyond single parameters (e.g. the triangle inequality): raise an
+        :class:`~perturb.errors.InvalidParameterError` naming the value and the fix, or return
+        the fix as a string (as a :class:`ParameterSpec` check does); None accepts."""
         return None
 
     # ------------------------------------------------------------------ to override

@@ -112,6 +112,19 @@ class IntegralsTooManyNames(Plain):
         return Integrals(energy_of(self.values["eps"]), ("E", "F"))
 
 
+class Both(Plain):
+    def integrals_of_motion(self, y0=None):
+        return Integrals(energy_of(self.values["eps"]), ("typed",))
+
+    def first_integrals_function(self):
+        return energy_of(self.values["eps"])
+
+
+class OlderInChildOfTyped(Both):
+    def first_integrals_function(self):
+        return energy_of(self.values["eps"])
+
+
 class ReturnsFix(Plain):
     def check_values(self, values):
         if values["amplitude"] > 5:
@@ -221,6 +234,12 @@ def test_integrals_of_the_wrong_kind_are_refused_in_one_line(user_file, capsys, 
     code, _, err = run(capsys, "validate", f"{user_file}:{cls}", "--periods", 2)
     one_line_error(code, err)
     assert "integrals_of_motion" in err and "odd_oscillators.py:" in err
+
+
+@pytest.mark.parametrize("cls", ["Both", "OlderInChildOfTyped"])
+def test_the_typed_integrals_win_over_the_older_hook_as_documented(user_file, cls):
+    problem = loaded(user_file, cls).create(eps=0.05)
+    assert integrals_of_motion(problem).names == ("typed",)
 
 
 # ------------------------------------------------------------------ check_values
