@@ -14,6 +14,7 @@ files are written into ``tmp_path`` and loaded as a user's are (``file.py:Class`
 from __future__ import annotations
 
 import json
+import sys
 
 import pytest
 
@@ -264,3 +265,50 @@ def test_check_values_returning_its_values_passes_and_other_values_are_refused(u
     assert loaded(user_file, "ReturnsItsValues").create(amplitude=2.0).values["amplitude"] == 2.0
     with pytest.raises(InvalidSystemError, match=r"odd_oscillators\.py:\d+.*check_values"):
         loaded(user_file, "ReturnsOtherValues").create(amplitude=2.0)
+
+
+# ------------------------------------------------------------------ one name, two classes
+REDEFINED = """
+import sympy as sp
+
+from perturb import EPS, QuasilinearSystem
+from problems.base import ParameterSpec, Problem
+
+X, XDOT = sp.symbols("x xdot")
+
+
+def oscillator(power):
+    class Osc(Problem):
+        name = "osc"
+        summary = f"x'' + x = -eps x^{power}"
+        parameter_specs = (ParameterSpec("eps", 0.1, "small parameter"),)
+
+        @classmethod
+        def build_system(cls):
+            return QuasilinearSystem([X], [XDOT], [1], [-EPS * X**power], name="osc")
+
+        def method_options(self):
+            return {"amplitudes": {"x": 1}}
+
+    return Osc
+"""
+
+
+def test_a_class_redefined_under_its_name_is_not_answered_from_the_first(tmp_path, capsys):
+    """The second ``Osc`` of a file (the first solved while the file was imported) is solved
+    for its own system, as a file defining it alone: the per-class caches do not take two
+    classes of one name in one module for one."""
+    (tmp_path / "twice.py").write_text(
+        REDEFINED + "Osc = oscillator(3)\nCUBIC = Osc.create().solve(1)\nOsc = oscillator(5)\n"
+    )
+    (tmp_path / "once.py").write_text(REDEFINED + "Osc = oscillator(5)\n")
+    twice = loaded(tmp_path / "twice.py", "Osc").create()
+    once = loaded(tmp_path / "once.py", "Osc").create()
+    assert twice.system().rhs == once.system().rhs
+    period = once.period(once.solve(1))
+    assert twice.period(twice.solve(1)) == pytest.approx(period, rel=1e-12)
+    cubic = sys.modules[type(twice).__module__].CUBIC  # the first class's answer is another
+    assert twice.period(cubic) != pytest.approx(period, rel=1e-6)
+    code, out, _ = run(capsys, "solve", f"{tmp_path / 'twice.py'}:Osc", "--format", "json")
+    assert code == 0
+    assert json.loads(out)["period"] == pytest.approx(period, rel=1e-12)
