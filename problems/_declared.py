@@ -28,6 +28,7 @@ from perturb.case.points import checked_point, message_of
 from perturb.errors import InvalidParameterError, InvalidSystemError, defined_at
 from perturb.oracle import PeriodicOrbit
 from perturb.validation import Condition, Integrals, OrbitEstimate
+from perturb.validation.capabilities import call_hook
 from perturb.validation.model import system_integrals
 
 __all__ = [
@@ -229,7 +230,7 @@ def checks_of(problem, values: Mapping) -> None:
         The check returned other values (it checks them, it cannot change them) or something
         else: one line naming where it is defined and the fix.
     """
-    found = problem.check_values(values)
+    found = call_hook(problem, "check_values", problem.check_values, "(self, values)", values)
     accepted = (
         found is None
         or (isinstance(found, bool | np.bool_) and bool(found))

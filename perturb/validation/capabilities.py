@@ -39,6 +39,7 @@ __all__ = [
     "OwnTrueOrbit",
     "ReportExtras",
     "ValidityEstimates",
+    "call_hook",
     "integrals_of_motion",
     "label_of",
     "own_shooting_setup",
@@ -323,18 +324,9 @@ def integrals_of_motion(model, y0=None) -> Integrals | None:
     """
     if not isinstance(model, OwnIntegrals):
         return system_integrals(model, y0)
-    hook = model.integrals_of_motion
-    try:
-        inspect.signature(hook).bind(y0)
-    except TypeError:
-        raise InvalidSystemError(
-            f"{defined_at(type(model), 'integrals_of_motion')}: `integrals_of_motion"
-            f"{inspect.signature(hook)}` cannot be given the initial state: define it as "
-            "integrals_of_motion(self, y0=None)"
-        ) from None
-    except ValueError:  # no signature to read (a builtin): called as it is
-        pass
-    found = hook(y0)
+    found = call_hook(
+        model, "integrals_of_motion", model.integrals_of_motion, "(self, y0=None)", y0
+    )
     if found is None or isinstance(found, Integrals):
         return found
     raise InvalidSystemError(
@@ -377,7 +369,7 @@ def label_of(model) -> str:
         )
     if route is OwnLabel:
         label = model.label  # a method, or the label itself (a string attribute, a property)
-        label = label if isinstance(label, str) else label()
+        label = label if isinstance(label, str) else call_hook(model, "label", label, "(self)")
         if not isinstance(label, str):
             raise InvalidSystemError(
                 f"{defined_at(kind, 'label')}: `label` of {kind.__qualname__} gives "
@@ -388,6 +380,59 @@ def label_of(model) -> str:
     if route is Named:
         return str(model.name)
     return kind.__name__
+
+
+def call_hook(model, name: str, hook, form: str, *args):
+    """``hook(*args)``, the method ``name`` of ``model``'s class, after checking that its
+    signature takes ``args``.
+
+    Parameters
+    ----------
+    model : object
+        The model (a user's problem) whose class defines the hook.
+    name : str
+        The hook's name.
+    hook : callable
+        The bound method.
+    form : str
+        Its expected parameters, for the message (``"(self, y0=None)"``).
+    *args
+        What it is given.
+
+    Returns
+    -------
+    object
+        What the hook returns.
+
+    Raises
+    ------
+    perturb.errors.InvalidSystemError
+        Its signature cannot take ``args``: one line naming where the class defines it and the
+        form to give it.
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import call_hook
+    >>> class Odd:
+    ...     def label(self, style):
+    ...         return style
+    >>> call_hook(Odd(), "label", Odd().label, "(self)")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    perturb.errors.InvalidSystemError: ...: `label(style)` cannot be called so: define it as label(self)
+    """
+    try:
+        signature = inspect.signature(hook)
+    except (TypeError, ValueError):  # no signature to read (a builtin, a callable object)
+        return hook(*args)
+    try:
+        signature.bind(*args)
+    except TypeError:
+        raise InvalidSystemError(
+            f"{defined_at(type(model), name)}: `{name}{signature}` cannot be called so: define "
+            f"it as {name}{form}"
+        ) from None
+    return hook(*args)
 
 
 #: How many characters of a value a message shows.

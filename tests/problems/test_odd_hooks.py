@@ -74,6 +74,16 @@ class LabelNumber(Plain):
         return 42
 
 
+class LabelWithArgument(Plain):
+    def label(self, style):
+        return f"{style} oscillator"
+
+
+class CheckWithoutValues(Plain):
+    def check_values(self):
+        return None
+
+
 class MapNone(Plain):
     parameter_map = None
 
@@ -192,6 +202,18 @@ def test_a_label_that_is_not_a_string_is_refused_in_one_line(user_file, capsys):
     code, _, err = run(capsys, "validate", f"{user_file}:LabelNumber", "--periods", 2)
     one_line_error(code, err)
     assert "odd_oscillators.py:" in err and "42" in err
+
+
+def test_hooks_that_cannot_be_called_so_are_one_line(user_file, capsys):
+    with pytest.raises(InvalidSystemError, match=r"odd_oscillators\.py:\d+.*label\(self\)"):
+        label_of(loaded(user_file, "LabelWithArgument").create())
+    code, _, err = run(capsys, "validate", f"{user_file}:LabelWithArgument", "--periods", 2)
+    one_line_error(code, err)
+    assert "label(style)" in err
+    with pytest.raises(
+        ProblemLoadError, match=r"odd_oscillators\.py:\d+.*check_values\(self, values\)"
+    ):
+        loaded(user_file, "CheckWithoutValues")
 
 
 # ------------------------------------------------------------------ parameter_map
