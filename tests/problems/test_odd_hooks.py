@@ -96,6 +96,18 @@ class MapString(Plain):
     parameter_map = "eps / 2"
 
 
+class Doubled(Plain):
+    parameter_map = {"epsilon": "eps / 2", "amplitude": "2 * amplitude"}
+
+
+class Replaced(Doubled):
+    parameter_map = {"epsilon": "eps / 4"}  # the whole map: amplitude is its parameter again
+
+
+class Extended(Doubled):
+    parameter_map = {**Doubled.parameter_map, "epsilon": "eps / 4"}
+
+
 class IntegralsNoState(Plain):
     def integrals_of_motion(self):
         return Integrals(energy_of(self.values["eps"]), ("E",))
@@ -229,6 +241,15 @@ def test_a_map_that_is_not_a_mapping_is_refused_in_one_line(user_file, capsys):
     code, _, err = run(capsys, "solve", f"{user_file}:MapString")
     one_line_error(code, err)
     assert "odd_oscillators.py" in err and "parameter_map" in err
+
+
+@pytest.mark.parametrize(("cls", "amplitude"), [("Doubled", 6.0), ("Replaced", 3.0),
+                                                ("Extended", 6.0)])  # fmt: skip
+def test_a_subclass_map_replaces_its_parents_whole_as_documented(user_file, cls, amplitude):
+    problem = loaded(user_file, cls).create(eps=0.2, amplitude=3.0)
+    expected = 0.1 if cls == "Doubled" else 0.05
+    assert problem.epsilon() == pytest.approx(expected, rel=1e-15)
+    assert problem.symbol_values()["amplitude"] == pytest.approx(amplitude, rel=1e-15)
 
 
 # ------------------------------------------------------------------ integrals_of_motion
