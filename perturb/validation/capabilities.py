@@ -421,18 +421,26 @@ def call_hook(model, name: str, hook, form: str, *args):
     ...
     perturb.errors.InvalidSystemError: ...: `label(style)` cannot be called so: define it as label(self)
     """
-    try:
-        signature = inspect.signature(hook)
-    except (TypeError, ValueError):  # no signature to read (a builtin, a callable object)
-        return hook(*args)
-    try:
-        signature.bind(*args)
-    except TypeError:
-        raise InvalidSystemError(
-            f"{defined_at(type(model), name)}: `{name}{signature}` cannot be called so: define "
-            f"it as {name}{form}"
-        ) from None
+    key = (type(model), name, len(args))
+    if key not in _CALLABLE_SO:  # asked once per class: a signature costs tens of microseconds
+        try:
+            signature = inspect.signature(hook)
+        except (TypeError, ValueError):  # no signature to read (a builtin, a callable object)
+            signature = None
+        try:
+            if signature is not None:
+                signature.bind(*args)
+        except TypeError:
+            raise InvalidSystemError(
+                f"{defined_at(type(model), name)}: `{name}{signature}` cannot be called so: "
+                f"define it as {name}{form}"
+            ) from None
+        _CALLABLE_SO[key] = True
     return hook(*args)
+
+
+#: The hooks :func:`call_hook` found callable with so many arguments, by class, name and count.
+_CALLABLE_SO: dict[tuple[type, str, int], bool] = {}
 
 
 #: How many characters of a value a message shows.
