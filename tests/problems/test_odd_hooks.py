@@ -355,3 +355,21 @@ def test_a_class_redefined_under_its_name_is_not_answered_from_the_first(tmp_pat
     code, out, _ = run(capsys, "solve", f"{tmp_path / 'twice.py'}:Osc", "--format", "json")
     assert code == 0
     assert json.loads(out)["period"] == pytest.approx(period, rel=1e-12)
+
+
+# ------------------------------------------------------------------ a sibling module
+def test_a_file_importing_a_sibling_module_sweeps_on_the_workers(tmp_path, capsys):
+    """A problem file may import a module beside it at its top (problems.loading); the sweep's
+    workers, which cannot import it, get it with the file's class."""
+    pytest.importorskip("distributed")
+    (tmp_path / "oscillators_base.py").write_text(SOURCE)
+    (tmp_path / "derived.py").write_text(
+        "from oscillators_base import Plain\n\n\nclass Derived(Plain):\n    name = 'derived'\n"
+    )
+    code, out, err = run(capsys, "sweep", f"{tmp_path / 'derived.py'}:Derived", "--grid",
+                         "eps=0.04,0.08", "--format", "json", "--workers", 1, "--quiet")  # fmt: skip
+    assert code == 0, err
+    points = json.loads(out)["points"]
+    assert [p["status"] for p in points] == ["ok", "ok"]
+    # x'' + x = -eps x^3 from rest at x(0) = 1: frequency 1 + 3 eps / 8 at order 1
+    assert [p["frequency"] for p in points] == pytest.approx([1.015, 1.03], rel=1e-12)
