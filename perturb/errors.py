@@ -193,6 +193,36 @@ def bad_value(
     return cls(f"`{argument}` = {value!r} is invalid: {fix}")
 
 
+def defined_at(owner, name: str | None = None) -> str:
+    """Where a user's code is defined, for a one-line error: ``file:line`` of the function
+    ``owner`` or, with ``name``, of the class ``owner``'s attribute ``name`` (a method, a
+    property's getter; else the class that sets it), else the dotted name.
+
+    Examples
+    --------
+    >>> from perturb.errors import defined_at
+    >>> from problems import get_problem
+    >>> defined_at(get_problem("duffing"), "check_values")  # doctest: +ELLIPSIS
+    '.../problems/duffing.py:...'
+    """
+    import inspect
+
+    if name is not None:  # the class in the method resolution order that defines it
+        owner = next((k for k in owner.__mro__ if name in vars(k)), owner)
+    value = inspect.getattr_static(owner, name, None) if name is not None else owner
+    function = value.fget if isinstance(value, property) else value
+    function = function.__func__ if isinstance(function, classmethod | staticmethod) else function
+    code = function.__code__ if inspect.isfunction(function) else None
+    if code is not None:
+        return f"{code.co_filename}:{code.co_firstlineno}"
+    if inspect.isclass(owner):
+        try:
+            return f"{inspect.getsourcefile(owner)}:{inspect.getsourcelines(owner)[1]}"
+        except (OSError, TypeError):  # no source to read: the class by its name
+            return f"{owner.__module__}.{owner.__qualname__}"
+    return repr(owner)
+
+
 class CacheWarning(UserWarning):
     """The disk cache was bypassed or repaired (unsafe folder, unusable key, invalid entry); the
     result is still computed afresh and correct."""

@@ -19,7 +19,7 @@ from collections.abc import Mapping
 
 import sympy as sp
 
-from perturb.errors import PerturbError, ProblemLoadError
+from perturb.errors import InvalidSystemError, PerturbError, ProblemLoadError
 
 __all__ = ["check_usable"]
 
@@ -80,6 +80,8 @@ def check_usable(cls, label: str) -> None:
 def _default_instance(cls, label: str):
     try:
         return cls.create()
+    except InvalidSystemError as exc:  # a hook of the class, not the values: it names its line
+        raise ProblemLoadError(" ".join(str(exc).split())) from None
     except PerturbError as exc:
         raise ProblemLoadError(
             f"{label}: its default parameters are refused ({' '.join(str(exc).split())}): fix "

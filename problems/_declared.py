@@ -12,8 +12,10 @@ solution). The problem's own checks, over many points at once, are here too
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
+from collections.abc import Mapping
 from inspect import getattr_static
 
 import numpy as np
@@ -24,13 +26,15 @@ from perturb import PerturbError
 from perturb.cache import held_warnings
 from perturb.case import EPSILON_KEY, ParameterMap
 from perturb.case.points import checked_point, message_of
-from perturb.errors import InvalidSystemError
+from perturb.errors import InvalidParameterError, InvalidSystemError, defined_at
 from perturb.oracle import PeriodicOrbit
 from perturb.validation import Condition, Integrals, OrbitEstimate
+from perturb.validation.capabilities import call_hook
 from perturb.validation.model import system_integrals
 
 __all__ = [
     "checked_columns",
+    "checks_of",
     "declared_hooks",
     "declared_map",
     "older_hooks",
@@ -57,13 +61,34 @@ OWN_METHODS = (
 )
 
 
-def declared_map(cls: type):
+def declared_map(cls: type) -> dict:
     """The ``parameter_map`` the class declares, or the nearest parent's ({} if none does): a
-    declaration of the subclass contract with no value on the base class, as ``name``."""
-    for klass in cls.__mro__:
-        if "parameter_map" in vars(klass):
-            return vars(klass)["parameter_map"]
-    return {}
+    declaration of the subclass contract with no value on the base class, as ``name``. None
+    declares no map, as leaving it out does; ``(key, expression)`` pairs are a map too.
+
+    Raises
+    ------
+    perturb.errors.InvalidSystemError
+        The declaration is not a mapping (a string, a number): one line naming where the class
+        declares it and the fix.
+    """
+    owner = next((k for k in cls.__mro__ if "parameter_map" in vars(k)), None)
+    declared = None if owner is None else vars(owner)["parameter_map"]
+    if declared is None:
+        return {}
+    if isinstance(declared, Mapping):
+        return dict(declared)
+    if not isinstance(declared, str | bytes):
+        try:
+            return dict(declared)
+        except (TypeError, ValueError):
+            pass
+    raise InvalidSystemError(
+        f"{defined_at(owner, 'parameter_map')}: `{owner.__qualname__}.parameter_map` = "
+        f"{declared!r} is invalid: give a dict {{symbol or 'epsilon': expression in the "
+        "parameters}, e.g. {'epsilon': 'eps / 2'} (or leave it out: each symbol is the parameter "
+        "of its name, ε the parameter eps)"
+    )
 
 
 def _overrides(cls: type, base: type, name: str) -> bool:
@@ -192,6 +217,44 @@ def solution_reads(cls: type, root: type, base: ParameterMap, values: dict) -> f
     return frozenset(n for n in values if _reads(cls, base, values, n))
 
 
+def checks_of(problem, values: Mapping) -> None:
+    """Run ``problem``'s whole-set :meth:`~problems.Problem.check_values` on ``values``. A
+    refusal it returns instead of raising counts as raised: a string is the fix (as a
+    :class:`~problems.ParameterSpec` check returns it), False refuses; None, True or the values
+    themselves accept.
+
+    Raises
+    ------
+    perturb.errors.InvalidParameterError
+        The check refuses the values (raised, or returned).
+    perturb.errors.InvalidSystemError
+        The check returned other values (it checks them, it cannot change them) or something
+        else: one line naming where it is defined and the fix.
+    """
+    found = call_hook(problem, "check_values", problem.check_values, "(self, values)", values)
+    accepted = (
+        found is None
+        or (isinstance(found, bool | np.bool_) and bool(found))
+        or (isinstance(found, str) and not found.strip())
+        or (isinstance(found, Mapping) and dict(found) == dict(values))
+    )
+    if accepted:
+        return
+    shown = ", ".join(f"{name}={value!r}" for name, value in values.items())
+    if isinstance(found, str):
+        raise InvalidParameterError(f"the parameters {shown} are invalid: {found}")
+    where = defined_at(type(problem), "check_values")
+    if isinstance(found, bool | np.bool_):
+        raise InvalidParameterError(
+            f"the parameters {shown} are refused by check_values ({where}): give values it accepts"
+        )
+    raise InvalidSystemError(
+        f"{where}: `check_values` returned {type(found).__name__} {found!r:.60}: it checks the "
+        "values and cannot change them: raise an InvalidParameterError naming the value and the "
+        "fix (or return the fix as a str), and return None where they are accepted"
+    )
+
+
 def checked_columns(problem, root: type, values: dict, grid: dict, size: int):
     """``(errors, notes)``: what :meth:`~problems.Problem.create` says at each point of ``grid``
     (the rest ``values``) — the first invalid parameter in the specs' order, then the whole-set
@@ -224,7 +287,7 @@ def checked_columns(problem, root: type, values: dict, grid: dict, size: int):
             if errors[i]:
                 continue
             point = {n: float(rows[n][i] if n in rows else values[n]) for n in names}
-            checked = checked_point(problem.check_values, point)
+            checked = checked_point(functools.partial(checks_of, problem), point)
             if checked is None:
                 return None
             errors[i], notes[i] = checked

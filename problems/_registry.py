@@ -25,10 +25,10 @@ import importlib
 import importlib.metadata
 import re
 import sys
-from collections.abc import Iterator, Mapping, MutableMapping
+from collections.abc import Iterator, MutableMapping
 from pathlib import Path
 
-from perturb.errors import ProblemLoadError, UnknownNameError
+from perturb.errors import InvalidSystemError, ProblemLoadError, UnknownNameError
 from problems._declared import declared_map
 from problems.base import ParameterSpec, Problem
 
@@ -99,8 +99,11 @@ def check_problem_class(cls: type, label: str | None = None) -> None:
             raise ProblemLoadError(
                 f"`{label}.parameter_specs` = {specs!r} is invalid: give a tuple of ParameterSpec"
             )
-        mapping = declared_map(cls)
-        declared = isinstance(mapping, Mapping) and "epsilon" in mapping
+        try:
+            mapping = declared_map(cls)
+        except InvalidSystemError as exc:
+            raise ProblemLoadError(str(exc)) from None
+        declared = "epsilon" in mapping
         if cls.epsilon is Problem.epsilon and not declared and "eps" not in {s.name for s in specs}:
             missing.append("epsilon (or a parameter named eps, or 'epsilon' in parameter_map)")
     if missing:

@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import functools
 import math
+import uuid
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
 from typing import ClassVar
@@ -72,6 +73,7 @@ from perturb.validation.frames import steady_states, work_of
 from perturb.validation.model import parameter_value_of
 from problems._declared import (
     checked_columns,
+    checks_of,
     declared_hooks,
     declared_map,
     older_hooks,
@@ -187,10 +189,17 @@ def positive(value: float) -> str | None:
     return None if value > 0 else "give a value > 0"
 
 
+def _class_key(cls: type) -> tuple[str, str, str]:
+    """The key of a problem class in the per-class caches: its module, its name and the identity
+    it was given when made — two classes of one name in one file (the second redefining the
+    first) are two classes, and a copy of a class sent to a worker is the class it copies."""
+    return (cls.__module__, cls.__qualname__, cls._identity)
+
+
 def _solution_reads(cls: type, values: dict) -> frozenset | None:
     """The parameters the class's solution reads besides its system's symbols, the others at
     ``values`` (:func:`problems._declared.solution_reads`, kept per class and values)."""
-    key = (cls.__module__, cls.__qualname__, tuple(sorted(values.items())))
+    key = (*_class_key(cls), tuple(sorted(values.items())))
     if key not in _READS_CACHE:
         if len(_READS_CACHE) >= _OPTION_KEYS_SIZE:
             _READS_CACHE.clear()
@@ -262,6 +271,8 @@ class Problem(Model, ABC):
     #: The hooks of :data:`problems._declared.OWN_HOOKS` the class defines (``original_rhs``),
     #: read once when the class is made (:func:`problems._declared.declared_hooks`).
     _own: ClassVar[frozenset] = frozenset()
+    #: The class's own identity, given when it is made (:func:`_class_key`).
+    _identity: ClassVar[str] = "Problem"
 
     values: dict = field(converter=dict)
     #: The family of periodic solutions :meth:`solve` follows, by its name in :meth:`families`
@@ -277,10 +288,11 @@ class Problem(Model, ABC):
     _case: Case | None = field(default=None, init=False, eq=False, repr=False)
 
     def __attrs_post_init__(self):
-        self.check_values(self.values)
+        checks_of(self, self.values)  # a refusal returned counts as raised
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
+        cls._identity = uuid.uuid4().hex  # its own, for the per-class caches (_class_key)
         older_hooks(cls, Problem)
         declared_hooks(cls, Problem)
 
@@ -301,7 +313,9 @@ class Problem(Model, ABC):
         return cls(values)
 
     def check_values(self, values: Mapping[str, float]) -> None:
-        """Whole-set checks beyond single parameters (e.g. the triangle inequality); raise on failure."""
+        """Whole-set checks beyond single parameters (e.g. the triangle inequality): raise an
+        :class:`~perturb.errors.InvalidParameterError` naming the value and the fix, or return
+        the fix as a string (as a :class:`ParameterSpec` check does); None accepts."""
         return None
 
     # ------------------------------------------------------------------ to override
@@ -333,7 +347,7 @@ class Problem(Model, ABC):
             A system symbol the map does not cover, or an expression in names that are not
             parameters (one line naming it and the fix).
         """
-        key = (cls.__module__, cls.__qualname__)
+        key = _class_key(cls)
         if key not in _MAP_CACHE:
             parameters = cls.system().parameters
             user = [s.name for s in cls.parameter_specs]
@@ -382,7 +396,7 @@ class Problem(Model, ABC):
     # ------------------------------------------------------------------ shared machinery
     @classmethod
     def system(cls) -> QuasilinearSystem:
-        key = (cls.__module__, cls.__qualname__)
+        key = _class_key(cls)
         if key not in _SYSTEM_CACHE:
             _SYSTEM_CACHE[key] = cls.build_system()
         return _SYSTEM_CACHE[key]
@@ -414,7 +428,7 @@ class Problem(Model, ABC):
         values (``trivial``, ``lower``, ``middle``, ``upper``, …), each with its stability."""
         system, options = self._family_options(order)
         work = work_of(system)  # free: find_families; driven: the branches at these values
-        key = (type(self).__qualname__, order, system, repr(sorted(options.items())))
+        key = (*_class_key(type(self)), order, system, repr(sorted(options.items())))
         key = (*key, *work.point_key(self))
         if key not in _FAMILY_CACHE:
             _FAMILY_CACHE[key] = work.families(self, system, order, options)
@@ -458,7 +472,7 @@ class Problem(Model, ABC):
                 self, order, {}, name, named=lambda n: self._family_solution(order, n)
             )
         options = self.method_options()
-        key = (type(self).__module__, type(self).__qualname__, order, _options_key(options))
+        key = (*_class_key(type(self)), order, _options_key(options))
         key = (*key, *work.point_key(self))
         if key not in _SOLUTION_CACHE:
             _SOLUTION_CACHE[key] = work.solve(self, order, options)

@@ -10,7 +10,8 @@
 The class needs no ``@register``: subclassing :class:`problems.base.Problem` and filling in its
 contract is enough.  A file is imported under a fresh module name (``_perturb_file_<n>_<stem>``);
 while it is imported its folder is put first on ``sys.path``, so it may import a sibling module
-(``import helpers``) at its top level; its own relative imports (``from . import x``) do not work.
+(``import helpers``) at its top level (a sweep's workers get such a module with the class); its
+own relative imports (``from . import x``) do not work.
 Every failure is one :class:`perturb.errors.ProblemLoadError` line naming the file and the fix.
 """
 

@@ -103,10 +103,11 @@ def _pickled(payload, model) -> bytes:
     import cloudpickle
 
     module = sys.modules.get(type(model).__module__)
-    registered = False
+    registered = []
     if module is not None and not _importable_elsewhere(module.__name__):
-        cloudpickle.register_pickle_by_value(module)
-        registered = True
+        registered = [module, *_siblings(module)]
+        for each in registered:
+            cloudpickle.register_pickle_by_value(each)
     try:
         return cloudpickle.dumps(payload)
     except Exception as exc:  # noqa: BLE001 - any reason pickle gives
@@ -119,8 +120,27 @@ def _pickled(payload, model) -> bytes:
             "the instance)"
         ) from None
     finally:
-        if registered:
-            cloudpickle.unregister_pickle_by_value(module)
+        for each in registered:
+            cloudpickle.unregister_pickle_by_value(each)
+
+
+def _siblings(module) -> list:
+    """The modules a problem file imported from its own folder (``import helpers`` at its top:
+    :mod:`problems.loading` puts the folder on the path while it imports the file) that a worker
+    could not import: they travel by value with the file's class."""
+    file = getattr(module, "__file__", None)
+    if not file:
+        return []
+    folder = os.path.dirname(os.path.abspath(file))
+    found = []
+    for name, other in list(sys.modules.items()):
+        where = getattr(other, "__file__", None)
+        if other is module or not where or name.partition(".")[0] in sys.builtin_module_names:
+            continue
+        inside = os.path.abspath(where).startswith(folder + os.sep)
+        if inside and not _importable_elsewhere(name):
+            found.append(other)
+    return found
 
 
 def run_packed(blob: bytes, key: str, shape, chunk, number: int, session: int) -> dict:

@@ -24,8 +24,10 @@ integrals (or its energy), and the model's ``name`` or its class's.
 
 from __future__ import annotations
 
+import inspect
 from typing import Protocol, runtime_checkable
 
+from perturb.errors import InvalidSystemError, defined_at
 from perturb.validation.model import Integrals, system_integrals
 
 __all__ = [
@@ -37,6 +39,7 @@ __all__ = [
     "OwnTrueOrbit",
     "ReportExtras",
     "ValidityEstimates",
+    "call_hook",
     "integrals_of_motion",
     "label_of",
     "own_shooting_setup",
@@ -319,9 +322,19 @@ def integrals_of_motion(model, y0=None) -> Integrals | None:
     >>> integrals_of_motion(get_problem("van-der-pol").create()) is None
     True
     """
-    if isinstance(model, OwnIntegrals):
-        return model.integrals_of_motion(y0)
-    return system_integrals(model, y0)
+    if not isinstance(model, OwnIntegrals):
+        return system_integrals(model, y0)
+    found = call_hook(
+        model, "integrals_of_motion", model.integrals_of_motion, "(self, y0=None)", y0
+    )
+    if found is None or isinstance(found, Integrals):
+        return found
+    raise InvalidSystemError(
+        f"{defined_at(type(model), 'integrals_of_motion')}: `integrals_of_motion(y0)` returned "
+        f"{_shown(found)} ({type(found).__name__}): return Integrals(function, names) "
+        "(perturb.validation.Integrals: the function of the state and one name per integral), "
+        "or None when there are none"
+    )
 
 
 #: How :func:`label_of` names a model of each class (:class:`OwnLabel`, :class:`Named` or None:
@@ -355,7 +368,85 @@ def label_of(model) -> str:
             OwnLabel if isinstance(model, OwnLabel) else Named if isinstance(model, Named) else None
         )
     if route is OwnLabel:
-        return str(model.label())
+        label = model.label  # a method, or the label itself (a string attribute, a property)
+        label = label if isinstance(label, str) else call_hook(model, "label", label, "(self)")
+        if not isinstance(label, str):
+            raise InvalidSystemError(
+                f"{defined_at(kind, 'label')}: `label` of {kind.__qualname__} gives "
+                f"{_shown(label)} ({type(label).__name__}), not a str: return the name reports "
+                "show as a str (or leave label out: the problem's name is shown)"
+            )
+        return label
     if route is Named:
         return str(model.name)
     return kind.__name__
+
+
+def call_hook(model, name: str, hook, form: str, *args):
+    """``hook(*args)``, the method ``name`` of ``model``'s class, after checking that its
+    signature takes ``args``.
+
+    Parameters
+    ----------
+    model : object
+        The model (a user's problem) whose class defines the hook.
+    name : str
+        The hook's name.
+    hook : callable
+        The bound method.
+    form : str
+        Its expected parameters, for the message (``"(self, y0=None)"``).
+    *args
+        What it is given.
+
+    Returns
+    -------
+    object
+        What the hook returns.
+
+    Raises
+    ------
+    perturb.errors.InvalidSystemError
+        Its signature cannot take ``args``: one line naming where the class defines it and the
+        form to give it.
+
+    Examples
+    --------
+    >>> from perturb.validation.capabilities import call_hook
+    >>> class Odd:
+    ...     def label(self, style):
+    ...         return style
+    >>> call_hook(Odd(), "label", Odd().label, "(self)")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    perturb.errors.InvalidSystemError: ...: `label(style)` cannot be called so: define it as label(self)
+    """
+    key = (type(model), name, len(args))
+    if key not in _CALLABLE_SO:  # asked once per class: a signature costs tens of microseconds
+        try:
+            signature = inspect.signature(hook)
+        except (TypeError, ValueError):  # no signature to read (a builtin, a callable object)
+            signature = None
+        try:
+            if signature is not None:
+                signature.bind(*args)
+        except TypeError:
+            raise InvalidSystemError(
+                f"{defined_at(type(model), name)}: `{name}{signature}` cannot be called so: "
+                f"define it as {name}{form}"
+            ) from None
+        _CALLABLE_SO[key] = True
+    return hook(*args)
+
+
+#: The hooks :func:`call_hook` found callable with so many arguments, by class, name and count.
+_CALLABLE_SO: dict[tuple[type, str, int], bool] = {}
+
+
+#: How many characters of a value a message shows.
+_SHOWN = 60
+
+
+def _shown(value) -> str:
+    text = " ".join(repr(value).split())
+    return text if len(text) <= _SHOWN else text[: _SHOWN - 3] + "..."

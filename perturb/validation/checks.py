@@ -13,7 +13,7 @@ from perturb._defaults import (
     SLOPE_TOLERANCE,
     STIFFNESS_THRESHOLD,
 )
-from perturb.errors import PerturbError
+from perturb.errors import InvalidSystemError, PerturbError, defined_at
 from perturb.oracle import SymbolicRHS, finite_difference_jacobian
 from perturb.validation.model import Integrals, Model
 from perturb.validation.report import InvariantDrift, SlopeFit, Stiffness
@@ -104,6 +104,21 @@ def invariant_drift(integrals: Integrals | None, y: np.ndarray) -> dict[str, Inv
     values = np.atleast_2d(np.asarray(integrals.function(y), dtype=float))
     if values.shape[-1] != y.shape[1]:  # a function of one state only: apply column by column
         values = np.array([np.asarray(integrals.function(col), dtype=float) for col in y.T]).T
+    values = np.atleast_2d(values)
+    where = defined_at(integrals.function)
+    if values.ndim != 2 or values.shape[1] != y.shape[1]:
+        raise InvalidSystemError(
+            f"{where}: the function of integrals_of_motion gives values of shape "
+            f"{np.shape(integrals.function(y[:, 0]))} for one state of shape ({y.shape[0]},): "
+            "return one number per integral for a state (a 1-D array), or one row per integral "
+            "for states side by side"
+        )
+    if integrals.names and len(integrals.names) != values.shape[0]:
+        raise InvalidSystemError(
+            f"{where}: integrals_of_motion gives {len(integrals.names)} names "
+            f"{list(integrals.names)} for {values.shape[0]} integral"
+            f"{'s' if values.shape[0] != 1 else ''}: give one name per integral"
+        )
     names = integrals.names or tuple(f"I{i}" for i in range(values.shape[0]))
     out = {}
     for name, row in zip(names, values, strict=False):

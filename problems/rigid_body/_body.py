@@ -21,7 +21,14 @@ from perturb import PeriodicSolution, PoincareMethod
 from perturb.errors import AccuracyWarning, InvalidParameterError
 from perturb.oracle import SymbolicRHS
 from perturb.validation import Condition, Equations, Integrals
-from problems.base import _SOLUTION_CACHE, ParameterSpec, Problem, _options_key, positive
+from problems.base import (
+    _SOLUTION_CACHE,
+    ParameterSpec,
+    Problem,
+    _class_key,
+    _options_key,
+    positive,
+)
 from problems.rigid_body import equations as eq
 from problems.rigid_body import numeric
 from problems.rigid_body._stored import stored
@@ -263,8 +270,7 @@ class FastSpinBody(Problem):
         symbolic = self._symbolic if symbolic is None else symbolic
         reduction, system, options, values = self._frame(order, symbolic)
         key = (
-            type(self).__module__,
-            type(self).__qualname__,
+            *_class_key(type(self)),
             order,
             reduction.order,
             _options_key(options),
