@@ -168,7 +168,12 @@ def test_no_file_holds_two_rooms():
 #: The extra ``perturb[sweep]``: imported by the sweep room only (docs/architecture.md).
 SWEEP_EXTRA = ("dask", "distributed", "xarray", "zarr", "cloudpickle")
 #: Inside the sweep room, the modules that talk to Dask and the stores.
-SWEEP_EXTRA_IMPORTERS = ("perturb.sweep.driver", "perturb.sweep.store", "perturb.sweep.memory")
+SWEEP_EXTRA_IMPORTERS = (
+    "perturb.sweep.driver",
+    "perturb.sweep.packing",
+    "perturb.sweep.store",
+    "perturb.sweep.memory",
+)
 
 
 def test_only_the_sweep_room_imports_dask_xarray_zarr():
