@@ -47,6 +47,7 @@ sys.path.insert(0, str(ROOT))
 from perturb import cache, find_families  # noqa: E402
 from perturb.algebra import certified_real_roots  # noqa: E402
 from perturb.algebra.budget import solve_bounded  # noqa: E402
+from perturb.response import steady_state_of  # noqa: E402
 from problems.forced_chain import forced_chain_of  # noqa: E402
 from problems.resonant_chain import chain_system  # noqa: E402
 from tests.algebra.chain_equations import amplitude_equations, pairs_of  # noqa: E402
@@ -180,7 +181,7 @@ def forced_row(n: int, omega: float, budget: float, shoot: bool, sweep: str) -> 
     total, matched, other = _newton(rows, unknowns, roots)
     newton_cell = f"{total}: {matched}, {other}; {time.perf_counter() - clock:.1f}"
     clock = time.perf_counter()
-    state = problem.steady_state(2)
+    state = steady_state_of(problem, 2)
     order_cell = f"{len(state.points)}, {time.perf_counter() - clock:.1f}"
     shot_cell = "not run"
     if shoot:

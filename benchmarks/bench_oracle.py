@@ -27,6 +27,8 @@ import warnings
 
 import numpy as np
 
+from perturb.validation import original_equations
+
 #: The brief's targets.
 TARGET_ERROR = 1e-10
 TARGET_RATIO = 1.5
@@ -103,7 +105,7 @@ def main(argv=None) -> int:
     ratio = med["oracle"] / med["bare"]
 
     # shooting one orbit, as validate() sets it up
-    equations = problem.original_equations(y0)
+    equations = original_equations(problem, y0)
     samples = np.array(
         [[float(problem.state(solution, s)[n]) for s in np.linspace(0, period, 16)] for n in names]
     )

@@ -48,6 +48,7 @@ from perturb.validation import (
     as_model,
 )
 from perturb.validation.capabilities import label_of
+from perturb.validation.truth import original_equations
 
 __all__ = ["WorkPoint", "WorkPrecision", "work_precision"]
 
@@ -242,7 +243,7 @@ def work_precision(
     horizon = periods * period
     t = np.linspace(0.0, horizon, n_out)
     y0 = np.array([np.asarray(problem.state(base, 0.0)[n], dtype=float) for n in names])
-    original = problem.original_equations(y0)
+    original = original_equations(problem, y0)
     symbolic = original.symbolic and heyoka_available()
     reference = (
         Heyoka(high_precision=True) if symbolic else choose(rtol=REFERENCE_RTOL, symbolic=False)

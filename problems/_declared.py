@@ -27,8 +27,15 @@ from perturb.cache import held_warnings
 from perturb.case import EPSILON_KEY, ParameterMap
 from perturb.case.points import checked_point, message_of
 from perturb.errors import InvalidParameterError, InvalidSystemError, defined_at
-from perturb.oracle import PeriodicOrbit
-from perturb.validation import Condition, Integrals, OrbitEstimate
+from perturb.oracle import PeriodicOrbit, SymbolicRHS
+from perturb.validation import (
+    Condition,
+    Equations,
+    Integrals,
+    OrbitEstimate,
+    original_rhs,
+    system_equations,
+)
 from perturb.validation.capabilities import call_hook
 from perturb.validation.model import system_integrals
 
@@ -297,7 +304,7 @@ def checked_columns(problem, root: type, values: dict, grid: dict, size: int):
 #: The duck-typed hooks of earlier versions that a subclass may still define (docs/validation.md);
 #: the typed hook each one stands for, where it is a capability of its own.
 OLDER_HOOKS = {
-    "original_symbolic": None,  # read by Problem.original_equations and the integrals below
+    "original_symbolic": "original_equations",  # and read by the integrals below
     "first_integrals_function": None,  # read by the integrals below
     "validity_conditions": "validity_estimates",
     "true_periodic_orbit": "true_orbit",
@@ -344,7 +351,21 @@ def _integrals_of_motion(self, y0=None) -> Integrals | None:
     return None
 
 
+def _original_equations(self, y0=None) -> Equations:
+    """The equations of ``original_symbolic()`` (symbolic: heyoka compiles them), else the
+    class's own ``original_rhs()``, else the system's: the hook
+    ``original_equations(y0)`` (:mod:`perturb.validation.truth`) of a class that defines
+    ``original_symbolic``."""
+    symbolic = self.original_symbolic()
+    if symbolic is not None:
+        return Equations(SymbolicRHS(*symbolic))
+    if "original_rhs" in self._own:
+        return Equations.from_time_rhs(original_rhs(self))
+    return system_equations(self, y0)
+
+
 _TYPED = {
+    "original_equations": _original_equations,
     "validity_estimates": _validity_estimates,
     "true_orbit": _true_orbit,
     "integrals_of_motion": _integrals_of_motion,

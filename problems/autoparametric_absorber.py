@@ -34,10 +34,11 @@ class AutoparametricAbsorber(DrivenProblem):
     --------
     Above the threshold the forced mode's amplitude saturates: it is the same at every F.
 
+    >>> from perturb.response import steady_state_of
     >>> from problems import get_problem
     >>> cls = get_problem("autoparametric-absorber")
     >>> def coupled_y(force):
-    ...     points = cls.create(F=force).steady_state(0).points
+    ...     points = steady_state_of(cls.create(F=force), 0).points
     ...     return round(next(p.norms["y"] for p in points if p.norms["x"] > 0), 9)
     >>> coupled_y(1.0) == coupled_y(4.0)
     True

@@ -16,11 +16,12 @@ Subclass contract (as scipy's ``OdeSolver`` states its own):
    An overridden ``epsilon()`` or ``symbol_values()`` declares the map as well when sympy can
    read it (``return self.values["amplitude"] ** 2``): it is called once on the parameters as
    symbols, and the map's inverse re-creates the problem at another ε;
-3a. optionally override :meth:`Problem.method_options`,
-   :meth:`Problem.state` (to map the quasilinear state back to physical variables) and
-   :meth:`Problem.original_rhs` (the unreduced equations for validation);
-4. optionally override the validation hooks of :class:`perturb.validation.Model` (typed:
-   ``original_equations``, ``with_epsilon``), and declare optional physics by defining its
+3a. optionally override :meth:`Problem.method_options`, :meth:`Problem.state` (to map the
+   quasilinear state back to physical variables) and :meth:`Problem.check_values` (whole-set
+   checks), and define ``original_rhs()`` (the unreduced equations ``F(t, y)`` for validation);
+4. optionally define the validation hooks ``original_equations(y0)`` and ``with_epsilon(eps)``
+   (:mod:`perturb.validation.truth`: default, the system itself and the problem at its case
+   moved to ``eps``), and declare optional physics by defining its
    method (:mod:`perturb.validation.capabilities`: ``integrals_of_motion`` — default: the
    system's own, unless the equations are the class's —, ``label`` — default: the ``name`` —,
    ``validity_estimates``, ``true_orbit``, ``shooting_setup``, ``euler_angles``,
@@ -32,7 +33,11 @@ Subclass contract (as scipy's ``OdeSolver`` states its own):
    ``perturb.problems`` (see :mod:`problems.loading`).
 
 A problem *is* a :class:`perturb.validation.Model`: :func:`perturb.validation.validate` needs
-nothing else.
+nothing else. What a problem does beyond its contract is asked through functions of it
+(:func:`perturb.validation.original_rhs`, :func:`perturb.validation.original_equations`,
+:func:`perturb.validation.with_epsilon`, :func:`perturb.response.steady_state_of`); the methods of
+those names that earlier versions had still answer, with a :class:`DeprecationWarning`
+(:data:`MOVED`).
 """
 
 from __future__ import annotations
@@ -40,6 +45,7 @@ from __future__ import annotations
 import functools
 import math
 import uuid
+import warnings
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
 from typing import ClassVar
@@ -61,15 +67,17 @@ from perturb.errors import (
     InvalidSystemError,
     ParameterOverflowError,
     UnknownNameError,
+    defined_at,
 )
-from perturb.oracle import SymbolicRHS
 from perturb.validation import (
-    Equations,
     Model,
+    original_equations,
+    original_rhs,
     quasilinear_state_names,
     state_along,
+    with_epsilon,
 )
-from perturb.validation.frames import steady_states, work_of
+from perturb.validation.frames import work_of
 from perturb.validation.model import parameter_value_of
 from problems._declared import (
     checked_columns,
@@ -218,8 +226,8 @@ class Problem(Model, ABC):
     values : mapping
         Every parameter's value, by name (as :meth:`create` builds it).
     family : str, optional
-        The family of periodic solutions :meth:`solve` follows (see :meth:`families` and
-        :meth:`with_family`); default: the one :meth:`method_options` selects.
+        The family of periodic solutions :meth:`solve` follows (see :meth:`families`;
+        ``create(family=NAME)``); default: the one :meth:`method_options` selects.
 
     Attributes
     ----------
@@ -277,7 +285,7 @@ class Problem(Model, ABC):
     values: dict = field(converter=dict)
     #: The family of periodic solutions :meth:`solve` follows, by its name in :meth:`families`
     #: (None: the one :meth:`method_options` selects): the constructor's ``family``. Set it with
-    #: :meth:`with_family`; read it from :meth:`case` (``problem.case().family``).
+    #: ``create(family=NAME)``; read it from :meth:`case` (``problem.case().family``).
     _family: str | None = field(default=None, kw_only=True)
     #: Whether :meth:`solve` derives the solution symbolic in the parameters (one derivation for
     #: every parameter set) instead of for these values; None: the problem's default: the
@@ -297,9 +305,16 @@ class Problem(Model, ABC):
         declared_hooks(cls, Problem)
 
     @classmethod
-    def create(cls, **overrides) -> Problem:
-        """The problem with default parameters, some of them overridden by name."""
+    def create(cls, family: str | None = None, **overrides) -> Problem:
+        """The problem with default parameters, some of them overridden by name, following the
+        family ``family`` of :meth:`families` (None: the one :meth:`method_options` selects;
+        checked when solved)."""
         known = {s.name for s in cls.parameter_specs}
+        if "family" in known:
+            raise InvalidSystemError(
+                f"{defined_at(cls, 'parameter_specs')}: {cls.name} has a parameter named "
+                "`family`, which is create's keyword for the family of solutions: rename it"
+            )
         unknown = sorted(set(overrides) - known)
         if unknown:
             told = cls._map().set_by(unknown[0], "set")  # a system symbol the map sets
@@ -310,7 +325,7 @@ class Problem(Model, ABC):
             )  # fmt: skip
         values = {s.name: overrides.get(s.name, s.default) for s in cls.parameter_specs}
         values = {s.name: s.validate(values[s.name]) for s in cls.parameter_specs}
-        return cls(values)
+        return cls(values) if family is None else cls(values, family=family)
 
     def check_values(self, values: Mapping[str, float]) -> None:
         """Whole-set checks beyond single parameters (e.g. the triangle inequality): raise an
@@ -401,10 +416,6 @@ class Problem(Model, ABC):
             _SYSTEM_CACHE[key] = cls.build_system()
         return _SYSTEM_CACHE[key]
 
-    def with_family(self, name: str | None) -> Problem:
-        """This problem following the family ``name`` (see :meth:`families`); checked when solved."""
-        return attrs.evolve(self, family=name)
-
     def _carry(self, problem: Problem) -> Problem:
         """``problem`` (made at other values) on this one's family and derivation."""
         if self._family is None and self._symbolic is None:
@@ -460,7 +471,7 @@ class Problem(Model, ABC):
     def solve(self, order: int = 1, family: str | None = None) -> PeriodicSolution:
         """The symbolic periodic solution (cached per class, order and method options).
 
-        ``family`` (or the problem's own, :meth:`with_family`) names a family of :meth:`families` to follow
+        ``family`` (or the problem's own: ``create(family=NAME)``) names a family of :meth:`families` to follow
         instead of the one :meth:`method_options` selects. A driven problem's solution is the
         branch of its steady-state response at these parameter values (default: the largest
         amplitude; :meth:`families` lists them all).
@@ -492,49 +503,58 @@ class Problem(Model, ABC):
         same family (the Model hook a sweep makes its points with)."""
         return self._carry(type(self).create(**{**self.values, **values}))
 
-    # ------------------------------------------------------------------ driven problems
-    def steady_state(self, order: int = 1):
-        """Every branch of a driven problem's response at these values
-        (:func:`perturb.response.steady_state`, cached per system, order and point)."""
-        return steady_states(self.system(), order, self.symbol_values(), self.epsilon())
-
     def period(self, solution: PeriodicSolution) -> float:
         """The period in physical time."""
         return float(solution.period_at(parameter_value_of(self), self.symbol_values()))
 
-    def original_rhs(self, solution: PeriodicSolution | None = None):
-        """The original equations as ``F(t, y)`` on the state of :meth:`state` (default: the system)."""
-        return self.system().vector_field(parameter_value_of(self), self.symbol_values())
-
-    # ------------------------------------------------------------------ validation (Model)
-    def original_equations(self, y0: np.ndarray | None = None) -> Equations:
-        """The unreduced equations: ``original_symbolic()`` if the class defines it (the older
-        hook) and it gives them, else a user ``original_rhs`` override, else the quasilinear
-        system itself."""
-        symbolic = self.original_symbolic() if "original_symbolic" in self._older else None
-        if symbolic is not None:
-            return Equations(SymbolicRHS(*symbolic))
-        if "original_rhs" in self._own:
-            return Equations.from_time_rhs(self.original_rhs())
-        if self.system().initial_values and y0 is None:
-            return Equations.from_time_rhs(self.original_rhs(), quasilinear=True)
-        return super().original_equations(y0)
-
-    def with_epsilon(self, eps: float) -> Problem | None:
-        """The problem at expansion parameter ``eps`` with every system symbol kept, solved from
-        the map (:meth:`perturb.case.Case.with_epsilon`: the disk's ``r0``, a driven problem's
-        ``eps`` with ``Omega`` moved to keep σ), else None."""
-        try:
-            moved = self.case().with_epsilon(eps)
-        except InvalidSystemError:
-            moved = None
+    def __getattr__(self, name: str):
+        """A member that left the class (:data:`MOVED`): what replaces it, with a
+        :class:`DeprecationWarning` naming the replacement."""
+        moved = MOVED.get(name)
         if moved is None:
-            return None
-        # the same family: validate's slope scan re-creates the problem at other eps
-        return self._carry(type(self).create(**moved.values))
+            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+        replacement, make = moved
+        warnings.warn(
+            f"problem.{name}(...) is deprecated and will be removed: use {replacement}",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return make(self)
 
     def _evaluates_directly(self) -> bool:
         """True unless the class maps the solution to its own state or period (``state``,
         ``period`` overridden): :attr:`perturb.case.Case.evaluates_directly`."""
         own = type(self).state is Problem.state and type(self).period is Problem.period
         return own and work_of(self.system()).state_is_solution()  # driven: the phase added
+
+
+def _steady_state(problem: Problem) -> Callable:
+    from perturb.response import steady_state_of
+
+    return lambda order=1: steady_state_of(problem, order)
+
+
+#: The members that left :class:`Problem` (each a function of the problem now, or the
+#: constructor's keyword), by name: ``(replacement, the old call made from it)``. A script that
+#: calls one still gets its answer, with a :class:`DeprecationWarning` naming the replacement;
+#: a class that defines one of the hooks among them is read as before
+#: (:mod:`perturb.validation.truth`).
+MOVED: dict[str, tuple[str, Callable]] = {
+    "original_rhs": (
+        "perturb.validation.original_rhs(problem)",
+        lambda problem: lambda solution=None: original_rhs(problem),
+    ),
+    "original_equations": (
+        "perturb.validation.original_equations(problem, y0)",
+        lambda problem: lambda y0=None: original_equations(problem, y0),
+    ),
+    "with_epsilon": (
+        "perturb.validation.with_epsilon(problem, eps)",
+        lambda problem: lambda eps: with_epsilon(problem, eps),
+    ),
+    "steady_state": ("perturb.response.steady_state_of(problem, order)", _steady_state),
+    "with_family": (
+        "Problem.create(..., family=NAME) (or problem.case().with_family(NAME).model)",
+        lambda problem: lambda name: problem.case().with_family(name).model,
+    ),
+}

@@ -32,9 +32,10 @@ class CoupledDuffings(DrivenProblem):
 
     Examples
     --------
+    >>> from perturb.response import steady_state_of
     >>> from problems import get_problem
     >>> pair = get_problem("coupled-duffings").create(Omega=1.05)
-    >>> points = pair.steady_state(1).points
+    >>> points = steady_state_of(pair, 1).points
     >>> len(points), sum(p.stable is True for p in points)
     (5, 3)
     """

@@ -35,8 +35,9 @@ class CoupledParametrons(DrivenProblem):
 
     Examples
     --------
+    >>> from perturb.response import steady_state_of
     >>> from problems import get_problem
-    >>> state = get_problem("coupled-parametrons").create(Omega=2.0).steady_state(1)
+    >>> state = steady_state_of(get_problem("coupled-parametrons").create(Omega=2.0), 1)
     >>> [(name, point.stable) for name, point in zip(state.names, state.points)]
     [('trivial', False), ('anti-phase', False), ('in-phase', True)]
     """

@@ -60,8 +60,9 @@ class ForcedChain(DrivenProblem):
 
     Examples
     --------
+    >>> from perturb.response import steady_state_of
     >>> from problems import get_problem
-    >>> state = get_problem("forced-chain-3").create(Omega=1.05).steady_state(1)
+    >>> state = steady_state_of(get_problem("forced-chain-3").create(Omega=1.05), 1)
     >>> len(state.points), sum(point.stable is True for point in state.points)
     (5, 2)
     """

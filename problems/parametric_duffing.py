@@ -27,9 +27,10 @@ class ParametricDuffing(DrivenProblem):
 
     Examples
     --------
+    >>> from perturb.response import steady_state_of
     >>> from problems import get_problem
     >>> mathieu = get_problem("parametric-duffing").create(Omega=2.0)
-    >>> [(p.trivial, p.stable) for p in mathieu.steady_state(1).points]
+    >>> [(p.trivial, p.stable) for p in steady_state_of(mathieu, 1).points]
     [(True, False), (False, True)]
     """
 

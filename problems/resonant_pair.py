@@ -32,7 +32,7 @@ class ResonantPair(Problem):
     >>> pair = get_problem("resonant-pair").create(eps=0.1, kappa=0.5)
     >>> [family.name for family in pair.families(1)][:2]
     ['anti-phase', 'in-phase']
-    >>> pair.with_family("in-phase").solve(1).frequency_series()  # as one Duffing oscillator
+    >>> pair.solve(1, family="in-phase").frequency_series()  # as one Duffing oscillator
     -21*amplitude**4*epsilon**2/256 + 3*amplitude**2*epsilon/8 + 1
     """
 

@@ -426,18 +426,15 @@ def test_the_frame_is_asked_in_few_places():
 #: the symbolic derivation is the sweep's capability), 23 before the hooks with a generic answer
 #: left it (``integrals_of_motion`` and ``label``: capabilities asked through
 #: ``integrals_of_motion(model)`` and ``label_of(model)``; ``parameter_map``: a declaration with
-#: no value on the base, as ``name``). The seam's target is 15; what stands between: four hooks
-#: with a generic default that the suite and the docs call on problems that do not define them
-#: — ``original_rhs`` (tests/engine/test_convergence.py, tests/property),
-#: ``original_equations`` (tests/validation/test_validate.py, the gallery, the disk tutorial),
-#: ``with_epsilon`` (tests/problems/test_resonant_chain.py, test_map_inverse.py) and
-#: ``steady_state`` (the basins tutorial, tests/response, tests/driven) — and ``check_values``,
-#: a no-op that users' files call as ``super().check_values(values)`` (the shipped Duffing
-#: did); beside them the contract's hooks (``build_system``, ``method_options``, ``epsilon``,
-#: ``symbol_values``, ``state``, ``period``) and the calls the docs make (``create``, ``solve``,
-#: ``state_names``, ``system``, ``families``, ``with_family``, ``with_parameters``, ``case``,
-#: ``values``).
-MAX_PROBLEM_MEMBERS = 20
+#: no value on the base, as ``name``), 20 before the last five went with a deprecation path
+#: (``original_rhs``, ``original_equations``, ``with_epsilon``: functions of
+#: ``perturb.validation`` that read a class's own hook; ``steady_state``:
+#: ``perturb.response.steady_state_of``; ``with_family``: ``create(family=...)``). What stays:
+#: the contract's hooks (``build_system``, ``method_options``, ``epsilon``, ``symbol_values``,
+#: ``state``, ``period``, ``check_values`` — users' files call ``super().check_values``) and the
+#: calls the docs make (``create``, ``solve``, ``families``, ``state_names``, ``system``,
+#: ``with_parameters``, ``case``, ``values``): the seam's target.
+MAX_PROBLEM_MEMBERS = 15
 
 
 def test_the_problem_surface_does_not_grow():

@@ -12,7 +12,7 @@ import numpy as np
 from perturb.report.plots import plot_phase
 from problems import get_problem
 
-problem = get_problem("resonant-pair").create().with_family("anti-phase")
+problem = get_problem("resonant-pair").create(family="anti-phase")
 solution = problem.solve(2)
 t = np.linspace(0.0, problem.period(solution), 300)
 state = problem.state(solution, t)

@@ -11,6 +11,7 @@ import numpy as np
 
 from perturb.oracle import choose
 from perturb.report.plots import plot_time_series
+from perturb.validation import original_equations
 from problems import get_problem
 
 problem = get_problem("duffing").create(eps=0.3, amplitude=1.0)
@@ -20,7 +21,7 @@ analytic = problem.state(solution, t)  # {"x": ..., "xdot": ...}
 
 # the true motion: the original equation integrated from the analytic initial state
 y0 = np.array([analytic[name][0] for name in problem.state_names()])
-trajectory = choose().integrate(problem.original_equations(y0).rhs, (0.0, t[-1]), y0, t_eval=t)
+trajectory = choose().integrate(original_equations(problem, y0).rhs, (0.0, t[-1]), y0, t_eval=t)
 true = dict(zip(problem.state_names(), trajectory.y, strict=True))
 
 fig = plot_time_series(t, analytic, true, time_unit="", title="Duffing, ε = 0.3, order 2")

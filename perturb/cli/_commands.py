@@ -205,9 +205,11 @@ def _select_family(problem, name: str | None, order: int):
 
     families = problem.families(order)
     if name not in families.names and work_of(problem.system()).family_elsewhere(name):
-        return problem.with_family(name)  # a driven branch elsewhere: exit 1, with those here
+        return (
+            problem.case().with_family(name).model
+        )  # a driven branch elsewhere: exit 1, with those here
     families.get(name)
-    return problem.with_family(name)
+    return problem.case().with_family(name).model
 
 
 def _cmd_families(args) -> int:
@@ -246,8 +248,9 @@ def _driven_marks(problem, order: int, families, flags: list) -> list:
     if not work_of(problem.system()).families_are_steady_states:
         return flags
     from perturb.report.marks import PointMark, point_mark, relative_error
+    from perturb.response import steady_state_of
 
-    steady = problem.steady_state(order)
+    steady = steady_state_of(problem, order)
     points = dict(zip(steady.names, steady.points, strict=True))
     out = []
     for family, (outside, beyond) in zip(families, flags, strict=True):

@@ -40,7 +40,7 @@ def _load(scene):
             if scene.sweep is None or not scene.outputs.needs_sweep:
                 raise scene.error(f"[problem] family: {exc}") from None
             problem = _family_along_sweep(scene, problem, exc)
-        problem = problem.with_family(scene.family)
+        problem = problem.case().with_family(scene.family).model
     return problem
 
 

@@ -20,6 +20,7 @@ from attrs import field, frozen
 from perturb.errors import InvalidParameterError, bad_value
 from perturb.oracle import SymbolicRHS
 from perturb.validation.capabilities import label_of
+from perturb.validation.truth import original_equations
 
 __all__ = ["DrivenMotion", "heyoka_equations", "motion_of"]
 
@@ -152,7 +153,7 @@ def motion_of(problem) -> DrivenMotion:
         "problem", label_of(problem), "its system has no excitation: basins, transients and ramps "
         "are studies of a driven system (give one with excitation=...)",
     )  # fmt: skip
-    rhs = problem.original_equations().rhs
+    rhs = original_equations(problem).rhs
     if not isinstance(rhs, SymbolicRHS):
         raise bad_value(
             "problem", label_of(problem), "its equations are a numeric function; these studies "

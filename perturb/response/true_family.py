@@ -45,9 +45,9 @@ class TrueFamily:
         self.problem, self.parameter, self.system, self.order = problem, parameter, system, order
         if system.initial_values:
             raise OutsideDomain("the system's equations contain initial values")
-        from perturb.validation import as_model
+        from perturb.validation import as_model, original_equations
 
-        if not as_model(problem).original_equations().quasilinear:
+        if not original_equations(as_model(problem)).quasilinear:
             raise OutsideDomain(
                 f"{problem.name} gives its own original equations, and the true curve follows "
                 "its quasilinear system's orbits: compare them with `perturb validate` instead"

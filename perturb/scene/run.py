@@ -139,10 +139,11 @@ def _truth(model: Model, solution, t: np.ndarray, integrator) -> tuple[dict, str
     from perturb.oracle import choose
     from perturb.validation import DEFAULT_RTOL, STIFFNESS_SAMPLES, stiffness_indicator
     from perturb.validation.checks import analytic_states
+    from perturb.validation.truth import original_equations
 
     names = tuple(model.state_names())
     y0 = analytic_states(model, solution, np.zeros(1))[:, 0]
-    equations = model.original_equations(y0)
+    equations = original_equations(model, y0)
     period = float(model.period(solution))
     with np.errstate(all="ignore"):
         samples = analytic_states(

@@ -295,7 +295,7 @@ def check_family(model: Model, name: str, grid: Grid, order: int) -> Model:
             continue
         names = [f.name for f in families]
         if name in names:  # the swept values are replaced at every point: this one is as good
-            return candidate.with_family(name)
+            return candidate.case().with_family(name).model
         found += [n for n in names if n not in found]
     raise UnknownNameError(
         f"`family` = {name!r} is a family at none of the grid's points probed (its first, last "

@@ -7,7 +7,8 @@ along a scan of the problem's own small parameter (order).  Problems take part t
 :class:`Model` protocol; :class:`SystemModel` adapts a bare :class:`perturb.QuasilinearSystem`.
 
 Modules: :mod:`.model` (the protocol), :mod:`.system_model` (a bare system as a model),
-:mod:`.capabilities` (optional physics a model declares), :mod:`.frames` (what a free and a driven
+:mod:`.capabilities` (optional physics a model declares), :mod:`.truth` (the equations a
+model is checked against, and the model at another ε), :mod:`.frames` (what a free and a driven
 case solve, check and print: one table), :mod:`.checks` and :mod:`.orbit` (the measurements),
 :mod:`.verdict` (the rule), :mod:`.report` (the result objects), :mod:`.validate` (orchestration).
 """
@@ -57,6 +58,12 @@ from perturb.validation.report import (
     Verdict,
 )
 from perturb.validation.system_model import SystemModel, as_model
+from perturb.validation.truth import (
+    original_equations,
+    original_rhs,
+    system_equations,
+    with_epsilon,
+)
 from perturb.validation.validate import validate
 
 __all__ = [
@@ -101,5 +108,9 @@ __all__ = [
     "as_model",
     "stiffness_indicator",
     "has_euler_angles",
+    "original_equations",
+    "original_rhs",
+    "system_equations",
     "validate",
+    "with_epsilon",
 ]

@@ -18,6 +18,7 @@ from perturb.oracle import SymbolicRHS, finite_difference_jacobian
 from perturb.validation.model import Integrals, Model
 from perturb.validation.report import InvariantDrift, SlopeFit, Stiffness
 from perturb.validation.setup import amplitudes, integrator_for
+from perturb.validation.truth import original_equations
 
 __all__ = [
     "analytic_states",
@@ -153,7 +154,7 @@ def one_period_error(
         analytic = analytic_states(model, solution, t)
     if not np.all(np.isfinite(analytic)):
         return math.nan
-    equations = model.original_equations(analytic[:, 0])
+    equations = original_equations(model, analytic[:, 0])
     solver = integrator_for(integrator, rtol, stiff, equations.symbolic, max_steps)
     traj = solver.integrate(equations.rhs, (0.0, period), analytic[:, 0], t_eval=t)
     if not traj.success:

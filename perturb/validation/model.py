@@ -23,7 +23,6 @@ from perturb.solution import PeriodicSolution
 from perturb.system import QuasilinearSystem, Regime
 from perturb.validation._quasilinear import (
     conservative_energy,
-    first_order_form,
     lambdify_integrals,
     substitutions,
 )
@@ -56,9 +55,9 @@ class Equations:
 
     Examples
     --------
-    >>> from perturb.validation import as_model
+    >>> from perturb.validation import original_equations
     >>> from problems import get_problem
-    >>> equations = as_model(get_problem("van-der-pol").create(eps=0.1)).original_equations()
+    >>> equations = original_equations(get_problem("van-der-pol").create(eps=0.1))
     >>> equations.rhs([2.0, 0.0])
     array([ 0., -2.])
     """
@@ -245,13 +244,17 @@ class Model(ABC):
        numbers for its symbols (the defaults below are derived from them); the value of the
        system's own parameter is ε, or μ = 1/ε in the large-parameter regime
        (:func:`parameter_value_of`), unless the model defines ``parameter_value()`` itself;
-    3. optionally override :meth:`original_equations` (default: the quasilinear system itself,
-       :math:`\\ddot x + \\omega^2 x = \\varepsilon f` written first order);
-    4. optionally override :meth:`with_epsilon` — the same model with its own small parameter
-       rescaled, for the order check (default: None, the order is then undecided) — and
-       :meth:`with_parameters` (other parameter values: a sweep's points); the model's
-       :meth:`case` holds its parameters in force, its other points and whether many of them
-       can be evaluated at once;
+    3. optionally define ``original_equations(y0)`` or ``original_rhs()`` — the equations the
+       model is checked against (default: the quasilinear system itself,
+       :math:`\\ddot x + \\omega^2 x = \\varepsilon f` written first order) — and
+       ``with_epsilon(eps)``, the same model with its own small parameter rescaled, for the
+       order check (default: the model at its :meth:`case` moved to ``eps``; None where it cannot
+       be re-created), each asked through :mod:`perturb.validation.truth`
+       (:func:`~perturb.validation.original_equations`, :func:`~perturb.validation.original_rhs`,
+       :func:`~perturb.validation.with_epsilon`);
+    4. optionally override :meth:`with_parameters` (other parameter values: a sweep's points);
+       the model's :meth:`case` holds its parameters in force, its other points and whether many
+       of them can be evaluated at once;
     5. optionally override :meth:`method_options`;
     6. optionally define a method of :mod:`perturb.validation.capabilities`, each asked through
        one function there: ``integrals_of_motion(y0)`` (default: the system's declared
@@ -316,20 +319,6 @@ class Model(ABC):
     def method_options(self) -> dict:
         """Options of :class:`perturb.PoincareMethod` (amplitudes, phase coordinate, branch)."""
         return {}
-
-    def original_equations(self, y0: np.ndarray | None = None) -> Equations:
-        """The original equations (default: the quasilinear system written first order).
-
-        ``y0``, the initial state, is needed only by systems whose equations contain initial values.
-        """
-        subs = _substitutions(self, y0)
-        if subs is None:
-            raise bad_value("y0", y0, "this system's equations contain initial values: give y0")
-        return Equations(first_order_form(self.system(), subs), quasilinear=True)
-
-    def with_epsilon(self, eps: float) -> Model | None:
-        """The same model with ε replaced by ``eps`` (default: None, not rescalable)."""
-        return None
 
     def case(self) -> Case:
         """This model's point as a :class:`~perturb.case.Case` — the system, the map of its

@@ -50,6 +50,7 @@ from perturb.validation.setup import (
     integrator_for,
 )
 from perturb.validation.system_model import as_model
+from perturb.validation.truth import original_equations, with_epsilon
 from perturb.validation.verdict import accurate_order, decide, measurement_checks
 
 __all__ = ["validate"]
@@ -141,7 +142,7 @@ def _scan(model, eps, order, integrator, rtol, stiff, budget) -> tuple[SlopeFit 
     eps_grid, err_grid = [], []
     for factor in track(SLOPE_FACTORS, label=f"validate {label_of(model)}: order check"):
         try:
-            variant = model.with_epsilon(eps * factor)
+            variant = with_epsilon(model, eps * factor)
         except (PerturbError, ValueError):
             variant = None
         if variant is None:
@@ -298,7 +299,7 @@ def validate(
                 timings=timings,
             )  # fmt: skip
     y0 = y_analytic0 if start_override is None else start_override
-    equations = model.original_equations(y0)
+    equations = original_equations(model, y0)
     integrals = integrals_of_motion(model, y0)
 
     # stiffness, from the Jacobian along one analytic period

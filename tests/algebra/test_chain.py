@@ -144,7 +144,7 @@ def test_a_sample_of_chain_branches_is_confirmed_against_the_true_motion(n, fami
     the problem at other eps with the same family)."""
     from perturb import validate
 
-    problem = get_problem(f"resonant-chain-{n}").create(eps=0.01).with_family(family)
+    problem = get_problem(f"resonant-chain-{n}").create(eps=0.01, family=family)
     report = validate(problem, order=1)
     assert report.outcome.name == "VALID", report.verdict
     assert abs(report.slope.slope - 2) <= SLOPE_TOLERANCE  # order + 1, within the band

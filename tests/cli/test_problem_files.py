@@ -21,6 +21,7 @@ import sympy as sp
 from scipy.integrate import solve_ivp
 
 from perturb.cli import main
+from perturb.validation import with_epsilon
 from problems import ALL_PROBLEMS, get_problem, load_problem
 from tests.engine.test_convergence import SLOPE_TOL, duffing_period_exact
 from tests.helpers import REF_ATOL, REF_RTOL, fitted_slope, roundings
@@ -302,7 +303,7 @@ def test_a_problem_whose_eps_is_a_function_of_its_parameters_validates(
     assert slope["epsilons"][-1] == 0.3**2
     pendulum = load_problem(spec).create()
     for eps in slope["epsilons"]:  # each point of the scan, re-created by the amplitude alone
-        moved = pendulum.with_epsilon(eps)
+        moved = with_epsilon(pendulum, eps)
         assert moved.values["amplitude"] == pytest.approx(math.sqrt(eps), rel=REF_RTOL)
         assert moved.epsilon() == pytest.approx(eps, rel=REF_RTOL)
 

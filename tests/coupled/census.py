@@ -16,6 +16,8 @@ import numpy as np
 from attrs import frozen
 
 from perturb.oracle import find_forced_orbit
+from perturb.response import steady_state_of
+from perturb.validation import original_equations
 from perturb.validation.model import parameter_value_of
 
 #: Two true orbits are one when their initial states agree to this, relative to their size (the
@@ -40,7 +42,7 @@ def shooting_setup(problem):
     """``(rhs, period, shift)`` of a driven problem: the autonomous right-hand side with the
     phase last, the response's period (p forcing periods) and one forcing period."""
     system = problem.system()
-    rhs = problem.original_equations(None).rhs
+    rhs = original_equations(problem, None).rhs
     omega = 2 * math.pi / problem.period(problem.solve(1)) * system.excitation.p
     forcing_period = 2 * math.pi / omega
     return rhs, system.excitation.p * forcing_period, forcing_period
@@ -94,7 +96,7 @@ def seeded(problem, order: int = 1) -> list[tuple[str, object, object]]:
     from perturb.validation import state_along
 
     rhs, period, _ = shooting_setup(problem)
-    state = problem.steady_state(order)
+    state = steady_state_of(problem, order)
     out = []
     for name in state.names:
         solution = state.solution(name)

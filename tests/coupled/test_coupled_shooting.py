@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from perturb.oracle import heyoka_available
+from perturb.response import steady_state_of
 from perturb.validation import state_along
 from perturb.validation.model import parameter_value_of
 from problems import get_problem
@@ -44,7 +45,7 @@ def _distinct_true_orbits(problem, order):
 
 
 def _initial_error(problem, order, name, orbit) -> float:
-    state = problem.steady_state(order)
+    state = steady_state_of(problem, order)
     values = state_along(
         state.solution(name), [0.0], parameter_value_of(problem), problem.symbol_values()
     ).values()

@@ -39,7 +39,7 @@ def test_forced_duffing_error_falls_as_eps_to_the_order_plus_one(order):
     ],
 )
 def test_the_slow_flow_and_the_floquet_multipliers_agree(name, values, family, stable):
-    problem = get_problem(name).create(**values).with_family(family)
+    problem = get_problem(name).create(**values, family=family)
     report = validate(problem, periods=2, slope=False)
     check = report.check("stability")
     assert check.passed is True, check.sentence

@@ -15,7 +15,7 @@ import sympy as sp
 from scipy.integrate import solve_ivp
 
 from perturb import EPS, PoincareMethod, QuasilinearSystem, amplitude_equations
-from perturb.response import branches_at, real_roots
+from perturb.response import branches_at, real_roots, steady_state_of
 from problems import get_problem
 
 s_, a_, b_ = sp.symbols("s a b", real=True)
@@ -100,7 +100,7 @@ def test_parametric_tongue_the_trivial_response_is_unstable_exactly_where_floque
     problem = get_problem("parametric-duffing").create(
         eps=0.02, zeta=0.2, h=1.0, gamma=1.0, Omega=2.0 + 0.02 * sigma
     )
-    points = problem.steady_state(1).points
+    points = steady_state_of(problem, 1).points
     trivial = [p for p in points if p.trivial]
     assert len(trivial) == 1
     largest = _mathieu_multiplier(0.02, 1.0, 0.2, 2.0 + 0.02 * sigma)
@@ -116,13 +116,13 @@ def test_autoparametric_absorber_saturates():
     cls = get_problem("autoparametric-absorber")
     saturated = []
     for force in (1.0, 2.0, 4.0):
-        points = cls.create(F=force, Omega=2.0).steady_state(0).points
+        points = steady_state_of(cls.create(F=force, Omega=2.0), 0).points
         coupled = [p for p in points if p.norms["x"] > 1e-9]
         assert coupled, force
         saturated.append(coupled[0].norms["y"])
     assert saturated[1] == pytest.approx(saturated[0], rel=1e-10)
     assert saturated[2] == pytest.approx(saturated[0], rel=1e-10)
-    single = [p for p in cls.create(F=4.0).steady_state(0).points if p.norms["x"] <= 1e-9]
+    single = [p for p in steady_state_of(cls.create(F=4.0), 0).points if p.norms["x"] <= 1e-9]
     assert single[0].norms["y"] > 3 * saturated[0]  # without the absorber y would grow with F
 
 

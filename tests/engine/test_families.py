@@ -214,7 +214,7 @@ def test_family_selection_equals_the_problems_branch(mode, name):
     assert all(
         sp.expand(p - q) == 0 for p, q in zip(before.frequency, chosen.frequency, strict=True)
     )
-    assert problem.with_family(name).solve(2) is chosen
+    assert problem.case().with_family(name).model.solve(2) is chosen
 
 
 def test_unknown_family_lists_the_known_ones():

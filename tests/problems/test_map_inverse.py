@@ -9,6 +9,7 @@ import pytest
 import sympy as sp
 
 from perturb.case import ParameterMap
+from perturb.validation import with_epsilon
 from tests.helpers import REF_RTOL
 
 SIGMA = sp.Symbol("sigma")
@@ -78,7 +79,7 @@ def test_an_epsilon_sympy_cannot_read_says_how_to_declare_it(tmp_path):
     (tmp_path / "pendulum.py").write_text(_UNREADABLE)
     problem = load_problem(f"{tmp_path / 'pendulum.py'}:Pendulum").create()
     assert problem.epsilon() == pytest.approx(0.09, rel=REF_RTOL)
-    assert problem.with_epsilon(0.04) is None
+    assert with_epsilon(problem, 0.04) is None
     report = validate(problem, periods=1)
     assert report.outcome is Verdict.UNDECIDED
     (order,) = [check for check in report.checks if check.name == "order"]

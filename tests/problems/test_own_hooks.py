@@ -21,6 +21,7 @@ import pytest
 from perturb import validate
 from perturb.cli import main
 from perturb.errors import InvalidParameterError
+from perturb.validation import with_epsilon
 from perturb.validation.capabilities import integrals_of_motion, label_of
 from problems import load_problem
 from problems.base import Problem
@@ -212,4 +213,4 @@ def test_a_declared_map_is_read_and_inherited(user_file):
     for name in ("Halved", "HalvedChild"):
         problem = loaded(user_file, name).create(eps=0.1)
         assert problem.epsilon() == pytest.approx(0.05, rel=1e-15)
-        assert problem.with_epsilon(0.02).values["eps"] == pytest.approx(0.04, rel=1e-12)
+        assert with_epsilon(problem, 0.02).values["eps"] == pytest.approx(0.04, rel=1e-12)

@@ -23,6 +23,7 @@ from perturb import EPS, Excitation, QuasilinearSystem
 from perturb.case import Case, ParameterMap
 from perturb.cli import main
 from perturb.errors import InvalidSystemError
+from perturb.validation import with_epsilon
 from perturb.validation.model import parameter_value_of
 from problems import get_problem
 from problems.base import ParameterSpec, Problem
@@ -100,7 +101,7 @@ def test_another_eps_keeps_every_symbol(mapping):
 
 def test_the_disk_moves_r0_for_eps_and_keeps_its_body():
     disk = get_problem("disk").create(r0=0.755155, R=0.123299, gamma3_0=0.25)
-    other = disk.with_epsilon(disk.epsilon() / 2)
+    other = with_epsilon(disk, disk.epsilon() / 2)
     assert other.epsilon() == pytest.approx(disk.epsilon() / 2, rel=1e-15)
     assert {k for k in disk.values if disk.values[k] != other.values[k]} == {"r0"}
     assert other.symbol_values() == pytest.approx(disk.symbol_values(), rel=1e-15)

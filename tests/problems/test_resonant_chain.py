@@ -3,6 +3,7 @@
 import sympy as sp
 
 from perturb import EPS
+from perturb.validation import with_epsilon
 from problems import get_problem
 from problems.resonant_chain import chain_of, chain_system
 
@@ -27,6 +28,6 @@ def test_every_size_is_registered_and_any_size_can_be_made():
 def test_a_problem_at_another_eps_keeps_its_family():
     """validate's slope scan re-creates the problem at other eps: it must follow the same family
     (it followed the default one, so every family of a chain showed the same slope)."""
-    problem = get_problem("resonant-chain-2").create(eps=0.05).with_family("anti-phase")
-    moved = problem.with_epsilon(0.01)
+    problem = get_problem("resonant-chain-2").create(eps=0.05, family="anti-phase")
+    moved = with_epsilon(problem, 0.01)
     assert moved.case().family == "anti-phase" and moved.values["eps"] == 0.01

@@ -36,6 +36,7 @@ from perturb.report.plots import (  # noqa: E402
     plot_work_precision,
     rotation_matrix,
 )
+from perturb.validation import original_rhs  # noqa: E402
 from perturb.workprecision import work_precision  # noqa: E402
 from problems import get_problem  # noqa: E402
 from tests.helpers import roundings  # noqa: E402
@@ -83,7 +84,7 @@ def save(fig: Figure, out_dir: str, name: str) -> str:
 def _true_motion(problem, analytic: dict, t: np.ndarray) -> dict:
     """The original equations integrated (DOP853) from the analytic state at t = 0."""
     names = problem.state_names()
-    field = problem.original_rhs()
+    field = original_rhs(problem)
     y0 = np.array([analytic[n][0] for n in names])
     traj = Scipy("DOP853", rtol=DEFAULT_RTOL).integrate(
         lambda y: np.asarray(field(0.0, y), dtype=float), (0.0, float(t[-1])), y0, t_eval=t

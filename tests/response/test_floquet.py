@@ -21,6 +21,7 @@ import pytest
 from scipy.integrate import quad, solve_ivp
 
 from perturb.method.driven import amplitude_equations
+from perturb.response import steady_state_of
 from perturb.response.model import problem_response
 from perturb.steady.compiled import compiled_motion, compiled_series
 from perturb.steady.floquet import stability_along
@@ -105,7 +106,7 @@ def _dop853_multipliers(problem, order, amplitudes):
 )
 def test_the_magnus_monodromy_is_dop853s(name, omega, branch):
     problem = get_problem(name).create(Omega=omega)
-    state = problem.steady_state(3)
+    state = steady_state_of(problem, 3)
     point = state.points[state.names.index(branch)]
     u = np.array(list(point.amplitudes.values()))
     reference, magnus = _dop853_multipliers(problem, 3, u)
@@ -116,7 +117,7 @@ def test_the_magnus_monodromy_is_dop853s(name, omega, branch):
 def test_liouville_along_a_varying_divergence_against_quadrature():
     problem = load_problem(f"{HERE / 'vdp_duffing.py'}:VdPDuffing").create(Omega=1.05)
     system = problem.system()
-    state = problem.steady_state(2)
+    state = steady_state_of(problem, 2)
     equations = amplitude_equations(system, 2)
     series = compiled_series(equations)
     values = problem.symbol_values()

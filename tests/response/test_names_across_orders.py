@@ -16,6 +16,7 @@ import math
 import numpy as np
 import pytest
 
+from perturb.response import steady_state_of
 from perturb.steady.branches import branch_names
 from problems import get_problem
 from tests.response._scipy_shooting import same_orbit, shoot
@@ -58,11 +59,11 @@ def _true_orbits(problem, rhs, period, state_names):
     every non-trivial branch, each shot from its own order's analytic state."""
     out: dict = {}
     for order in ORDERS:
-        steady = problem.steady_state(order)
+        steady = steady_state_of(problem, order)
         for name, point in zip(steady.names, steady.points, strict=True):
             if point.trivial:
                 continue
-            family = problem.with_family(name)
+            family = problem.case().with_family(name).model
             state = family.state(family.solve(order), np.zeros(1))
             seed = np.array([state[k][0] for k in state_names])
             true, multiplier = shoot(rhs, period, seed)
@@ -100,7 +101,7 @@ def _assert_lineage(problem):
     """A name at order N is one order N − 1 has, or a branch with no partner there."""
     below = None
     for order in ORDERS:
-        names = problem.steady_state(order).names
+        names = steady_state_of(problem, order).names
         if below is not None:
             for name in names:
                 assert name in below or name.startswith("beyond-series-"), (order, name)
@@ -128,7 +129,7 @@ def test_coupled_duffings_names_follow_their_orbits_across_orders():
     # the point is one where ranking each order apart moved a name: the true unstable orbit is
     # order 2's "-middle" by rank, and order 1's "-middle" reaches no true orbit
     middle = "anti-phase-localised-x1-middle"
-    second = problem.steady_state(2)
+    second = steady_state_of(problem, 2)
     ranked = branch_names(list(second.points), second.equations.harmonics)
     moved = second.names[ranked.index(middle)]
     assert moved in kinds[False]
@@ -145,7 +146,7 @@ def test_forced_chain_names_follow_their_orbits_across_orders():
     orbits = _true_orbits(problem, rhs, period, names)
     _assert_names_follow_orbits(orbits, at_least=10)
     _assert_lineage(problem)
-    second = problem.steady_state(2)
+    second = steady_state_of(problem, 2)
     ranked = branch_names(list(second.points), second.equations.harmonics)
     assert sum(a != b for a, b in zip(ranked, second.names, strict=True)) >= 5  # it mattered here
 
@@ -156,7 +157,7 @@ def test_a_lone_branch_below_is_a_candidate_for_its_name():
     it with. It named nothing there and failed (``min`` of one number) — every command on that
     point ended in an internal error."""
     problem = get_problem("forced-duffing").create(eps=10)
-    names = [problem.steady_state(order=order).names for order in ORDERS]
+    names = [steady_state_of(problem, order=order).names for order in ORDERS]
     assert all(len(n) == 1 and n[0] for n in names), names
 
 

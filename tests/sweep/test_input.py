@@ -18,6 +18,7 @@ from perturb.sweep.memory import MemoryResult  # noqa: E402
 from perturb.sweep.spec import SweepJob, check_spec  # noqa: E402
 from perturb.sweep.store import SweepStore  # noqa: E402
 from perturb.sweep.task import run_chunk  # noqa: E402
+from perturb.validation import with_epsilon
 from problems import get_problem  # noqa: E402
 
 
@@ -176,8 +177,8 @@ def test_the_symbolic_derivation_is_a_declared_hook_kept_at_every_point():
     symbolic = disk.symbolic_derivation()
     assert symbolic is not None and symbolic._symbolic is True
     assert symbolic.case().values == disk.case().values
-    assert symbolic.with_epsilon(0.002)._symbolic is True
-    assert symbolic.with_epsilon(0.002).epsilon() == pytest.approx(0.002, rel=1e-12)
+    assert with_epsilon(symbolic, 0.002)._symbolic is True
+    assert with_epsilon(symbolic, 0.002).epsilon() == pytest.approx(0.002, rel=1e-12)
     assert symbolic.with_parameters(gamma3_0=0.3)._symbolic is True
     assert symbolic_derivation(get_problem("duffing").create()) is None  # already symbolic
     derivation = Derivation(DeriveMode.SYMBOLIC, "test")

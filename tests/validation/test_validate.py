@@ -15,6 +15,7 @@ from perturb.validation import (
     MAX_RELATIVE_ERROR,
     SLOPE_TOLERANCE,
     Verdict,
+    original_equations,
     validate,
 )
 from problems import get_problem
@@ -166,7 +167,7 @@ def test_stiff_problem_with_radau_forced():
     from problems.van_der_pol import VanDerPol
 
     problem = VanDerPol.create(eps=10.0)
-    orig = problem.original_equations(np.array([2.0, 0.0]))
+    orig = original_equations(problem, np.array([2.0, 0.0]))
     assert orig.symbolic
     report = validate(problem, periods=1, shoot=False, slope=False, integrator="radau")
     assert report.integrator.startswith("scipy Radau")
