@@ -1,6 +1,6 @@
 """The true motion of a driven problem at its values: the equations every study here integrates.
 
-A driven problem's original equations (:meth:`perturb.validation.Model.original_equations`) are
+A driven problem's original equations (:func:`perturb.validation.original_equations`) are
 integrated in their autonomous form: the state ``(y_1..y_m, θ)`` with :math:`\\theta' = \\Omega`
 last. A *section* is the state at the drive phases :math:`\\theta \\equiv \\varphi \\pmod{2\\pi}`:
 the stroboscopic map advances it by one drive period :math:`T = 2\\pi/\\Omega`; a response of
