@@ -188,7 +188,8 @@ class Parting:
     branch : str
     value : float
         The swept parameter where the relative difference crosses ``tolerance`` (interpolated
-        between the grid values ``after`` and ``before``).
+        between ``before`` and ``after``), or the true fold ``before`` where the true orbit the
+        branch agreed with ends.
     analytic, true : float
         The two amplitudes (the analytic curve's measure) there; ``true`` NaN where no true
         orbit is left.
@@ -196,9 +197,10 @@ class Parting:
         At the first grid value past the crossing (inf: no true orbit there).
     tolerance : float
     before : float
-        The last grid value where they agree (NaN: they agree nowhere on the branch).
+        The last value read where they agree: a grid value, or a fold of a true curve between
+        two (NaN: they agree nowhere on the branch).
     after : float
-        The first grid value where they do not.
+        The first value read where they do not.
     note : str
         Empty, or that the branch is off the truth at every grid value (the parting is then the
         branch's first value, with the smallest difference met along it).
