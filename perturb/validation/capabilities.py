@@ -25,6 +25,7 @@ integrals (or its energy), and the model's ``name`` or its class's.
 from __future__ import annotations
 
 import inspect
+import weakref
 from typing import Protocol, runtime_checkable
 
 from perturb.errors import InvalidSystemError, defined_at
@@ -338,8 +339,9 @@ def integrals_of_motion(model, y0=None) -> Integrals | None:
 
 
 #: How :func:`label_of` names a model of each class (:class:`OwnLabel`, :class:`Named` or None:
-#: its class's name), by class: a driven problem's families ask it at each of its points.
-_LABEL_ROUTE: dict[type, type | None] = {}
+#: its class's name), by class (held weakly, as every cache by class here): a driven problem's
+#: families ask it at each of its points.
+_LABEL_ROUTE: weakref.WeakKeyDictionary[type, type | None] = weakref.WeakKeyDictionary()
 
 
 def label_of(model) -> str:
@@ -421,8 +423,8 @@ def call_hook(model, name: str, hook, form: str, *args):
     ...
     perturb.errors.InvalidSystemError: ...: `label(style)` cannot be called so: define it as label(self)
     """
-    key = (type(model), name, len(args))
-    if key not in _CALLABLE_SO:  # asked once per class: a signature costs tens of microseconds
+    known = _CALLABLE_SO.setdefault(type(model), set())
+    if (name, len(args)) not in known:  # once per class: a signature costs tens of microseconds
         try:
             signature = inspect.signature(hook)
         except (TypeError, ValueError):  # no signature to read (a builtin, a callable object)
@@ -435,12 +437,12 @@ def call_hook(model, name: str, hook, form: str, *args):
                 f"{defined_at(type(model), name)}: `{name}{signature}` cannot be called so: "
                 f"define it as {name}{form}"
             ) from None
-        _CALLABLE_SO[key] = True
+        known.add((name, len(args)))
     return hook(*args)
 
 
-#: The hooks :func:`call_hook` found callable with so many arguments, by class, name and count.
-_CALLABLE_SO: dict[tuple[type, str, int], bool] = {}
+#: The hooks :func:`call_hook` found callable with so many arguments: ``(name, count)`` by class.
+_CALLABLE_SO: weakref.WeakKeyDictionary[type, set] = weakref.WeakKeyDictionary()
 
 
 #: How many characters of a value a message shows.

@@ -9,6 +9,7 @@ parameter values a model.
 from __future__ import annotations
 
 import math
+import weakref
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
 from typing import Protocol, runtime_checkable
@@ -392,8 +393,9 @@ class OwnParameterValue(Protocol):
     def parameter_value(self) -> float: ...
 
 
-#: Whether a model class defines its own ``parameter_value()`` (:class:`OwnParameterValue`), by class.
-_OWN_PARAMETER_VALUE: dict[type, bool] = {}
+#: Whether a model class defines its own ``parameter_value()`` (:class:`OwnParameterValue`), by
+#: class (held weakly: a class a user makes and drops is not kept alive by it).
+_OWN_PARAMETER_VALUE: weakref.WeakKeyDictionary[type, bool] = weakref.WeakKeyDictionary()
 
 
 def parameter_value_of(model) -> float:

@@ -20,6 +20,7 @@ the method a model defines     the generic answer                              a
 from __future__ import annotations
 
 import inspect
+import weakref
 
 from perturb.errors import InvalidSystemError, bad_value, defined_at
 from perturb.validation._quasilinear import first_order_form, substitutions
@@ -34,16 +35,16 @@ __all__ = [
 ]
 
 
-#: Whether each model class defines each hook, by class and name (read once per class, on the
-#: class: a problem answers a moved member's old name with a warning, which is not a hook).
-_DEFINES: dict[tuple[type, str], bool] = {}
+#: Whether each model class defines each hook, by class (held weakly) and name (read once per
+#: class, statically: a problem answers a moved member's old name with a warning, no hook).
+_DEFINES: weakref.WeakKeyDictionary[type, dict[str, bool]] = weakref.WeakKeyDictionary()
 
 
 def _defines(model, name: str) -> bool:
-    key = (type(model), name)
-    if key not in _DEFINES:
-        _DEFINES[key] = inspect.getattr_static(model, name, None) is not None
-    return _DEFINES[key]
+    known = _DEFINES.setdefault(type(model), {})
+    if name not in known:
+        known[name] = inspect.getattr_static(model, name, None) is not None
+    return known[name]
 
 
 def system_equations(model, y0=None) -> Equations:
