@@ -31,6 +31,7 @@ from perturb.steady.backbone import Backbone, backbone
 from perturb.steady.curve import (
     FrequencyResponse,
 )
+from perturb.validation.capabilities import label_of
 
 if TYPE_CHECKING:
     from perturb.oracle import PeriodicOrbit
@@ -170,7 +171,7 @@ def check_request(problem, parameter: str):
     """
     system = problem.system()
     system.frame.require_driven(
-        "problem", problem.name,
+        "problem", label_of(problem),
         "it is not driven (its system has no excitation): the frequency response is for "
         "forced, damped or parametrically excited systems; use `perturb solve`",
     )  # fmt: skip
@@ -182,7 +183,7 @@ def check_request(problem, parameter: str):
         hint = f" ({told})" if told else f" (did you mean {close[0]!r}?)" if close else ""
         raise bad_value(
             "sweep", parameter,
-            f"it is not a parameter of {problem.name}: choose from {sorted(problem.values)}{hint}",
+            f"it is not a parameter of {label_of(problem)}: choose from {sorted(problem.values)}{hint}",
             InvalidParameterError,
         )  # fmt: skip
     return system
@@ -255,7 +256,7 @@ def problem_response(
     for value in grid:  # the problem's own checks at every grid value (one line, exit 2)
         point = case.at(**{parameter: float(value)})
         system.frame.frequency_value(system, point.symbol_values, point.epsilon)
-    told = f"response {problem.name}"
+    told = f"response {label_of(problem)}"
     with stage(f"{told}: deriving the order-{order} amplitude equations"):
         equations = amplitude_equations(system, order)
     names = [p.name for p in system.parameters]
@@ -263,7 +264,7 @@ def problem_response(
     with stage(f"{told}: following every branch over {len(grid)} values of {parameter}"):
         result = continued_response(equations, order, line, grid)
     response, branch_names_ = response_of(
-        result, system=problem.name, parameter=parameter, order=order,
+        result, system=label_of(problem), parameter=parameter, order=order,
         epsilon=float(case.epsilon),
         values={k: float(v) for k, v in case.values.items() if k != parameter},
         grid=grid, coordinates=equations.coordinates, measure=measure,
@@ -284,7 +285,7 @@ def problem_response(
             )  # fmt: skip
         response = _refined_folds(response, curves)
     return ProblemResponse(
-        problem.name, parameter, response, branch_names_, spine, true_points, curves
+        label_of(problem), parameter, response, branch_names_, spine, true_points, curves
     )
 
 

@@ -21,6 +21,7 @@ from perturb._defaults import (
 from perturb.errors import PerturbError
 from perturb.response.true_results import NEIMARK_SACKER, PERIOD_DOUBLING, TruePoint
 from perturb.system import Regime
+from perturb.validation.capabilities import label_of
 
 if TYPE_CHECKING:
     from perturb.oracle import PeriodicOrbit
@@ -49,7 +50,7 @@ class TrueFamily:
 
         if not original_equations(as_model(problem)).quasilinear:
             raise OutsideDomain(
-                f"{problem.name} gives its own original equations, and the true curve follows "
+                f"{label_of(problem)} gives its own original equations, and the true curve follows "
                 "its quasilinear system's orbits: compare them with `perturb validate` instead"
             )
         drive = system.excitation

@@ -37,6 +37,7 @@ import sympy as sp
 
 from perturb._defaults import SINGULAR_SECONDS
 from perturb.errors import InvalidParameterError, PerturbError
+from perturb.validation.capabilities import label_of
 
 __all__ = ["SPECIAL_KINDS", "phase_diagram", "phase_line"]
 
@@ -176,7 +177,7 @@ def _axes(problem, grid) -> list[tuple[str, np.ndarray]]:
             "--grid Omega=0.98:1.1:41 --grid F=0.5:2:21"
         )
     check_names(
-        axes, list(problem.values), problem.name,
+        axes, list(problem.values), label_of(problem),
         advice=lambda name: problem.case().map.set_by(name, "sweep"),
     )  # fmt: skip
     out = []
@@ -296,7 +297,7 @@ def phase_diagram(
     clock = time.perf_counter()
     wait = SWEEP_CONNECT_SECONDS if timeout is None else timeout
     with Cluster(workers, scheduler, client, wait) as cluster:
-        results = run_calls(cluster, phase_line, problem, calls, label=f"phase {problem.name}")
+        results = run_calls(cluster, phase_line, problem, calls, label=f"phase {label_of(problem)}")
     seconds = time.perf_counter() - clock
     dataset = _assemble(problem, order, (x_name, xs), (y_name, ys), results, columns, seconds)
     if output is not None:
@@ -383,7 +384,7 @@ def _assemble(problem, order, x_axis, y_axis, results, columns: bool, seconds: f
     fixed = {k: float(v) for k, v in problem.values.items() if k not in (x_name, y_name)}
     attrs = {
         MARK: json.dumps({"kind": "phase-diagram"}),
-        "problem": problem.name,
+        "problem": label_of(problem),
         "order": int(order),
         "parameters": json.dumps(fixed),
         "failures": json.dumps(failures),
