@@ -300,9 +300,9 @@ def report_extras(model) -> dict:
 
 
 def integrals_of_motion(model, y0=None) -> Integrals | None:
-    """The model's first integrals with their names: its own (:class:`OwnIntegrals`), else the
-    system's declared first integrals, else its energy when the forces derive from a potential,
-    else None.
+    """The model's first integrals with their names: its own (:class:`OwnIntegrals`; none where
+    its class sets ``integrals_of_motion = None``), else the system's declared first integrals,
+    else its energy when the forces derive from a potential, else None.
 
     Parameters
     ----------
@@ -323,6 +323,8 @@ def integrals_of_motion(model, y0=None) -> Integrals | None:
     >>> integrals_of_motion(get_problem("van-der-pol").create()) is None
     True
     """
+    if _disabled(model, "integrals_of_motion"):
+        return None  # ``integrals_of_motion = None`` on the class: it has none to check
     if not isinstance(model, OwnIntegrals):
         return system_integrals(model, y0)
     found = call_hook(
@@ -382,6 +384,15 @@ def label_of(model) -> str:
     if route is Named:
         return str(model.name)
     return kind.__name__
+
+
+def _disabled(model, name: str) -> bool:
+    """Whether ``model``'s class sets the hook ``name`` to None (as ``__hash__ = None`` says a
+    class has none): the capability is declared absent, not left to the generic answer."""
+    for kind in type(model).__mro__:
+        if name in vars(kind):
+            return vars(kind)[name] is None
+    return False
 
 
 def call_hook(model, name: str, hook, form: str, *args):

@@ -373,3 +373,19 @@ def test_a_file_importing_a_sibling_module_sweeps_on_the_workers(tmp_path, capsy
     assert [p["status"] for p in points] == ["ok", "ok"]
     # x'' + x = -eps x^3 from rest at x(0) = 1: frequency 1 + 3 eps / 8 at order 1
     assert [p["frequency"] for p in points] == pytest.approx([1.015, 1.03], rel=1e-12)
+
+
+def test_integrals_set_to_none_on_the_class_are_none():
+    """``integrals_of_motion = None`` declares that a model has none (as ``__hash__ = None``),
+    where leaving it out gives the system's energy."""
+    from perturb.validation.capabilities import integrals_of_motion
+    from problems import get_problem
+
+    duffing = get_problem("duffing")
+    assert integrals_of_motion(duffing.create()).names == ("energy",)
+
+    class Without(duffing):
+        name = "duffing-without-integrals"
+        integrals_of_motion = None
+
+    assert integrals_of_motion(Without.create()) is None
