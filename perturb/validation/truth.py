@@ -82,7 +82,8 @@ def system_equations(model, y0=None) -> Equations:
 
 def original_equations(model, y0=None) -> Equations:
     """The equations ``model`` is checked against: its own ``original_equations(y0)``
-    (a rigid body's Euler-Poisson equations), else its own ``original_rhs()``, else its quasilinear system (:func:`system_equations`).
+    (a rigid body's Euler-Poisson equations), else its own ``original_rhs()``, else its
+    quasilinear system (:func:`system_equations`).
 
     Parameters
     ----------
