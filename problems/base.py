@@ -471,8 +471,8 @@ class Problem(Model, ABC):
     def solve(self, order: int = 1, family: str | None = None) -> PeriodicSolution:
         """The symbolic periodic solution (cached per class, order and method options).
 
-        ``family`` (or the problem's own: ``create(family=NAME)``) names a family of :meth:`families` to follow
-        instead of the one :meth:`method_options` selects. A driven problem's solution is the
+        ``family`` (or the problem's own: ``create(family=NAME)``) names a family of
+        :meth:`families` to follow instead of the one :meth:`method_options` selects. A driven problem's solution is the
         branch of its steady-state response at these parameter values (default: the largest
         amplitude; :meth:`families` lists them all).
         """

@@ -183,7 +183,8 @@ def check_request(problem, parameter: str):
         hint = f" ({told})" if told else f" (did you mean {close[0]!r}?)" if close else ""
         raise bad_value(
             "sweep", parameter,
-            f"it is not a parameter of {label_of(problem)}: choose from {sorted(problem.values)}{hint}",
+            f"it is not a parameter of {label_of(problem)}: "
+            f"choose from {sorted(problem.values)}{hint}",
             InvalidParameterError,
         )  # fmt: skip
     return system

@@ -8,13 +8,13 @@ Euler-Poisson equations) or its own rescaling defines the hook; the functions be
 when the class defines it and give the generic answer otherwise (no attribute probing: the class
 is read, once):
 
-=============================  ==============================================  ======================
-the method a model defines     the generic answer                              asked through
-=============================  ==============================================  ======================
-``original_equations(y0)``     from ``original_rhs()``, else the system        :func:`original_equations`
-``original_rhs()``             the system's vector field ``F(t, y)``           :func:`original_rhs`
-``with_epsilon(eps)``          the model at its case moved to ``eps``          :func:`with_epsilon`
-=============================  ==============================================  ======================
+==========================  ===========================================  =========================
+the method a model defines  the generic answer                           asked through
+==========================  ===========================================  =========================
+``original_equations(y0)``  from ``original_rhs()``, else the system     :func:`original_equations`
+``original_rhs()``          the system's vector field ``F(t, y)``        :func:`original_rhs`
+``with_epsilon(eps)``       the model at its case moved to ``eps``       :func:`with_epsilon`
+==========================  ===========================================  =========================
 """
 
 from __future__ import annotations
@@ -70,7 +70,8 @@ def system_equations(model, y0=None) -> Equations:
     --------
     >>> from perturb.validation.truth import system_equations
     >>> from problems import get_problem
-    >>> system_equations(get_problem("duffing").create(eps=0.1)).rhs([1.0, 0.0])  # x'' = -x - eps x³
+    >>> duffing = get_problem("duffing").create(eps=0.1)
+    >>> system_equations(duffing).rhs([1.0, 0.0])  # x'' = -x - eps x³ at x = 1
     array([ 0. , -1.1])
     """
     system = model.system()
@@ -106,8 +107,8 @@ def original_equations(model, y0=None) -> Equations:
     >>> import numpy as np
     >>> from perturb.validation import original_equations
     >>> from problems import get_problem
-    >>> disk = get_problem("disk").create()
-    >>> original_equations(disk).quasilinear, original_equations(get_problem("duffing").create()).quasilinear
+    >>> disk, duffing = get_problem("disk").create(), get_problem("duffing").create()
+    >>> original_equations(disk).quasilinear, original_equations(duffing).quasilinear
     (False, True)
     """
     if _defines(model, "original_equations"):
