@@ -93,17 +93,21 @@ def _big_integers_as_floats(expr):
     return expr.xreplace({n: sympy.Float(n, len(str(abs(int(n))))) for n in big})
 
 
-def numpy_lambdify(args, expr, cse: bool = False) -> Callable:
+def numpy_lambdify(args, expr, cse: bool = False, *, key: str | None = None) -> Callable:
     """``sympy.lambdify(args, expr, "numpy", cse=cse)``: the same function, built more cheaply.
 
     Parameters
     ----------
     args : sympy.Symbol or (nested) sequence of them
         The arguments of the function, as for :func:`sympy.lambdify`.
-    expr : sympy.Expr, sequence or Matrix
-        What the function returns.
+    expr : sympy.Expr, sequence or Matrix, or a function returning one
+        What the function returns; a function (with ``key``) is called only when the generated
+        source is not in the disk cache: a warm run then builds no sympy expression.
     cse : bool, optional
         Pull out common subexpressions (as :func:`sympy.lambdify`'s ``cse``).
+    key : str, optional
+        What the source is kept under in place of the digest of ``args`` and ``expr``: it must
+        determine both (a digest of what they are built from).
 
     Returns
     -------
@@ -117,20 +121,34 @@ def numpy_lambdify(args, expr, cse: bool = False) -> Callable:
     >>> float(numpy_lambdify(x, sp.sin(x) ** 2 + sp.cos(x) ** 2)(0.3))
     1.0
     """
-    expr = _big_integers_as_floats(expr)
-    if not active():
-        return _lambdified(args, expr, cse)
-    try:
-        key = (digest((args, expr)), bool(cse))
-    except UNPICKLABLE:  # an implemented function's own code: not kept
-        return _lambdified(args, expr, cse)
+    if key is None or not active():
+        expr = _big_integers_as_floats(expr() if key is not None and callable(expr) else expr)
+        if not active():
+            return _lambdified(args, expr, cse)
+        try:
+            parts = (digest((args, expr)), bool(cse))
+        except UNPICKLABLE:  # an implemented function's own code: not kept
+            return _lambdified(args, expr, cse)
+
+        def built():
+            return expr
+
+    else:
+        parts = ("given", key, bool(cse))
+
+        def built():
+            return _big_integers_as_floats(expr() if callable(expr) else expr)
+
+    def made() -> Callable:
+        return _lambdified(args, built(), cse)
+
     source = cached(
         "lambdified",
-        key,
-        lambda: _portable_source(_lambdified(args, expr, cse), _scope()),
+        parts,
+        lambda: _portable_source(made(), _scope()),
         keep=LAMBDIFIED_CACHE_ENTRIES,
     )
-    return _lambdified(args, expr, cse) if source is None else _from_source(*source)
+    return made() if source is None else _from_source(*source)
 
 
 def _lambdified(args, expr, cse: bool) -> Callable:
