@@ -176,7 +176,8 @@ def builtin_index() -> dict[str, str]:
     ``@register`` is parsed with :mod:`ast`; nothing is imported unless a decorated class's
     ``name`` is not a string literal, in which case that module is imported to read it.  What
     the parse finds is kept in the disk cache (kind ``problem-index``) under the SHA-256 of every
-    such module's name and source: an edited, added or removed module parses them again.
+    such module's name and source and of this module's (the parser): an edited, added or removed
+    module parses them again.
     """
     import problems
     from perturb.cache import cached
@@ -190,7 +191,10 @@ def builtin_index() -> dict[str, str]:
             sources[module] = source
     found = cached(
         "problem-index",
-        lambda: tuple((m, hashlib.sha256(s.encode()).hexdigest()) for m, s in sources.items()),
+        lambda: tuple(
+            (m, hashlib.sha256(s.encode()).hexdigest())
+            for m, s in {__name__: Path(__file__).read_text(encoding="utf-8"), **sources}.items()
+        ),
         lambda: {module: _registered_names(source) for module, source in sources.items()},
     )
     index: dict[str, str] = {}
