@@ -22,7 +22,7 @@ import numpy as np
 from attrs import field, frozen
 
 from perturb._defaults import DERIVED_CACHE_SIZE, MOVED_VALUES_CACHE_ENTRIES
-from perturb.cache import cached, digest
+from perturb.cache import UNPICKLABLE, cached, digest
 from perturb.case.parameters import EPSILON_KEY, ParameterMap
 from perturb.case.points import CasePoints, points_of
 from perturb.errors import InvalidParameterError, bad_value
@@ -233,17 +233,20 @@ class Case:
         the values and ``eps``: finding them evaluates sympy expressions, which a warm run then
         does not."""
         mapping, values = self.map, self.values
-        moved = cached(
-            "moved-values",
-            lambda: (
-                digest((mapping.user, mapping.symbols, mapping.epsilon)),
-                tuple((name, type(v).__name__, repr(v)) for name, v in values.items()),
-                type(eps).__name__,
-                repr(eps),
-            ),
-            lambda: mapping.with_epsilon(values, eps),
-            keep=MOVED_VALUES_CACHE_ENTRIES,
-        )
+        try:
+            moved = cached(
+                "moved-values",
+                lambda: (
+                    digest((mapping.user, mapping.symbols, mapping.epsilon)),
+                    tuple((name, type(v).__name__, repr(v)) for name, v in values.items()),
+                    type(eps).__name__,
+                    repr(eps),
+                ),
+                lambda: mapping.with_epsilon(values, eps),
+                keep=MOVED_VALUES_CACHE_ENTRIES,
+            )
+        except UNPICKLABLE:  # a map holding a function's own code: moved afresh, not kept
+            moved = mapping.with_epsilon(values, eps)
         if moved is None:
             return None
         try:
