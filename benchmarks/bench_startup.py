@@ -1,10 +1,10 @@
 """Benchmark: a warm ``perturb validate disk`` against the bare import of what it imports.
 
 A warm command (its cache filled) should cost little more than importing the libraries it uses.
-This script finds those libraries by running the command once in a child and listing the modules
-it loaded outside ``perturb`` and ``problems`` (the third-party packages and the submodules of
-scipy and sympy it reached, e.g. ``scipy.integrate``), then times, in alternating pairs of fresh
-interpreters,
+This script finds those libraries by running the command twice in a child (the first run fills
+the cache) and listing the modules the second, warm, run loaded outside ``perturb`` and
+``problems`` (the third-party packages and the submodules of scipy and sympy it reached, e.g.
+``scipy.integrate``), then times, in alternating pairs of fresh interpreters,
 
 * the bare import of exactly those modules (``python -c "import numpy, scipy.integrate, ..."``),
 * the bare import of the declared dependencies the issue names, ``import numpy, scipy, sympy,
@@ -71,11 +71,14 @@ def _cpu(argv: list[str], env: dict, codes=(0, 1)) -> float:
 
 
 def _modules(env: dict) -> list[str]:
-    """The modules the command loads, outside perturb and problems."""
-    out = subprocess.run(
-        [sys.executable, "-c", _LIST_MODULES.format(argv=COMMAND)],
-        capture_output=True, text=True, env=env, cwd=env["PYTHONPATH"], check=True,
-    )  # fmt: skip
+    """The modules the warm command loads, outside perturb and problems: listed by its second
+    run (the first fills the cache, and a cold run derives, with modules a warm one never
+    imports)."""
+    for _ in range(2):
+        out = subprocess.run(
+            [sys.executable, "-c", _LIST_MODULES.format(argv=COMMAND)],
+            capture_output=True, text=True, env=env, cwd=env["PYTHONPATH"], check=True,
+        )  # fmt: skip
     line = next(x for x in out.stderr.splitlines() if x.startswith("MODULES "))
     return json.loads(line.removeprefix("MODULES "))
 

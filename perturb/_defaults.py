@@ -644,6 +644,18 @@ SAME_READING = 1e-8
 #: precision, so the double returned is the correctly rounded value of the exact inverse.
 EVAL_DIGITS = 30
 
+# -- perturb.case.case
+#: User values moved to another ε (:meth:`perturb.case.Case.with_epsilon`) kept in the disk cache
+#: (kind ``moved-values``), the most recently written: under 1 kB each; the order check of a
+#: validated sweep moves four times at every point.
+MOVED_VALUES_CACHE_ENTRIES = 1024
+
+# -- perturb.domain
+#: A solution's coefficients evaluated at a point's values, kept in the disk cache (kind
+#: ``series-numbers``), the most recently written: a few kB each; a validated sweep makes new
+#: ones at every point (its values, and the order check's four rescaled ones).
+SERIES_NUMBERS_CACHE_ENTRIES = 512
+
 # -- perturb._lambdify
 #: Generated numpy functions whose source is kept in the disk cache (kind ``lambdified``), the
 #: most recently written: a few kB each; a sweep makes new ones at every point (its fields hold the

@@ -20,7 +20,7 @@ from collections.abc import Callable
 from perturb._defaults import LAMBDIFIED_CACHE_ENTRIES
 from perturb.cache import UNPICKLABLE, active, cached, digest
 
-__all__ = ["numpy_lambdify"]
+__all__ = ["mpmath_lambdify", "numpy_lambdify"]
 
 #: The name sympy gives the generated function in its source.
 _FUNCTION_NAME = "_lambdifygenerated"
@@ -93,17 +93,21 @@ def _big_integers_as_floats(expr):
     return expr.xreplace({n: sympy.Float(n, len(str(abs(int(n))))) for n in big})
 
 
-def numpy_lambdify(args, expr, cse: bool = False) -> Callable:
+def numpy_lambdify(args, expr, cse: bool = False, *, key: str | None = None) -> Callable:
     """``sympy.lambdify(args, expr, "numpy", cse=cse)``: the same function, built more cheaply.
 
     Parameters
     ----------
     args : sympy.Symbol or (nested) sequence of them
         The arguments of the function, as for :func:`sympy.lambdify`.
-    expr : sympy.Expr, sequence or Matrix
-        What the function returns.
+    expr : sympy.Expr, sequence or Matrix, or a function returning one
+        What the function returns; a function (with ``key``) is called only when the generated
+        source is not in the disk cache: a warm run then builds no sympy expression.
     cse : bool, optional
         Pull out common subexpressions (as :func:`sympy.lambdify`'s ``cse``).
+    key : str, optional
+        What the source is kept under in place of the digest of ``args`` and ``expr``: it must
+        determine both (a digest of what they are built from).
 
     Returns
     -------
@@ -117,20 +121,34 @@ def numpy_lambdify(args, expr, cse: bool = False) -> Callable:
     >>> float(numpy_lambdify(x, sp.sin(x) ** 2 + sp.cos(x) ** 2)(0.3))
     1.0
     """
-    expr = _big_integers_as_floats(expr)
-    if not active():
-        return _lambdified(args, expr, cse)
-    try:
-        key = (digest((args, expr)), bool(cse))
-    except UNPICKLABLE:  # an implemented function's own code: not kept
-        return _lambdified(args, expr, cse)
+    if key is None or not active():
+        expr = _big_integers_as_floats(expr() if key is not None and callable(expr) else expr)
+        if not active():
+            return _lambdified(args, expr, cse)
+        try:
+            parts = (digest((args, expr)), bool(cse))
+        except UNPICKLABLE:  # an implemented function's own code: not kept
+            return _lambdified(args, expr, cse)
+
+        def built():
+            return expr
+
+    else:
+        parts = ("given", key, bool(cse))
+
+        def built():
+            return _big_integers_as_floats(expr() if callable(expr) else expr)
+
+    def made() -> Callable:
+        return _lambdified(args, built(), cse)
+
     source = cached(
         "lambdified",
-        key,
-        lambda: _portable_source(_lambdified(args, expr, cse)),
+        parts,
+        lambda: _portable_source(made(), _scope()),
         keep=LAMBDIFIED_CACHE_ENTRIES,
     )
-    return _lambdified(args, expr, cse) if source is None else _from_source(*source)
+    return made() if source is None else _from_source(*source)
 
 
 def _lambdified(args, expr, cse: bool) -> Callable:
@@ -146,14 +164,13 @@ def _scope() -> dict:
     return {**_namespace(), "builtins": builtins, "range": range}
 
 
-def _portable_source(function: Callable) -> tuple[str, dict] | None:
-    """The source of a function ``lambdify`` generated and the names it added to
-    :func:`_scope` (the symbols of a sympy expression, each under its own name, as ``lambdify``
-    puts them), or None when it needs anything else (an implemented function, an import the
-    printer added)."""
+def _portable_source(function: Callable, scope: dict) -> tuple[str, dict] | None:
+    """The source of a function ``lambdify`` generated and the names it added to ``scope``
+    (:func:`_scope` or :func:`_mpmath_scope`: the symbols of a sympy expression, each under its
+    own name, as ``lambdify`` puts them), or None when it needs anything else (an implemented
+    function, an import the printer added)."""
     import sympy
 
-    scope = _scope()
     names = {k: v for k, v in function.__globals__.items() if k != "__builtins__"}  # exec's own
     added = {k: v for k, v in names.items() if k not in scope or scope[k] is not v}
     if scope.keys() - names.keys() or not all(
@@ -164,7 +181,7 @@ def _portable_source(function: Callable) -> tuple[str, dict] | None:
     return None if lines is None else ("".join(lines[2]), added)
 
 
-def _from_source(source: str, added: dict) -> Callable:
+def _from_source(source: str, added: dict, scope: dict | None = None) -> Callable:
     """The function of a generated ``source``, built as ``lambdify`` builds it (the same code in
     the same namespace, its source kept for tracebacks and :mod:`inspect`).
 
@@ -174,11 +191,69 @@ def _from_source(source: str, added: dict) -> Callable:
     """
     filename = f"<lambdifygenerated-perturb-{next(_SOURCES)}>"
     local: dict = {}
-    exec(compile(source, filename, "exec"), {**_scope(), **added}, local)  # a signed entry of ours
+    scope = _scope() if scope is None else scope
+    exec(compile(source, filename, "exec"), {**scope, **added}, local)  # a signed entry of ours
     linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
     function = local[_FUNCTION_NAME]
     weakref.finalize(function, linecache.cache.pop, filename, None)
     return function
+
+
+def mpmath_lambdify(args, expr) -> Callable:
+    """``sympy.lambdify(args, expr, "mpmath")``, its source kept in the disk cache.
+
+    As :func:`numpy_lambdify` keeps numpy's: a warm run reads the source back (kind
+    ``lambdified``, keyed on a digest of the arguments and the expression) and runs it in the
+    namespace ``lambdify`` gives it, so neither the printer nor what it imports (sympy's code
+    generation, ``sympy.codegen.ast``) is loaded.  A function that needs anything else is
+    lambdified afresh every time.
+
+    Examples
+    --------
+    >>> import mpmath
+    >>> import sympy as sp
+    >>> x = sp.Symbol("x")
+    >>> with mpmath.workdps(30):
+    ...     print(mpmath_lambdify([x], [sp.sqrt(x) / 3])(mpmath.mpf(2))[0])
+    0.471404520791031682933896241403
+    """
+    import sympy
+
+    def made() -> Callable:
+        return sympy.lambdify(args, expr, modules="mpmath", **_no_docstring())
+
+    if not active():
+        return made()
+    try:
+        key = (digest((args, expr)), "mpmath")
+    except UNPICKLABLE:  # an implemented function's own code: not kept
+        return made()
+    source = cached(
+        "lambdified",
+        key,
+        lambda: _portable_source(made(), _mpmath_scope()),
+        keep=LAMBDIFIED_CACHE_ENTRIES,
+    )
+    return made() if source is None else _from_source(*source, _mpmath_scope())
+
+
+@functools.cache
+def _mpmath_namespace() -> dict:
+    """What ``sympy.lambdify(..., "mpmath")`` puts in scope: mpmath's names, then sympy's
+    translations (as sympy's ``_import("mpmath")`` makes them)."""
+    from sympy.utilities.lambdify import MPMATH_DEFAULT, MPMATH_TRANSLATIONS
+
+    namespace = dict(MPMATH_DEFAULT)
+    exec("from mpmath import *", {}, namespace)  # noqa: S102 - sympy's own import command
+    for sympy_name, mpmath_name in MPMATH_TRANSLATIONS.items():
+        namespace[sympy_name] = namespace[mpmath_name]
+    namespace.setdefault("Abs", abs)
+    return namespace
+
+
+def _mpmath_scope() -> dict:
+    """The globals of a function generated for mpmath (see :func:`_scope`)."""
+    return {**_mpmath_namespace(), "builtins": builtins, "range": range}
 
 
 @functools.cache

@@ -13,11 +13,14 @@ and order (memoised). What has no Maclaurin series is refused with the term and 
 from __future__ import annotations
 
 import functools
+from typing import TYPE_CHECKING
 
 import sympy as sp
 
 from perturb.errors import InvalidSystemError
-from perturb.native import Converter, NotNative, SympyRing, ring_for
+
+if TYPE_CHECKING:
+    from perturb.native import Converter
 
 __all__ = ["maclaurin_coefficients", "polynomial_coefficients"]
 
@@ -39,6 +42,10 @@ def polynomial_coefficients(expr: sp.Expr, eps: sp.Symbol) -> tuple[sp.Expr, ...
     expr = sp.sympify(expr)
     if not expr.has(eps):
         return (sp.expand(expr),)
+    # the native backend (symengine) is imported here, not with this module: a warm run that
+    # reads its results from the cache never expands a right-hand side
+    from perturb.native import Converter, NotNative, SympyRing, ring_for
+
     ring = ring_for(expr)
     if ring is not SympyRing:
         converter = Converter(ring)

@@ -41,7 +41,6 @@ import enum
 import functools
 import hashlib
 import hmac
-import io
 import json
 import os
 import pickle
@@ -57,8 +56,10 @@ from pathlib import Path
 from typing import TypeVar
 
 from perturb.errors import CacheWarning, bad_value
+from perturb.pickling import UNPICKLABLE, digest, dumps
 
 __all__ = [
+    "UNPICKLABLE",
     "Uncached",
     "active",
     "bypassed",
@@ -79,8 +80,6 @@ KEY_ENV = "PERTURB_CACHE_KEY_FILE"
 #: share its folder and key, whose trouble the sweep's process reports, so theirs is not reported
 #: again (once per worker, in their own format); an entry they repair is still repaired.
 QUIET_ENV = "PERTURB_CACHE_QUIET"
-#: What pickling a value that cannot be pickled raises (a lambda, a module, a C object).
-UNPICKLABLE = (pickle.PicklingError, TypeError, AttributeError, RecursionError)
 #: Bump when the layout of an entry or of the pickled objects changes.  Format 1 was a bare pickle;
 #: format 2 pickled sympy's sums, products and powers by their constructors (re-evaluated on read).
 CACHE_FORMAT = 3
@@ -338,81 +337,9 @@ def _sign(secret: bytes, body: bytes) -> bytes:
     return hmac.new(secret, _MAGIC + body, hashlib.sha256).digest()
 
 
-def _rebuilt_assoc(cls: type, args: tuple, commutative: bool | None):
-    """A sympy sum or product from the arguments it held (already canonical): no re-evaluation."""
-    return cls._from_args(args, commutative)
-
-
-def _rebuilt_power(cls: type, base, exponent):
-    """A sympy power from the base and exponent it held (already canonical): no re-evaluation."""
-    return cls(base, exponent, evaluate=False)
-
-
-class _Pickler(pickle.Pickler):
-    """A pickler that writes sympy's ``Add``, ``Mul`` and ``Pow`` as their canonical arguments.
-
-    sympy pickles an expression by its constructor, so reading it back evaluates every sum and
-    product again (sorting and collecting its terms): most of the time of reading a large
-    expression.  The arguments of a stored expression are already in canonical form, so they are
-    put back as they were (``_from_args``, ``evaluate=False``): the same object, equal and with
-    the same ``srepr``, at a small fraction of the cost.  Only these exact classes are handled
-    (not subclasses, which may evaluate differently); everything else pickles as usual.
-    """
-
-    def __init__(self, file, assoc: tuple[type, ...], power: type) -> None:
-        super().__init__(file, protocol=pickle.HIGHEST_PROTOCOL)
-        self._assoc = assoc
-        self._power = power
-
-    def reducer_override(self, obj):
-        kind = type(obj)
-        if kind in self._assoc:
-            return _rebuilt_assoc, (kind, obj.args, obj.is_commutative)
-        if kind is self._power:
-            return _rebuilt_power, (kind, *obj.args)
-        return NotImplemented
-
-
-def _dumps(value: object, tree: bool = False) -> bytes:
-    """``pickle.dumps`` of ``value``, sympy's sums, products and powers as canonical arguments;
-    with ``tree``, every repeated object written out again (pickle's memo off: the bytes are then
-    those of the value's tree, whichever of its equal parts are one object)."""
-    from sympy import Add, Mul, Pow
-
-    buffer = io.BytesIO()
-    pickler = _Pickler(buffer, (Add, Mul), Pow)
-    pickler.fast = tree
-    pickler.dump(value)
-    return buffer.getvalue()
-
-
-def digest(value: object) -> str:
-    """SHA-256 (hex) of ``value``'s pickle as the cache writes it: a key part for large sympy
-    objects, a fraction of the cost of their ``srepr``.
-
-    Raises one of :data:`UNPICKLABLE` for a value that cannot be pickled.  The bytes determine
-    the value they read back as, so two values with one digest are equal and a key built on it
-    never reads another value's entry.  The pickle is written as a tree (a repeated part written
-    out again, as ``srepr`` prints it), so whether equal parts are one object or several (built
-    afresh, or read back from the cache) does not change it.
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> x = sp.Symbol("x")
-    >>> digest(x**2 + 1) == digest(x**2 + 1) != digest(x**2 + 2)
-    True
-    """
-    try:
-        data = _dumps(value, tree=True)
-    except ValueError as exc:  # pickle's memo-less mode refuses a value that holds itself
-        raise pickle.PicklingError(str(exc)) from exc
-    return hashlib.sha256(data).hexdigest()
-
-
 def encode(kind: str, key: str, value: object, secret: bytes) -> bytes:
     """The bytes of the entry holding ``value`` under ``key`` (raises if it cannot be pickled)."""
-    payload = _dumps(value)
+    payload = dumps(value)
     header = {
         **_environment(),
         "kind": kind,

@@ -16,7 +16,12 @@ import numpy as np
 import sympy as sp
 from attrs import field, frozen
 
-from perturb._defaults import NEGLIGIBLE_TERM, VALIDITY_ESTIMATE_LIMIT
+from perturb._defaults import (
+    NEGLIGIBLE_TERM,
+    SERIES_NUMBERS_CACHE_ENTRIES,
+    VALIDITY_ESTIMATE_LIMIT,
+)
+from perturb.cache import cached
 from perturb.solution import PeriodicSolution, SolutionFailed
 from perturb.system import Regime
 
@@ -122,6 +127,33 @@ def next_terms(terms) -> np.ndarray:
     return np.where(usable, estimate, 0.0)
 
 
+def _solution_numbers(solution: PeriodicSolution, subs: dict) -> tuple[list, list]:
+    """The frequency's terms and, per coordinate and order, its harmonic coefficients, as
+    numbers at ``subs``; kept in the disk cache (kind ``series-numbers``) under the solution's
+    :attr:`~perturb.solution.PeriodicSolution.numeric_digest` and the values, so that a warm run
+    evaluates no sympy expression."""
+
+    def compute() -> tuple[list, list]:
+        rows = [
+            [
+                _numbers([c for j in range(t.max_harmonic + 1) for c in t.coefficient(j)], subs)
+                for t in row
+            ]
+            for row in solution.terms
+        ]
+        return _numbers(solution.frequency, subs), rows
+
+    key = solution.numeric_digest
+    if key is None:
+        return compute()
+    return cached(
+        "series-numbers",
+        lambda: (key, tuple((p.name, type(v).__name__, repr(v)) for p, v in subs.items())),
+        compute,
+        keep=SERIES_NUMBERS_CACHE_ENTRIES,
+    )
+
+
 def _numbers(exprs, subs) -> list[float]:
     out = []
     for expr in exprs:
@@ -179,13 +211,13 @@ def series_domain(
     system = solution.system
     eps = 1.0 / parameter_value if system.regime is Regime.LARGE else float(parameter_value)
     subs = {p: values[p.name] for p in system.parameters if p.name in values}
-    freq_terms = [abs(eps**k * f) for k, f in enumerate(_numbers(solution.frequency, subs))]
+    frequency, rows = _solution_numbers(solution, subs)
+    freq_terms = [abs(eps**k * f) for k, f in enumerate(frequency)]
     per_coordinate = {}
-    for name, row in zip(solution.coordinates, solution.terms, strict=True):
+    for name, row in zip(solution.coordinates, rows, strict=True):
         own = []
-        for k, term in enumerate(row):
-            coeffs = [c for j in range(term.max_harmonic + 1) for c in term.coefficient(j)]
-            own.append(abs(eps) ** k * max([0.0, *(abs(c) for c in _numbers(coeffs, subs))]))
+        for k, numbers in enumerate(row):
+            own.append(abs(eps) ** k * max([0.0, *(abs(c) for c in numbers)]))
         per_coordinate[name] = tuple(own)
     depth = max((len(own) for own in per_coordinate.values()), default=0)
     sizes = [

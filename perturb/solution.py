@@ -22,6 +22,7 @@ from perturb._defaults import (
 )
 from perturb._install import install_hint
 from perturb._lambdify import numpy_lambdify
+from perturb.cache import UNPICKLABLE, digest
 from perturb.errors import AccuracyWarning, InvalidParameterError, PerturbError, bad_value
 from perturb.steps import GeneratingSolution, OrderStep, S
 from perturb.system import EPS, QuasilinearSystem, Regime
@@ -349,26 +350,49 @@ class PeriodicSolution:
 
     # ------------------------------------------------------------------ numerics
     @cached_property
+    def numeric_digest(self) -> str | None:
+        """SHA-256 (hex) of what the solution's numbers are computed from: the system's
+        parameters, the frequency and every term's harmonic coefficients, as the disk cache
+        digests them; None when they cannot be pickled.  What a cache of its numbers keys on: a
+        warm run reads them back without building a sympy expression."""
+        table = (
+            tuple(self.system.parameters),
+            tuple(self.frequency),
+            tuple(
+                tuple(tuple(t.coefficient(j) for j in range(t.max_harmonic + 1)) for t in row)
+                for row in self.terms
+            ),
+        )
+        try:
+            return digest(table)
+        except UNPICKLABLE:
+            return None
+
+    @cached_property
     def _compiled(self):
         """Lambdified harmonic coefficients, compiled once (common subexpressions shared)."""
         params = [p for p in self.system.parameters]
         harmonics = max((t.max_harmonic for row in self.terms for t in row), default=0)
-        cos_rows, sin_rows = [], []
-        for row in self.terms:
-            cos_rows.append(
-                [
-                    sp.Add(*(EPS**k * t.coefficient(j)[0] for k, t in enumerate(row)))
-                    for j in range(harmonics + 1)
-                ]
-            )
-            sin_rows.append(
-                [
-                    sp.Add(*(EPS**k * t.coefficient(j)[1] for k, t in enumerate(row)))
-                    for j in range(harmonics + 1)
-                ]
-            )
-        exprs = [self.frequency_expr, cos_rows, sin_rows]
-        fn = numpy_lambdify([EPS, *params], exprs, cse=True)
+
+        def exprs() -> list:
+            cos_rows, sin_rows = [], []
+            for row in self.terms:
+                cos_rows.append(
+                    [
+                        sp.Add(*(EPS**k * t.coefficient(j)[0] for k, t in enumerate(row)))
+                        for j in range(harmonics + 1)
+                    ]
+                )
+                sin_rows.append(
+                    [
+                        sp.Add(*(EPS**k * t.coefficient(j)[1] for k, t in enumerate(row)))
+                        for j in range(harmonics + 1)
+                    ]
+                )
+            return [self.frequency_expr, cos_rows, sin_rows]
+
+        key = self.numeric_digest
+        fn = numpy_lambdify([EPS, *params], exprs if key is not None else exprs(), True, key=key)
         return fn, params, harmonics
 
     def _epsilon(self, value) -> np.ndarray:

@@ -21,6 +21,7 @@ from __future__ import annotations
 import ast
 import difflib
 import functools
+import hashlib
 import importlib
 import importlib.metadata
 import re
@@ -173,18 +174,32 @@ def builtin_index() -> dict[str, str]:
 
     Every module of the ``problems`` package (sub-packages included) whose source mentions
     ``@register`` is parsed with :mod:`ast`; nothing is imported unless a decorated class's
-    ``name`` is not a string literal, in which case that module is imported to read it.
+    ``name`` is not a string literal, in which case that module is imported to read it.  What
+    the parse finds is kept in the disk cache (kind ``problem-index``) under the SHA-256 of every
+    such module's name and source and of this module's (the parser): an edited, added or removed
+    module parses them again.
     """
     import problems
+    from perturb.cache import cached
 
-    index: dict[str, str] = {}
+    sources = {}
     for module, path in (
         found for folder in problems.__path__ for found in _module_files(Path(folder), "problems.")
     ):
         source = path.read_text(encoding="utf-8")
-        if not _DECORATOR_LINE.search(source):
-            continue
-        for class_name, name in _registered_names(source):
+        if _DECORATOR_LINE.search(source):
+            sources[module] = source
+    found = cached(
+        "problem-index",
+        lambda: tuple(
+            (m, hashlib.sha256(s.encode()).hexdigest())
+            for m, s in {__name__: Path(__file__).read_text(encoding="utf-8"), **sources}.items()
+        ),
+        lambda: {module: _registered_names(source) for module, source in sources.items()},
+    )
+    index: dict[str, str] = {}
+    for module in sources:
+        for class_name, name in found[module]:
             if name is None:
                 name = getattr(importlib.import_module(module), class_name).name
             index[name] = f"{module}:{class_name}"

@@ -21,7 +21,8 @@ import attrs
 import numpy as np
 from attrs import field, frozen
 
-from perturb._defaults import DERIVED_CACHE_SIZE
+from perturb._defaults import DERIVED_CACHE_SIZE, MOVED_VALUES_CACHE_ENTRIES
+from perturb.cache import UNPICKLABLE, cached, digest
 from perturb.case.parameters import EPSILON_KEY, ParameterMap
 from perturb.case.points import CasePoints, points_of
 from perturb.errors import InvalidParameterError, bad_value
@@ -226,8 +227,26 @@ class Case:
 
     def with_epsilon(self, eps: float) -> Case | None:
         """The same scaled system (every symbol kept) at ε = ``eps``, or None if no move of the
-        user parameters gives it (or the move leaves their admissible range)."""
-        moved = self.map.with_epsilon(self.values, eps)
+        user parameters gives it (or the move leaves their admissible range).
+
+        The moved values are kept in the disk cache (kind ``moved-values``), keyed on the map,
+        the values and ``eps``: finding them evaluates sympy expressions, which a warm run then
+        does not."""
+        mapping, values = self.map, self.values
+        try:
+            moved = cached(
+                "moved-values",
+                lambda: (
+                    digest((mapping.user, mapping.symbols, mapping.epsilon)),
+                    tuple((name, type(v).__name__, repr(v)) for name, v in values.items()),
+                    type(eps).__name__,
+                    repr(eps),
+                ),
+                lambda: mapping.with_epsilon(values, eps),
+                keep=MOVED_VALUES_CACHE_ENTRIES,
+            )
+        except UNPICKLABLE:  # a map holding a function's own code: moved afresh, not kept
+            moved = mapping.with_epsilon(values, eps)
         if moved is None:
             return None
         try:

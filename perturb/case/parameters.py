@@ -43,6 +43,17 @@ def _last_line(exc: BaseException) -> str:
     return lines[-1] if lines else type(exc).__name__
 
 
+def _declared_text(value) -> tuple[str, str]:
+    """A declared right-hand side as text for a cache key: a string as written, anything else
+    as the ``srepr`` of what sympy makes of it (its symbols' assumptions included)."""
+    if value is None or isinstance(value, str):
+        return type(value).__name__, str(value)
+    try:
+        return "sympy", sp.srepr(sp.sympify(value))
+    except (sp.SympifyError, TypeError, ValueError):
+        return type(value).__name__, repr(value)
+
+
 def _as_expression(value, user: Mapping[str, sp.Symbol], where: str) -> sp.Expr:
     """A declared right-hand side (a sympy expression, a number or a string) in the user symbols."""
     if isinstance(value, str):
@@ -136,16 +147,33 @@ class ParameterMap:
             parameters — one line naming it and the fix.
         """
         names = tuple(str(u) for u in user)
-        symbols = {n: sp.Symbol(n, real=True) for n in names}
+        own = tuple(p.name for p in parameters)
         declared = dict(declared or {})
+        # read back from the disk cache (kind ``parameter-map``) where this declaration was read
+        # before: parsing its strings is most of a warm run's time in sympy's parser
+        return cached(
+            "parameter-map",
+            lambda: (
+                f"{cls.__module__}.{cls.__qualname__}",
+                names,
+                own,
+                tuple((key, _declared_text(value)) for key, value in declared.items()),
+                _declared_text(epsilon),
+            ),
+            lambda: cls._declare(own, names, dict(declared), epsilon),
+        )
+
+    @classmethod
+    def _declare(cls, own: tuple, names: tuple, declared: dict, epsilon) -> ParameterMap:
+        """:meth:`declare` of the system symbols named ``own`` (not cached)."""
+        symbols = {n: sp.Symbol(n, real=True) for n in names}
         if EPSILON_KEY in declared:
             epsilon = declared.pop(EPSILON_KEY)
-        own = [p.name for p in parameters]
         unknown = sorted(set(declared) - set(own))
         if unknown:
             raise InvalidSystemError(
                 f"`parameter_map` declares {unknown[0]!r}, which is not a symbol of the system: "
-                f"declare its symbols {own} (and {EPSILON_KEY!r} for ε)"
+                f"declare its symbols {list(own)} (and {EPSILON_KEY!r} for ε)"
             )
         rows = []
         for name in own:
@@ -248,7 +276,9 @@ class ParameterMap:
             if self.epsilon is not None:
                 exprs.append(self.epsilon)
             args = list(self.user_symbols.values())
-            self._compiled["precise"] = sp.lambdify(args, exprs, modules="mpmath")
+            from perturb._lambdify import mpmath_lambdify
+
+            self._compiled["precise"] = mpmath_lambdify(args, exprs)
         return self._compiled["precise"]
 
     def evaluate(self, values: Mapping[str, float]) -> tuple[dict[str, float], float | None]:

@@ -44,8 +44,6 @@ from perturb._checks import known_keywords
 from perturb._defaults import SOLVE_SECONDS
 from perturb.cache import Uncached, cached
 from perturb.frame import DrivenFrame, FreeFrame
-from perturb.method.construction import OrderByOrder
-from perturb.method.given_period import DrivenOrderByOrder
 from perturb.method.options import (
     check_branch,
     check_cache,
@@ -56,7 +54,6 @@ from perturb.method.options import (
     one_of,
     to_amplitudes,
 )
-from perturb.native import NotNative
 from perturb.progress import stage
 from perturb.solution import PeriodicSolution, Status
 from perturb.system import QuasilinearSystem
@@ -237,14 +234,27 @@ def solve(system: QuasilinearSystem, order: int = 1, **options) -> PeriodicSolut
     return PoincareMethod(order=order, **options).solve(system)
 
 
-#: The template of each frame (:attr:`perturb.QuasilinearSystem.frame`): free, or period given.
-TEMPLATES = {FreeFrame: OrderByOrder, DrivenFrame: DrivenOrderByOrder}
+def __getattr__(name: str):
+    """``TEMPLATES``, the template of each frame (:attr:`perturb.QuasilinearSystem.frame`): free,
+    or period given.  Made on first use, with the construction's modules: a run that reads its
+    solutions from the cache never loads them."""
+    if name != "TEMPLATES":
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    from perturb.method.construction import OrderByOrder
+    from perturb.method.given_period import DrivenOrderByOrder
+
+    templates = {FreeFrame: OrderByOrder, DrivenFrame: DrivenOrderByOrder}
+    globals()["TEMPLATES"] = templates  # later lookups (and additions) use this one dict
+    return templates
 
 
 def _construct(method: PoincareMethod, system: QuasilinearSystem) -> PeriodicSolution:
     """One run on the native backend; again on sympy if an expression cannot be held natively.
-    The template is the frame's (:data:`TEMPLATES`)."""
-    template = TEMPLATES[type(system.frame)]
+    The template is the frame's (``TEMPLATES``)."""
+    from perturb.native import NotNative
+
+    templates = globals().get("TEMPLATES") or __getattr__("TEMPLATES")
+    template = templates[type(system.frame)]
     try:
         return template(method, system).run()
     except NotNative:

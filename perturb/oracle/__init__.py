@@ -15,17 +15,10 @@ map with its monodromy and sensitivity, for continuation) and :mod:`~perturb.ora
 the oracle imports from this package only.
 """
 
+import importlib
+
 from perturb.oracle.base import Integrator, IntegratorBase, Trajectory, TrajectoryStatus
-from perturb.oracle.bifurcation import (
-    critical_multiplier,
-    fold_test,
-    is_neimark_sacker,
-    neimark_sacker_test,
-    period_doubling_test,
-)
-from perturb.oracle.driven_family import DrivenFamily, Shot
 from perturb.oracle.floquet import expected_trivial_multipliers
-from perturb.oracle.forced import find_forced_orbit
 from perturb.oracle.heyoka import Heyoka, heyoka_available
 from perturb.oracle.orbit import OrbitRoute, OrbitStatus, PeriodicOrbit
 from perturb.oracle.registry import INTEGRATORS, choose, default_integrator, get_integrator
@@ -66,3 +59,29 @@ __all__ = [
     "scaled_atol",
     "to_heyoka",
 ]
+
+#: Names of the driven and bifurcation modules, imported on first access (PEP 562): a free
+#: system's validation never loads them.
+_LAZY = {
+    "DrivenFamily": "perturb.oracle.driven_family",
+    "Shot": "perturb.oracle.driven_family",
+    "critical_multiplier": "perturb.oracle.bifurcation",
+    "find_forced_orbit": "perturb.oracle.forced",
+    "fold_test": "perturb.oracle.bifurcation",
+    "is_neimark_sacker": "perturb.oracle.bifurcation",
+    "neimark_sacker_test": "perturb.oracle.bifurcation",
+    "period_doubling_test": "perturb.oracle.bifurcation",
+}
+
+
+def __getattr__(name: str):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'perturb.oracle' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value  # later lookups skip this hook
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

@@ -109,7 +109,20 @@ def geometric_constraint(reduction: Reduction) -> sp.Expr:
     The reduction's ``initial_full_state`` gives :math:`\\gamma(0), \\gamma'(0), \\gamma''(0)` in the
     initial values; with :math:`\\dot G(0) = 0` the constraint is solved for :math:`G_0`, taking the
     root with :math:`\\gamma(0) > 0`. :math:`\\gamma(0) - G_0` does not contain :math:`G_0`.
+
+    Kept on disk (kind ``geometric-constraint``) under the reduction's kind, order and values
+    and the sources that derive it: a warm run builds no sympy expression for it.
     """
+    return stored(
+        "geometric-constraint",
+        ("_body.py", "reduction.py", "_elimination.py", "_series_ring.py", "equations.py"),
+        (reduction.kind, reduction.order, reduction.values),
+        lambda: _geometric_constraint(reduction),
+    )
+
+
+def _geometric_constraint(reduction: Reduction) -> sp.Expr:
+    """:func:`geometric_constraint`, derived."""
     p0, g0, dp0, dg0 = INITIAL_VALUES
     g1, g2, g3 = reduction.initial_full_state[3:]
     g2 = g2.subs(dg0, 0)
