@@ -639,6 +639,12 @@ MAX_BRANCHES = 64
 #: from the two segments that share an end, far below any distance between distinct branches.
 SAME_READING = 1e-8
 
+# -- perturb.cache
+#: Age, in seconds, past which a writer's temporary file in the cache folder is a leftover: a
+#: writer renames its file onto the entry within milliseconds, so an hour-old one was left by a
+#: process killed while writing (it is removed at the process's first write into the folder).
+CACHE_LEFTOVER_SECONDS = 3600
+
 # -- perturb.case.parameters
 #: Digits of the evaluation of an inverse at the given doubles (taken as exact): far past double
 #: precision, so the double returned is the correctly rounded value of the exact inverse.

@@ -50,11 +50,13 @@ import secrets
 import stat
 import struct
 import tempfile
+import time
 import warnings
 from collections.abc import Callable
 from pathlib import Path
 from typing import TypeVar
 
+from perturb._defaults import CACHE_LEFTOVER_SECONDS
 from perturb.errors import CacheWarning, bad_value
 from perturb.pickling import UNPICKLABLE, digest, dumps
 
@@ -407,8 +409,13 @@ def _read(path: Path) -> bytes | Rejection | None:
         return fh.read()
 
 
+#: A writer's temporary file (:func:`_write`): ``tempfile.mkstemp``'s prefix and our suffix.
+_TEMPORARY = "tmp*.tmp"
+
+
 def _write(folder: Path, path: Path, data: bytes) -> None:
     """Atomically put ``data`` at ``path``: concurrent writers never leave a torn entry."""
+    _sweep_leftovers(folder)
     fd, tmp = tempfile.mkstemp(dir=folder, suffix=".tmp")  # mode 0600
     try:
         with os.fdopen(fd, "wb") as fh:
@@ -417,6 +424,25 @@ def _write(folder: Path, path: Path, data: bytes) -> None:
     except BaseException:
         os.unlink(tmp)
         raise
+
+
+#: The folders whose leftovers this process has swept (once each).
+_SWEPT: set[Path] = set()
+
+
+def _sweep_leftovers(folder: Path) -> None:
+    """Remove the temporary files a killed writer left in ``folder`` (older than
+    :data:`~perturb._defaults.CACHE_LEFTOVER_SECONDS`: a live writer's is milliseconds old),
+    once per process and folder. A file already gone, or not ours to remove, is skipped."""
+    if folder in _SWEPT:
+        return
+    _SWEPT.add(folder)
+    now = time.time()
+    for path in folder.glob(_TEMPORARY):
+        with contextlib.suppress(OSError):
+            info = path.lstat()
+            if stat.S_ISREG(info.st_mode) and now - info.st_mtime > CACHE_LEFTOVER_SECONDS:
+                path.unlink()
 
 
 #: Set inside :func:`bypassed`: every :func:`cached` call computes afresh and writes nothing.

@@ -85,3 +85,29 @@ def test_a_folder_and_key_named_from_the_home_folder_are_there(tmp_path, monkeyp
     monkeypatch.setenv("PERTURB_CACHE_KEY_FILE", "~/config/cache.key")
     assert cache_dir() == tmp_path / "cache"
     assert key_file() == tmp_path / "config" / "cache.key"
+
+
+def test_a_killed_writers_leftovers_are_removed_and_nothing_else(cache_folder, tmp_path_factory):
+    """A process killed while writing leaves ``tmp*.tmp`` behind; the next process to write into
+    the folder removes those older than the leftover age, and nothing else."""
+    from perturb._defaults import CACHE_LEFTOVER_SECONDS
+
+    old = os.stat(cache_folder).st_mtime - 2 * CACHE_LEFTOVER_SECONDS
+    left = cache_folder / "tmpkilled.tmp"
+    left.write_bytes(b"half an entry")
+    live = cache_folder / "tmpwriting.tmp"  # a writer's file of this very moment
+    live.write_bytes(b"being written")
+    notes = cache_folder / "notes.tmp"  # not a writer's name
+    notes.write_text("a user's file")
+    outside = tmp_path_factory.mktemp("outside") / "elsewhere"
+    outside.write_text("not in the cache folder")
+    link = cache_folder / "tmplink.tmp"  # a link is not removed, nor what it points to
+    link.symlink_to(outside)
+    for path in (left, notes, outside):
+        os.utime(path, (old, old))
+    os.utime(link, (old, old), follow_symlinks=False)
+    cached("demo", ("a write",), lambda: 1)
+    assert not left.exists()
+    assert live.read_bytes() == b"being written"
+    assert notes.read_text() == "a user's file"
+    assert link.is_symlink() and outside.read_text() == "not in the cache folder"
