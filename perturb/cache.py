@@ -17,7 +17,7 @@ What an entry is
     ``~/.config/perturb/cache.key``, 32 random bytes created with mode 0600 on first use).
 
 Reading
-    The tag is checked with :func:`hmac.compare_digest` *before* anything is parsed or unpickled, so
+    The tag is checked with ``hmac.compare_digest`` *before* anything is parsed or unpickled, so
     a file nobody holding the key wrote is never unpickled (unpickling runs code).  Then every header
     field must match what this call expects.  A truncated, corrupt, unsigned, foreign (another key),
     stale (another version, engine or format) or unloadable entry is discarded, recomputed and
@@ -25,7 +25,10 @@ Reading
 
 Writing
     A temporary file in the folder (mode 0600) is moved into place by :func:`os.replace`, so
-    concurrent writers of one key never leave a torn entry: the last complete one wins.
+    concurrent writers of one key never leave a torn entry: the last complete one wins.  A
+    temporary file that a process killed while writing left behind is removed by the next process
+    that writes into the folder, once it is older than ``CACHE_LEFTOVER_SECONDS``
+    (``perturb/_defaults.py``: an hour).
 
 Why pickle behind an HMAC rather than a code-free encoding: see ``benchmarks/bench_cache.py``.  A
 results tree holds sympy expressions inside several attrs classes of the engine; a whitelisted tree
@@ -125,7 +128,26 @@ class Rejection(enum.Enum):
 
 
 def cache_dir() -> Path | None:
-    """The cache folder, or ``None`` when caching on disk is disabled."""
+    """The cache folder, or ``None`` when caching on disk is disabled.
+
+    Returns
+    -------
+    pathlib.Path or None
+        ``$PERTURB_CACHE_DIR`` (``~`` expanded; ``off``, ``0``, ``none`` or empty: None), else
+        ``$XDG_CACHE_HOME/perturb`` or ``~/.cache/perturb``.
+
+    Examples
+    --------
+    >>> import os
+    >>> from unittest import mock
+    >>> from perturb.cache import cache_dir
+    >>> with mock.patch.dict(os.environ, {"PERTURB_CACHE_DIR": "off"}):
+    ...     cache_dir() is None
+    True
+    >>> with mock.patch.dict(os.environ, {"PERTURB_CACHE_DIR": "/scratch/perturb"}):
+    ...     cache_dir().as_posix()
+    '/scratch/perturb'
+    """
     value = os.environ.get(CACHE_ENV)
     if value is not None:
         off = value.strip().lower() in ("off", "0", "none", "")
@@ -135,7 +157,23 @@ def cache_dir() -> Path | None:
 
 
 def key_file() -> Path:
-    """The file holding this user's secret signing key (outside the cache folder)."""
+    """The file holding this user's secret signing key (outside the cache folder).
+
+    Returns
+    -------
+    pathlib.Path
+        ``$PERTURB_CACHE_KEY_FILE``, else ``$XDG_CONFIG_HOME/perturb/cache.key`` or
+        ``~/.config/perturb/cache.key`` (made with mode 0600 on first use).
+
+    Examples
+    --------
+    >>> import os
+    >>> from unittest import mock
+    >>> from perturb.cache import key_file
+    >>> with mock.patch.dict(os.environ, {"PERTURB_CACHE_KEY_FILE": "/secure/perturb.key"}):
+    ...     key_file().as_posix()
+    '/secure/perturb.key'
+    """
     value = os.environ.get(KEY_ENV, "").strip()
     if value:
         return Path(value).expanduser()
@@ -187,6 +225,11 @@ def held_warnings():
     block that recorded or ignored one would change the result or lose the warning.  Put it
     before the recording ``warnings.catch_warnings`` in the same ``with``; nested blocks give
     their warnings to the outermost.
+
+    Yields
+    ------
+    None
+        The block runs with the cache's warnings held.
 
     Examples
     --------
@@ -455,6 +498,11 @@ _BYPASS: contextvars.ContextVar[bool] = contextvars.ContextVar(
 def bypassed():
     """Compute everything afresh inside the block (to time a derivation), leaving the cache as it is.
 
+    Yields
+    ------
+    None
+        The block runs with the disk cache neither read nor written.
+
     Examples
     --------
     >>> with bypassed():
@@ -469,13 +517,35 @@ def bypassed():
 
 
 def active() -> bool:
-    """Whether :func:`cached` uses the disk now (a folder is set and it is not bypassed)."""
+    """Whether :func:`cached` uses the disk now (a folder is set and it is not bypassed).
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> import os
+    >>> from unittest import mock
+    >>> from perturb.cache import active, bypassed
+    >>> with mock.patch.dict(os.environ, {"PERTURB_CACHE_DIR": "/scratch/perturb"}):
+    ...     on = active()
+    ...     with bypassed():
+    ...         inside = active()
+    >>> on, inside
+    (True, False)
+    """
     return cache_dir() is not None and not _BYPASS.get()
 
 
 class Uncached:
     """A value :func:`cached` returns but does not keep: one that depends on this run, not on the
     key alone (a solve cut by its time budget, which a faster or idler machine would finish).
+
+    Parameters
+    ----------
+    value : object
+        What the computation gives this time.
 
     Examples
     --------
@@ -538,6 +608,24 @@ def cached(
     -------
     The value of ``compute()``, or an equal one read from a valid entry.  Cache trouble never
     raises: it warns once (:class:`~perturb.errors.CacheWarning`) and computes.
+
+    Examples
+    --------
+    The second call reads what the first wrote (a private folder of its own here):
+
+    >>> import os, tempfile
+    >>> from unittest import mock
+    >>> from perturb.cache import cached
+    >>> calls = []
+    >>> def derive():
+    ...     calls.append("derived")
+    ...     return {"omega": 1.0}
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     with mock.patch.dict(os.environ, {"PERTURB_CACHE_DIR": folder}):
+    ...         first = cached("demo", ("the inputs", 1), derive)
+    ...         second = cached("demo", ("the inputs", 1), derive)
+    >>> first == second, calls
+    (True, ['derived'])
     """
     if not isinstance(kind, str) or not _KIND.fullmatch(kind):
         raise bad_value("kind", kind, "use a short label of letters, digits, '-' or '_'")

@@ -81,6 +81,16 @@ def digest(value: object) -> str:
     out again, as ``srepr`` prints it), so whether equal parts are one object or several (built
     afresh, or read back from the cache) does not change it.
 
+    Parameters
+    ----------
+    value : object
+        Anything the cache can pickle (sympy expressions, systems, solutions).
+
+    Returns
+    -------
+    str
+        64 hexadecimal digits.
+
     Examples
     --------
     >>> import sympy as sp

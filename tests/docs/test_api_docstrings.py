@@ -28,6 +28,7 @@ PACKAGES = (
     "perturb.report.plots",
     "perturb.report.formats",
     "perturb.workprecision",
+    "perturb.cache",
     "problems",
 )
 #: Modules whose examples draw figures: skipped without matplotlib (the ``plot`` extra).
