@@ -28,6 +28,7 @@ import sympy as sp
 
 from perturb import PoincareMethod
 from perturb import cache as disk_cache
+from perturb.cache_files import write_entry
 from problems import get_problem
 
 REPEATS = 5
@@ -163,7 +164,7 @@ def main() -> None:
         key = disk_cache._key(kind, (label,))
         path = folder / f"{kind}-{key}.pkl"
         blob = disk_cache.encode(kind, key, value, secret)
-        disk_cache._write(folder, path, blob)
+        write_entry(folder, path, blob)
 
         def warm(path=path, kind=kind, key=key):
             why, _ = disk_cache.decode(path.read_bytes(), kind, key, secret)

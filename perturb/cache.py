@@ -53,13 +53,12 @@ import secrets
 import stat
 import struct
 import tempfile
-import time
 import warnings
 from collections.abc import Callable
 from pathlib import Path
 from typing import TypeVar
 
-from perturb._defaults import CACHE_LEFTOVER_SECONDS
+from perturb.cache_files import prune, read_entry, write_entry
 from perturb.errors import CacheWarning, bad_value
 from perturb.pickling import UNPICKLABLE, digest, dumps
 
@@ -436,58 +435,6 @@ def decode(blob: bytes, kind: str, key: str, secret: bytes) -> tuple[Rejection |
         return Rejection.UNLOADABLE, None
 
 
-def _read(path: Path) -> bytes | Rejection | None:
-    """The bytes at ``path``; ``None`` if there is no entry; a :class:`Rejection` for a non-file."""
-    try:
-        fd = os.open(
-            path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0)
-        )
-    except FileNotFoundError:
-        return None
-    except OSError:  # a symbolic link (O_NOFOLLOW), or unreadable
-        return Rejection.NOT_A_FILE
-    with os.fdopen(fd, "rb") as fh:
-        if not stat.S_ISREG(os.fstat(fh.fileno()).st_mode):
-            return Rejection.NOT_A_FILE
-        return fh.read()
-
-
-#: A writer's temporary file (:func:`_write`): ``tempfile.mkstemp``'s prefix and our suffix.
-_TEMPORARY = "tmp*.tmp"
-
-
-def _write(folder: Path, path: Path, data: bytes) -> None:
-    """Atomically put ``data`` at ``path``: concurrent writers never leave a torn entry."""
-    _sweep_leftovers(folder)
-    fd, tmp = tempfile.mkstemp(dir=folder, suffix=".tmp")  # mode 0600
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-        os.replace(tmp, path)
-    except BaseException:
-        os.unlink(tmp)
-        raise
-
-
-#: The folders whose leftovers this process has swept (once each).
-_SWEPT: set[Path] = set()
-
-
-def _sweep_leftovers(folder: Path) -> None:
-    """Remove the temporary files a killed writer left in ``folder`` (older than
-    :data:`~perturb._defaults.CACHE_LEFTOVER_SECONDS`: a live writer's is milliseconds old),
-    once per process and folder. A file already gone, or not ours to remove, is skipped."""
-    if folder in _SWEPT:
-        return
-    _SWEPT.add(folder)
-    now = time.time()
-    for path in folder.glob(_TEMPORARY):
-        with contextlib.suppress(OSError):
-            info = path.lstat()
-            if stat.S_ISREG(info.st_mode) and now - info.st_mtime > CACHE_LEFTOVER_SECONDS:
-                path.unlink()
-
-
 #: Set inside :func:`bypassed`: every :func:`cached` call computes afresh and writes nothing.
 _BYPASS: contextvars.ContextVar[bool] = contextvars.ContextVar(
     "perturb_cache_bypass", default=False
@@ -564,23 +511,6 @@ class Uncached:
         return value.value if isinstance(value, Uncached) else value
 
 
-def _prune(folder: Path, kind: str, keep: int) -> None:
-    """Remove the entries of ``kind`` beyond the ``keep`` most recently written.
-
-    By the time written, not read: a read leaves its entry as it is (a warm run writes nothing).
-
-    Concurrent runs may prune together: an entry already gone is skipped.
-    """
-    entries = []
-    for path in folder.glob(f"{kind}-{_HEX * _KEY_DIGITS}.pkl"):  # not another kind's ("kind-x")
-        with contextlib.suppress(OSError):
-            entries.append((path.stat().st_mtime_ns, path))
-    entries.sort(reverse=True)
-    for _, path in entries[keep:]:
-        with contextlib.suppress(OSError):
-            path.unlink()
-
-
 def cached(
     kind: str,
     parts: tuple | Callable[[], tuple],
@@ -643,8 +573,8 @@ def cached(
     key = _key(kind, parts)
     path = folder / f"{kind}-{key}.pkl"
     try:
-        found = _read(path)
-    except OSError:
+        found = read_entry(path)
+    except OSError:  # a link, not a regular file, or unreadable
         found = Rejection.NOT_A_FILE
     if isinstance(found, bytes):
         why, value = decode(found, kind, key, secret)
@@ -661,12 +591,12 @@ def cached(
     except UNPICKLABLE:
         return value  # not picklable: it simply is not cached
     try:
-        _write(folder, path, data)
+        write_entry(folder, path, data)
     except OSError as exc:
         _warn_once(
             "unwritable", f"cannot write to `{folder}` ({exc.strerror}); results are not kept"
         )
     else:
         if keep is not None:
-            _prune(folder, kind, keep)
+            prune(folder, f"{kind}-{_HEX * _KEY_DIGITS}.pkl", keep)  # not another kind's
     return value

@@ -31,7 +31,7 @@ def full_disk(tmp_path, monkeypatch):
     def full(*args):
         raise OSError(errno.ENOSPC, "No space left on device")
 
-    monkeypatch.setattr(cache_mod, "_write", full)
+    monkeypatch.setattr(cache_mod, "write_entry", full)  # what the cache writes through
     return tmp_path
 
 
