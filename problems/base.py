@@ -308,7 +308,8 @@ class Problem(Model, ABC):
     def create(cls, family: str | None = None, **overrides) -> Problem:
         """The problem with default parameters, some of them overridden by name, following the
         family ``family`` of :meth:`families` (None: the one :meth:`method_options` selects;
-        checked when solved)."""
+        checked when solved). A family is a name: a number given as ``family`` (``--set
+        family=1``, a grid over it) is a parameter the problem does not have, and says so."""
         known = {s.name for s in cls.parameter_specs}
         if "family" in known:
             raise InvalidSystemError(
@@ -316,6 +317,8 @@ class Problem(Model, ABC):
                 "`family`, which is create's keyword for the family of solutions: rename it"
             )
         unknown = sorted(set(overrides) - known)
+        if family is not None and not isinstance(family, str):
+            unknown = ["family"]
         if unknown:
             told = cls._map().set_by(unknown[0], "set")  # a system symbol the map sets
             raise UnknownNameError(

@@ -199,3 +199,16 @@ def test_a_hook_returning_something_else_is_refused_in_one_line(user_module):
 
     with pytest.raises(InvalidSystemError, match="return perturb.validation.Equations"):
         original_equations(Wrong.create())
+
+
+def test_a_number_given_as_family_is_a_parameter_the_problem_does_not_have(capsys):
+    """A family is a name: ``--set family=1`` or a grid over ``family`` is told, as before the
+    keyword existed, that the problem has no such parameter."""
+    from perturb.cli import main
+    from perturb.errors import UnknownNameError
+
+    assert main(["solve", "duffing", "--set", "family=1"]) == 2
+    err = capsys.readouterr().err
+    assert "`family` is not a parameter of duffing" in err and "Traceback" not in err
+    with pytest.raises(UnknownNameError, match="`family` is not a parameter of duffing"):
+        get_problem("duffing").create().with_parameters(family=2.0)
