@@ -25,10 +25,8 @@ Reading
 
 Writing
     A temporary file in the folder (mode 0600) is moved into place by :func:`os.replace`, so
-    concurrent writers of one key never leave a torn entry: the last complete one wins.  A
-    temporary file that a process killed while writing left behind is removed by the next process
-    that writes into the folder, once it is older than ``CACHE_LEFTOVER_SECONDS``
-    (``perturb/_defaults.py``: an hour).
+    concurrent writers of one key never leave a torn entry: the last complete one wins.  One left
+    by a killed writer is removed, an hour old, by the next writer (``perturb/cache_files.py``).
 
 Why pickle behind an HMAC rather than a code-free encoding: see ``benchmarks/bench_cache.py``.  A
 results tree holds sympy expressions inside several attrs classes of the engine; a whitelisted tree
